@@ -1,0 +1,133 @@
+"""Hyperelastic laws, written once as W(I1, I2), used by the membrane solver and the FEM.
+
+A law is a polynomial in the invariants, W = Σ C_ij (I1 − 3)^i (I2 − 3)^j (MPa), which covers
+neo-Hookean (C10), Mooney–Rivlin (C10, C01) and Yeoh 3rd order (C10, C20, C30). For the
+incompressible membrane the invariants are those of eq. 24; the nearly incompressible FEM uses
+the isochoric invariants Ī1, Ī2 in the same functions plus its own volumetric term.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from spsc.cad.errors import ParameterError
+
+__all__ = ["Material", "neo_hookean", "mooney_rivlin", "yeoh", "CATALOGUE", "material"]
+
+
+@dataclass(frozen=True)
+class Material:
+    """W(I1, I2) = Σ C_ij (I1 − 3)^i (I2 − 3)^j, coefficients in MPa.
+
+    Parameters
+    ----------
+    name : str
+        Catalogue key.
+    law : str
+        ``neo-hookean``, ``mooney-rivlin`` or ``yeoh`` (for reports).
+    coefficients : tuple of (i, j, C_ij)
+        Exponents and coefficient (MPa). Initial shear modulus μ0 = 2(C10 + C01) must be > 0.
+    source : str
+        Where the numbers come from; ``assumed`` marks values not taken from a fit of the material.
+    """
+
+    name: str
+    law: str
+    coefficients: tuple[tuple[int, int, float], ...]
+    source: str = ""
+    assumed: bool = False
+
+    def __post_init__(self):
+        if self.shear_modulus <= 0:
+            raise ParameterError(f"{self.name}: initial shear modulus 2(C10 + C01)",
+                                 self.shear_modulus, "> 0 (MPa)")
+
+    def _c(self, i: int, j: int) -> float:
+        return sum(c for a, b, c in self.coefficients if (a, b) == (i, j))
+
+    @property
+    def shear_modulus(self) -> float:
+        """Initial shear modulus μ0 = 2(C10 + C01) in MPa."""
+        return 2.0 * (self._c(1, 0) + self._c(0, 1))
+
+    @property
+    def youngs_modulus(self) -> float:
+        """Small-strain Young's modulus E = 3 μ0 (incompressible), MPa."""
+        return 3.0 * self.shear_modulus
+
+    def energy(self, I1, I2):
+        """Strain energy density W in MPa (= mJ/mm³)."""
+        a, b = np.asarray(I1, float) - 3.0, np.asarray(I2, float) - 3.0
+        return sum(c * a**i * b**j for i, j, c in self.coefficients)
+
+    def dW(self, I1, I2):
+        """(∂W/∂I1, ∂W/∂I2) in MPa, the factors of eqs. 22–23."""
+        a, b = np.asarray(I1, float) - 3.0, np.asarray(I2, float) - 3.0
+        W1 = sum(c * i * a ** (i - 1) * b**j for i, j, c in self.coefficients if i > 0)
+        W2 = sum(c * j * a**i * b ** (j - 1) for i, j, c in self.coefficients if j > 0)
+        return W1 + 0.0 * a, W2 + 0.0 * b
+
+    def d2W(self, I1, I2):
+        """(∂²W/∂I1², ∂²W/∂I1∂I2, ∂²W/∂I2²) in MPa, for consistent tangents."""
+        a, b = np.asarray(I1, float) - 3.0, np.asarray(I2, float) - 3.0
+        z = 0.0 * a * b
+        W11 = sum(c * i * (i - 1) * a ** (i - 2) * b**j for i, j, c in self.coefficients if i > 1)
+        W12 = sum(c * i * j * a ** (i - 1) * b ** (j - 1) for i, j, c in self.coefficients
+                  if i > 0 and j > 0)
+        W22 = sum(c * j * (j - 1) * a**i * b ** (j - 2) for i, j, c in self.coefficients if j > 1)
+        return W11 + z, W12 + z, W22 + z
+
+
+def neo_hookean(mu: float, *, name: str = "neo-hookean", source: str = "",
+                assumed: bool = False) -> Material:
+    """Neo-Hookean W = (μ/2)(I1 − 3), μ in MPa."""
+    return Material(name, "neo-hookean", ((1, 0, mu / 2.0),), source, assumed)
+
+
+def mooney_rivlin(c10: float, c01: float, *, name: str = "mooney-rivlin", source: str = "",
+                  assumed: bool = False) -> Material:
+    """Mooney–Rivlin W = C10(I1 − 3) + C01(I2 − 3), MPa."""
+    return Material(name, "mooney-rivlin", ((1, 0, c10), (0, 1, c01)), source, assumed)
+
+
+def yeoh(c10: float, c20: float, c30: float, *, name: str = "yeoh", source: str = "",
+         assumed: bool = False) -> Material:
+    """Yeoh 3rd order W = C10(I1 − 3) + C20(I1 − 3)² + C30(I1 − 3)³, MPa."""
+    return Material(name, "yeoh", ((1, 0, c10), (2, 0, c20), (3, 0, c30)), source, assumed)
+
+
+def _shore_a_to_youngs(shore_a: float) -> float:
+    """Gent's (1958) empirical relation between Shore A hardness and Young's modulus (MPa)."""
+    return 0.0981 * (56.0 + 7.62336 * shore_a) / (0.137505 * (254.0 - 2.54 * shore_a))
+
+
+_E_40A = _shore_a_to_youngs(40.0)
+
+CATALOGUE: dict[str, Material] = {
+    "tpu60a": neo_hookean(
+        5.0 / 3.0, name="tpu60a",
+        source="Recreus Filaflex 60A, linearised datasheet E = 5 MPa at 20 % elongation "
+               "(paper sec. 3.1); neo-Hookean with mu = E/3"),
+    "elastic50a": yeoh(
+        0.5056, 0.0, 0.002562, name="elastic50a",
+        source="Formlabs Elastic 50A (cured), Yeoh fit of Xavier et al., "
+               "Sensors and Actuators A, 2021 (paper ref. [40])"),
+    "silicone40a": neo_hookean(
+        _E_40A / 3.0, name="silicone40a", assumed=True,
+        source=f"ASSUMED: Formlabs Silicone 40A, Shore 40A -> E = {_E_40A:.2f} MPa by Gent's "
+               "relation; neo-Hookean mu = E/3. No published hyperelastic fit used."),
+    "as40": neo_hookean(
+        _E_40A / 3.0, name="as40", assumed=True,
+        source=f"ASSUMED: Easy Composites AS40 silicone, Shore 40A -> E = {_E_40A:.2f} MPa by "
+               "Gent's relation; neo-Hookean mu = E/3. No published hyperelastic fit used."),
+}
+
+
+def material(name: str) -> Material:
+    """The catalogue material ``name`` (case-insensitive), or a one-line error listing them."""
+    key = str(name).strip().lower()
+    if key not in CATALOGUE:
+        raise ParameterError("material", name, "one of " + ", ".join(CATALOGUE))
+    return CATALOGUE[key]
