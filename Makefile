@@ -1,0 +1,50 @@
+# SPSC toolchain. First use creates .venv and installs the project into it.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed-stamp
+
+TYPE     ?= D
+MATERIAL ?= tpu60a
+QUICK    ?=
+# optional geometry overrides: make bladder TYPE=D W=11 H=13 L=3 T0=1 N1=2 N2=2.2 CY=0.6
+GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
+            $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
+
+.PHONY: help venv bladder fingertip gate test test-slow bench clean
+
+help:
+	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
+	@echo "make fingertip                                                   -> build/fingertip/"
+	@echo "make test | make test-slow | make gate | make bench"
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e ".[test]"
+	touch $(STAMP)
+
+venv: $(STAMP)
+
+bladder: $(STAMP)
+	$(BIN)/spsc bladder --type $(TYPE) --material $(MATERIAL) $(GEOM_ARGS)
+
+fingertip: $(STAMP)
+	$(BIN)/spsc fingertip
+
+# the printability gate on every preset (run by CI)
+gate: $(STAMP)
+	@set -e; for t in A B C D; do $(MAKE) --no-print-directory bladder TYPE=$$t; done
+	@$(MAKE) --no-print-directory fingertip
+
+test: $(STAMP)
+	$(BIN)/python -m pytest -q
+
+test-slow: $(STAMP)
+	$(BIN)/python -m pytest -q -m ""
+
+bench: $(STAMP)
+	@set -e; for f in bench/bench_*.py; do echo "== $$f"; $(BIN)/python $$f; done
+
+clean:
+	rm -rf build .pytest_cache .hypothesis

@@ -1,0 +1,183 @@
+"""The printable bladder: chamber wall + floor/clamping flange + barbed inlet port.
+
+Layout (part coordinates, DESIGN.md): the wall rises from the base plane z = 0; a stadium-shaped
+plate below it (z ∈ [−floor, 0]) closes the cavity and extends outward as the clamping flange with
+screw holes. The inlet port is a barbed nipple lying horizontally along −y with its barbs resting
+on the build plane, so the part prints standing on its base (print plane i–k, Table 2 note 3)
+without supports; its bore runs through the plate and rises into the cavity at the centre of the
+−y end cap.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import cadquery as cq
+import numpy as np
+
+from .chamber import PROFILE_POINTS, cavity_solid, outer_solid
+from .errors import ParameterError, require
+from .geometry import SPSCGeometry
+
+__all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "Bladder", "build_bladder"]
+
+
+@dataclass(frozen=True)
+class PortSpec:
+    """Barbed nipple for a push-on tube (mm).
+
+    ``tube_id`` is the tube's inner diameter: the shaft has that diameter and the barbs
+    ``barb_ratio`` times it. ``bore`` is the air channel diameter.
+    """
+
+    tube_id: float = 3.0
+    bore: float = 1.4
+    length: float = 9.0
+    barbs: int = 2
+    barb_ratio: float = 1.25
+
+    def __post_init__(self):
+        require("port.tube_id", self.tube_id, gt=0, unit="mm")
+        require("port.bore", self.bore, gt=0, lt=self.tube_id, unit="mm, < tube_id")
+        require("port.length", self.length, gt=0, unit="mm")
+        require("port.barb_ratio", self.barb_ratio, ge=1.0, le=2.0)
+        if int(self.barbs) != self.barbs or self.barbs < 0:
+            raise ParameterError("port.barbs", self.barbs, "an integer >= 0")
+
+    @property
+    def barb_diameter(self) -> float:
+        return self.barb_ratio * self.tube_id
+
+
+@dataclass(frozen=True)
+class FlangeSpec:
+    """Floor plate and clamping flange (mm): thickness, width beyond the widest wall, holes."""
+
+    thickness: float = 3.5
+    width: float = 6.0
+    holes: int = 4
+    hole_diameter: float = 3.4  # M3 clearance
+
+    def __post_init__(self):
+        require("flange.thickness", self.thickness, gt=0, unit="mm")
+        require("flange.width", self.width, gt=0, unit="mm")
+        require("flange.hole_diameter", self.hole_diameter, gt=0, lt=self.width,
+                unit="mm, < flange.width")
+        if self.holes not in (0, 2, 4):
+            raise ParameterError("flange.holes", self.holes, "0, 2 or 4")
+
+
+@dataclass(frozen=True)
+class BladderSpec:
+    geometry: SPSCGeometry
+    flange: FlangeSpec = field(default_factory=FlangeSpec)
+    port: PortSpec = field(default_factory=PortSpec)
+
+    def __post_init__(self):
+        f, p = self.flange, self.port
+        if p.barb_diameter > f.thickness + p.tube_id / 2:
+            raise ParameterError("port.tube_id", p.tube_id,
+                                 f"small enough that the barbs ({p.barb_diameter:g} mm) fit the "
+                                 f"flange thickness {f.thickness:g} mm plus half the tube")
+        if self.port_axis_z + p.bore / 2 >= 0:
+            raise ParameterError("flange.thickness", f.thickness,
+                                 f"> barb diameter/2 + bore/2 = "
+                                 f"{p.barb_diameter / 2 + p.bore / 2:g} mm (the bore must pass "
+                                 "under the cavity floor)")
+
+    @property
+    def port_axis_z(self) -> float:
+        """Height of the port axis: the barbs touch the build plane z = −thickness."""
+        return -self.flange.thickness + self.port.barb_diameter / 2
+
+
+@dataclass(frozen=True)
+class Bladder:
+    """A built bladder: the B-rep solid and the design facts the printability gate checks."""
+
+    spec: BladderSpec
+    solid: cq.Solid
+    design: dict
+
+
+def _widest_outer_radius(g: SPSCGeometry) -> float:
+    return float(g.outer_profile_points(PROFILE_POINTS)[:, 0].max())
+
+
+def _stadium(radius: float, l: float, z0: float, height: float) -> cq.Solid:
+    wp = cq.Workplane("XY").workplane(offset=z0)
+    wp = wp.slot2D(l + 2 * radius, 2 * radius, angle=90) if l > 0 else wp.circle(radius)
+    return wp.extrude(height).val()
+
+
+def _hole_centres(spec: BladderSpec, r_mid: float) -> list[tuple[float, float]]:
+    n, l = spec.flange.holes, spec.geometry.l
+    angles = {0: [], 2: [0.0, 180.0], 4: [45.0, 135.0, 225.0, 315.0]}[n]
+    out = []
+    for a in np.radians(angles):
+        s = math.sin(a)
+        out.append((r_mid * math.cos(a), r_mid * s + math.copysign(l / 2, s) if abs(s) > 1e-9
+                    else r_mid * s))
+    return out
+
+
+def _nipple(spec: BladderSpec, y_start: float) -> cq.Solid:
+    """Shaft + saw-tooth barbs along −y from the flange edge ``y_start``; the sharp step of each
+    barb faces the flange so a pushed-on tube is held."""
+    p = spec.port
+    z = spec.port_axis_z
+    d = cq.Vector(0, -1, 0)
+    shaft = cq.Solid.makeCylinder(p.tube_id / 2, p.length + 1.0,
+                                  cq.Vector(0, y_start + 1.0, z), d)
+    if p.barbs == 0:
+        return shaft
+    pitch = p.length / (p.barbs + 0.5)
+    parts = []
+    for k in range(p.barbs):
+        a = y_start - (k + 0.5) * pitch
+        parts.append(cq.Solid.makeCone(p.barb_diameter / 2, p.tube_id / 2, pitch * 0.9,
+                                       cq.Vector(0, a, z), d))
+    return shaft.fuse(*parts).clean()
+
+
+def build_bladder(spec: BladderSpec) -> Bladder:
+    """Build the printable bladder solid and its design facts (for ``spsc check``)."""
+    g, f, p = spec.geometry, spec.flange, spec.port
+    r_wall = _widest_outer_radius(g)
+    r_flange = r_wall + f.width
+    plate = _stadium(r_flange, g.l, -f.thickness, f.thickness)
+    y_edge = -(g.l / 2 + r_flange)
+    body = outer_solid(g).fuse(plate, _nipple(spec, y_edge)).clean()
+
+    z_axis = spec.port_axis_z
+    y_riser = -g.l / 2  # centre of the −y end cap: inside the cavity footprint for any type
+    y_tip = y_edge - p.length
+    bore_h = cq.Solid.makeCylinder(p.bore / 2, y_riser - y_tip + p.bore / 2,
+                                   cq.Vector(0, y_tip - 0.5, z_axis), cq.Vector(0, 1, 0))
+    bore_v = cq.Solid.makeCylinder(p.bore / 2, -z_axis + 0.5, cq.Vector(0, y_riser, z_axis),
+                                   cq.Vector(0, 0, 1))
+    cutters = [cavity_solid(g), bore_h, bore_v]
+    r_mid = r_wall + f.width / 2
+    for x, y in _hole_centres(spec, r_mid):
+        cutters.append(cq.Solid.makeCylinder(f.hole_diameter / 2, f.thickness + 2.0,
+                                             cq.Vector(x, y, -f.thickness - 1.0)))
+    solid = body.cut(*cutters).clean()
+    if not solid.isValid():
+        raise RuntimeError(f"OCCT produced an invalid bladder solid for {g}")
+
+    design = {
+        "kind": "bladder",
+        "geometry": g.as_dict(),
+        "cavity_volume_mm3": g.cavity_volume(),
+        "volume_rtol": 0.002,
+        "genus": f.holes,
+        "min_wall_design_mm": g.t0,
+        "port": {"axis_point": [0.0, y_riser, 0.0], "axis_dir": [0.0, 0.0, 1.0],
+                 "radius": p.bore / 2 + 0.02, "z_range": [z_axis - p.bore / 2 - 0.05, 0.0]},
+        "wall_region": {"z_min": 0.05},
+        "exclude": [{"center": [0.0, y_riser, 0.0], "radius": p.bore / 2 + 0.5}],
+        "bbox_mm": [[-r_flange, y_tip, -f.thickness], [r_flange, g.l / 2 + r_flange, g.h + g.t0]],
+        "print": {"build_direction": [0.0, 0.0, 1.0], "plane": "i-k (x-y), base down"},
+    }
+    return Bladder(spec, solid, design)

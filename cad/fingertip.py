@@ -1,0 +1,284 @@
+"""The fused fingertip of sec. 4.1 (PneuTact.Q): two Type A chambers, one cavity, five FSR pockets.
+
+Frame: the finger points along +y, the pulp faces +z. A body block (z ∈ [−b, 0]) carries the
+pulp chamber on its top face z = 0 and the distal-edge chamber on an inclined front face whose
+normal is tilted by ``angle`` from +z towards +y. A channel swept through the body joins the
+two cavities into one (the paper's lofted connection; a swept circle is the robust B-rep). Three FSR pockets sit on the pulp, two on the distal chamber, each
+recessed into a raised pad whose pocket floor lies above the tangent plane of the wall at the
+pocket centre, so the (convex) wall under a pocket keeps at least its thickness t0. The rear of
+the body holds the mounting slot for the gripper finger, two cross screw holes and the inlet
+port (a barbed nipple along −y whose bore rises into the pulp cavity).
+
+FSR defaults are Ohmite FSR05 (datasheet: active area Ø5.60 mm, sensor head Ø7.62 mm,
+thickness 0.325 mm, tail width 6.35 mm).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import cadquery as cq
+import numpy as np
+
+from .bladder import PortSpec
+from .chamber import PROFILE_POINTS, profile_body
+from .errors import ParameterError, require
+from .geometry import SPSCGeometry
+
+__all__ = ["PocketSpec", "MountSpec", "FingertipSpec", "Fingertip", "build_fingertip"]
+
+
+@dataclass(frozen=True)
+class PocketSpec:
+    """FSR pocket (mm): diameter and depth of the recess, rim of the raised pad around it,
+    clearance of the pocket floor above the wall's tangent plane, lead (tail) channel width."""
+
+    diameter: float = 8.0      # FSR05 head Ø7.62 + 0.4 clearance
+    depth: float = 0.5         # FSR05 thickness 0.325 + adhesive/clearance
+    rim: float = 1.2
+    clearance: float = 0.3
+    lead_width: float = 6.75   # FSR05 tail 6.35 + 0.4
+
+    def __post_init__(self):
+        require("pocket.diameter", self.diameter, gt=0, unit="mm")
+        require("pocket.depth", self.depth, gt=0, unit="mm")
+        require("pocket.rim", self.rim, gt=0, unit="mm")
+        require("pocket.clearance", self.clearance, ge=0, unit="mm")
+        require("pocket.lead_width", self.lead_width, gt=0, le=self.diameter,
+                unit="mm, <= pocket.diameter")
+
+
+@dataclass(frozen=True)
+class MountSpec:
+    """Rear mount (mm): block length behind the pulp, slot for the gripper finger on the
+    underside (width × depth), cross screw holes (count, diameter)."""
+
+    length: float = 12.0
+    slot_width: float = 10.0
+    slot_depth: float = 3.0
+    screws: int = 2
+    screw_diameter: float = 2.2  # M2 clearance
+
+    def __post_init__(self):
+        require("mount.length", self.length, gt=0, unit="mm")
+        require("mount.slot_width", self.slot_width, ge=0, unit="mm")
+        require("mount.slot_depth", self.slot_depth, ge=0, unit="mm")
+        require("mount.screw_diameter", self.screw_diameter, gt=0, unit="mm")
+        if self.screws not in (0, 1, 2):
+            raise ParameterError("mount.screws", self.screws, "0, 1 or 2")
+
+
+def _type_a(w, h, l, t0):
+    return SPSCGeometry(w=w, h=h, l=l, t0=t0, n1=3.0, n2=4.0, cy=0.0)
+
+
+@dataclass(frozen=True)
+class FingertipSpec:
+    """Fingertip for a ~20 mm wide gripper finger pad (defaults): pulp and distal Type A
+    chambers, the angle (deg) between their axes, pockets, mount and port."""
+
+    pulp: SPSCGeometry = field(default_factory=lambda: _type_a(8.0, 5.0, 12.0, 1.0))
+    distal: SPSCGeometry = field(default_factory=lambda: _type_a(6.0, 4.0, 5.0, 1.0))
+    angle: float = 45.0
+    pocket_pitch: float = 9.0
+    pocket: PocketSpec = field(default_factory=PocketSpec)
+    mount: MountSpec = field(default_factory=MountSpec)
+    port: PortSpec = field(default_factory=lambda: PortSpec(tube_id=3.0))
+    channel_width: float = 4.0
+    margin: float = 1.0
+
+    def __post_init__(self):
+        require("angle", self.angle, ge=30.0, le=90.0, unit="deg")
+        require("pocket_pitch", self.pocket_pitch, ge=self.pocket.diameter + 0.8,
+                unit="mm, >= pocket.diameter + 0.8")
+        require("channel_width", self.channel_width, gt=0,
+                lt=2 * min(self.pulp.w, self.distal.w), unit="mm, < 2 min(w)")
+        for name, g in (("pulp", self.pulp), ("distal", self.distal)):
+            if g.cy != 0 or g.n2 < 2:
+                raise ParameterError(f"{name}.n2/cy", (g.n2, g.cy),
+                                     "a chamber whose base is vertical (n2 >= 2, c_y = 0)")
+        span = self.distal.l + 2 * (self.distal.w + self.distal.t0)
+        if self.pocket_pitch + self.pocket.diameter > span:
+            raise ParameterError("pocket_pitch", self.pocket_pitch,
+                                 f"<= {span - self.pocket.diameter:g} mm so both distal pockets "
+                                 "fit on the distal chamber")
+
+    @property
+    def width(self) -> float:
+        """Body width across the finger (x), mm."""
+        return max(2 * (self.pulp.w + self.pulp.t0),
+                   self.distal.l + 2 * (self.distal.w + self.distal.t0)) + 2 * self.margin
+
+
+@dataclass(frozen=True)
+class Fingertip:
+    spec: FingertipSpec
+    solid: cq.Solid
+    cavity: cq.Solid
+    design: dict
+
+
+def _outer_surface_point(g: SPSCGeometry, r: float) -> tuple[float, np.ndarray]:
+    """Height and outward unit normal (radial, z) of the outer wall at radius r from the axis."""
+    pts = g.outer_profile_points(PROFILE_POINTS)
+    k = int(np.clip(np.searchsorted(pts[:, 0], r), 1, len(pts) - 1))
+    a, b = pts[k - 1], pts[k]
+    f = (r - a[0]) / (b[0] - a[0]) if b[0] > a[0] else 0.0
+    z = a[1] + f * (b[1] - a[1])
+    t = (b - a) / np.hypot(*(b - a))
+    return float(z), np.array([-t[1], t[0]]) if t[0] >= 0 else np.array([t[1], -t[0]])
+
+
+def _pocket_frames(g: SPSCGeometry, offsets: list[float]) -> list[tuple[np.ndarray, np.ndarray]]:
+    """(point, outward normal) on the outer wall at y = offset along the chamber's axis (x = 0),
+    in the chamber's own frame (base z = 0, extrusion along y)."""
+    frames = []
+    for s in offsets:
+        r = max(0.0, abs(s) - g.l / 2)
+        z, (nr, nz) = _outer_surface_point(g, r)
+        frames.append((np.array([0.0, s, z]), np.array([0.0, math.copysign(nr, s), nz])))
+    return frames
+
+
+def _cylinder(p0: np.ndarray, axis: np.ndarray, radius: float, length: float) -> cq.Solid:
+    return cq.Solid.makeCylinder(radius, length, cq.Vector(*p0), cq.Vector(*axis))
+
+
+def _pad_and_cuts(point, normal, tangent, spec: FingertipSpec, g: SPSCGeometry):
+    """The raised pad (to add) and the pocket + lead channel (to cut) at one pocket site."""
+    pk = spec.pocket
+    r_pad = pk.diameter / 2 + pk.rim
+    floor = point + normal * pk.clearance
+    top = floor + normal * pk.depth
+    sink = g.t0 + r_pad**2 / (2 * min(g.w, g.h))  # reaches the convex wall at the pad's edge
+    pad = _cylinder(point - normal * sink, normal, r_pad, sink + pk.clearance + pk.depth)
+    pocket = _cylinder(floor, normal, pk.diameter / 2, pk.depth + 1.0)
+    tangent = tangent - normal * float(tangent @ normal)  # lead runs in the pocket's plane
+    tangent = tangent / np.linalg.norm(tangent)
+    lead = cq.Solid.makeBox(r_pad + 4.0, pk.lead_width, pk.depth + 1.0,
+                            cq.Vector(0, -pk.lead_width / 2, 0))
+    lead = _place(lead, floor, tangent, normal)
+    return pad, pocket.fuse(lead), (floor, normal, pk.diameter / 2)
+
+
+def _place(shape: cq.Shape, origin: np.ndarray, xdir: np.ndarray, zdir: np.ndarray) -> cq.Shape:
+    """Move ``shape`` from its own frame into the frame (origin, x → xdir, z → zdir)."""
+    plane = cq.Plane(origin=cq.Vector(*origin), xDir=cq.Vector(*xdir), normal=cq.Vector(*zdir))
+    return shape.moved(cq.Location(plane))
+
+
+def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
+    """Build the monolithic fingertip solid, its cavity and the design facts for the gate."""
+    P, D, pk, mt, pt = spec.pulp, spec.distal, spec.pocket, spec.mount, spec.port
+    a = math.radians(spec.angle)
+    W = spec.width
+    n_d = np.array([0.0, math.sin(a), math.cos(a)])       # distal chamber axis
+    t_d = np.array([0.0, math.cos(a), -math.sin(a)])      # down the inclined face
+    Rp, Rd = P.w + P.t0, D.w + D.t0
+    y_front = P.l / 2 + Rp                                # front edge of the top face
+    A = np.array([0.0, y_front, 0.0])
+    C = A + t_d * (Rd + spec.margin)                      # distal base centre
+    B = A + t_d * (2 * Rd + 2 * spec.margin)
+    b = max(-B[2], mt.slot_depth + pt.barb_diameter + 2 * P.t0 + 1.0)
+    y_rear = -(P.l / 2 + Rp) - mt.length
+
+    # body block: side profile in (y, z), extruded across the width
+    prof = [(y_rear, -b), (y_rear, 0.0), (A[1], 0.0), (B[1], B[2])]
+    if B[2] > -b + 1e-9:
+        prof.append((B[1], -b))
+    body = (cq.Workplane("YZ").polyline(prof).close().extrude(W / 2, both=True).val())
+
+    # distal chamber frame: its own z -> n_d, its own y (extrusion) -> x, so its own x -> −t_d
+    rot_d = np.column_stack([-t_d, [1.0, 0.0, 0.0], n_d])
+
+    def place_distal(shape):
+        return _place(shape, C, -t_d, n_d)
+
+    pulp_out = profile_body(P.outer_profile_points(PROFILE_POINTS), P.l)
+    pulp_cav = profile_body(P.profile_points(PROFILE_POINTS)[0], P.l)
+    dist_out = place_distal(profile_body(D.outer_profile_points(PROFILE_POINTS), D.l))
+    dist_cav = place_distal(profile_body(D.profile_points(PROFILE_POINTS)[0], D.l))
+
+    # the channel: a circle swept along a spline from inside the pulp cavity's front cap, under
+    # the valley between the chambers, into the distal cavity (one connected cavity)
+    rc = spec.channel_width / 2
+    dip = max(P.t0, D.t0) + rc + 1.0
+    p1 = np.array([0.0, P.l / 2, 0.5])
+    p2 = A + np.array([0.0, 0.0, -dip])
+    p3 = C + n_d * 0.5
+    t1 = np.array([0.0, 0.6, -1.0]) / math.hypot(0.6, 1.0)
+    path = cq.Workplane().spline([tuple(p1), tuple(p2), tuple(p3)],
+                                 tangents=[tuple(t1), tuple(n_d)], includeCurrent=False)
+    start = cq.Plane(origin=cq.Vector(*p1), xDir=cq.Vector(1, 0, 0), normal=cq.Vector(*t1))
+    channel = cq.Workplane(start).circle(rc).sweep(path, transition="round").val()
+
+    # pockets: three along the pulp's axis, two across the distal chamber
+    adds, cuts, pockets = [], [], []
+    for p, n in _pocket_frames(P, [-spec.pocket_pitch, 0.0, spec.pocket_pitch]):
+        pad, cut, info = _pad_and_cuts(p, n, np.array([1.0, 0.0, 0.0]), spec, P)
+        adds.append(pad), cuts.append(cut), pockets.append(("pulp",) + info)
+    half = spec.pocket_pitch / 2
+    for p, n in _pocket_frames(D, [-half, half]):
+        # distal leads run sideways (local ±y = global ±x), away from the valley
+        pad, cut, info = _pad_and_cuts(p, n, np.array([0.0, math.copysign(1.0, p[1]), 0.0]),
+                                       spec, D)
+        adds.append(place_distal(pad)), cuts.append(place_distal(cut))
+        floor, normal, r = info
+        pockets.append(("distal", rot_d @ floor + C, rot_d @ normal, r))
+
+    # port along −y at the rear face; bore rises into the pulp cavity at the rear cap centre
+    z_axis = -b + mt.slot_depth + pt.barb_diameter / 2 + P.t0
+    port_spec_y0 = y_rear
+    d = cq.Vector(0, -1, 0)
+    nipple = cq.Solid.makeCylinder(pt.tube_id / 2, pt.length + 1.0,
+                                   cq.Vector(0, port_spec_y0 + 1.0, z_axis), d)
+    pitch = pt.length / (pt.barbs + 0.5) if pt.barbs else 0.0
+    barbs = [cq.Solid.makeCone(pt.barb_diameter / 2, pt.tube_id / 2, pitch * 0.9,
+                               cq.Vector(0, port_spec_y0 - (k + 0.5) * pitch, z_axis), d)
+             for k in range(pt.barbs)]
+    y_riser = -P.l / 2
+    y_tip = y_rear - pt.length
+    bore_h = cq.Solid.makeCylinder(pt.bore / 2, y_riser - y_tip + pt.bore / 2 + 0.5,
+                                   cq.Vector(0, y_tip - 0.5, z_axis), cq.Vector(0, 1, 0))
+    bore_v = cq.Solid.makeCylinder(pt.bore / 2, -z_axis + 0.5, cq.Vector(0, y_riser, z_axis),
+                                   cq.Vector(0, 0, 1))
+
+    # mount: slot under the rear block for the gripper finger, screw holes across it (x)
+    mount_cuts = []
+    if mt.slot_width > 0 and mt.slot_depth > 0:
+        mount_cuts.append(cq.Solid.makeBox(mt.slot_width, mt.length + 1.0, mt.slot_depth + 1.0,
+                                           cq.Vector(-mt.slot_width / 2, y_rear - 1.0, -b - 1.0)))
+    ys = {0: [], 1: [0.5], 2: [0.3, 0.75]}[mt.screws]
+    for f in ys:
+        mount_cuts.append(cq.Solid.makeCylinder(
+            mt.screw_diameter / 2, W + 2.0,
+            cq.Vector(-W / 2 - 1.0, y_rear + f * mt.length, -b + mt.slot_depth / 2),
+            cq.Vector(1, 0, 0)))
+
+    for part in (pulp_cav, dist_cav, channel):
+        if part.Volume() <= 0 or not part.isValid():
+            raise RuntimeError("fingertip: a cavity part is empty or invalid")
+    cavity = pulp_cav.fuse(dist_cav, channel).clean()
+    outer = body.fuse(pulp_out, dist_out, nipple, *barbs, *adds).clean()
+    solid = outer.cut(cavity, bore_h, bore_v, *cuts, *mount_cuts).clean()
+    if not solid.isValid():
+        raise RuntimeError("OCCT produced an invalid fingertip solid")
+
+    design = {
+        "kind": "fingertip",
+        "cavity_volume_mm3": float(cavity.Volume()),
+        "cavity_volume_source": "exact B-rep of the fused cavity (chambers + channel)",
+        "volume_rtol": 0.002,
+        "genus": mt.screws * (2 if mt.slot_width > 0 and mt.slot_depth > 0 else 1),
+        "min_wall_design_mm": min(P.t0, D.t0),
+        "port": {"axis_point": [0.0, y_riser, 0.0], "axis_dir": [0.0, 0.0, 1.0],
+                 "radius": pt.bore / 2 + 0.02, "z_range": [z_axis - pt.bore / 2 - 0.05, 0.0]},
+        "wall_region": {"z_min": -1e9},
+        "exclude": [{"center": [0.0, y_riser, 0.0], "radius": pt.bore / 2 + 0.5}],
+        "pockets": [{"site": site, "floor_center": [float(v) for v in fl],
+                     "normal": [float(v) for v in nv], "radius": float(r),
+                     "depth": pk.depth} for site, fl, nv, r in pockets],
+        "print": {"build_direction": [0.0, 0.0, 1.0], "plane": "i-k (x-y), base down"},
+    }
+    return Fingertip(spec, solid, cavity, design)

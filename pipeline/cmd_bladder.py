@@ -1,0 +1,76 @@
+"""``spsc bladder``: build a printable bladder, export STEP/STL/3MF and run the printability gate."""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+from .options import add_geometry_options, geometry_from_args
+
+MATERIAL_PROCESS = {"tpu60a": "fdm", "elastic50a": "sla", "silicone40a": "sla", "as40": "molding"}
+
+
+def register(sub) -> None:
+    p = sub.add_parser("bladder", help="build a printable bladder and check it",
+                       description="Build the bladder (wall + floor/flange + barbed port) of a "
+                       "chamber, write STEP, STL, 3MF and the printability report check.json.")
+    add_geometry_options(p)
+    p.add_argument("--material", default="tpu60a",
+                   help="tpu60a (FDM), elastic50a or silicone40a (SLA), as40 (molding); "
+                   "selects the process whose minimum wall the gate applies")
+    p.add_argument("--out", default=None, help="output folder (default build/bladder-TYPE)")
+    p.add_argument("--flange-holes", type=int, default=4, help="screw holes: 0, 2 or 4")
+    p.add_argument("--tube-id", type=float, default=3.0, help="inner diameter of the tube (mm)")
+    p.add_argument("--no-check", action="store_true", help="skip the printability gate")
+    p.set_defaults(func=run)
+
+
+def process_for(material_name: str) -> str:
+    from spsc.membrane.materials import material
+
+    return MATERIAL_PROCESS[material(material_name).name]
+
+
+def run(args: argparse.Namespace) -> int:
+    from spsc.cad.bladder import BladderSpec, FlangeSpec, PortSpec, build_bladder
+    from spsc.cad.export import export_part
+
+    geom = geometry_from_args(args)
+    process = process_for(args.material)
+    for msg in geom.design_space_warnings():
+        print(f"warning: {msg}")
+    spec = BladderSpec(geom, FlangeSpec(holes=args.flange_holes), PortSpec(tube_id=args.tube_id))
+    name = f"bladder-{args.type}" if args.type else "bladder"
+    outdir = Path(args.out or f"build/{name}")
+
+    t0 = time.perf_counter()
+    bladder = build_bladder(spec)
+    t_build = time.perf_counter() - t0
+    written = export_part(bladder.solid, bladder.design, outdir, name)
+    t_export = time.perf_counter() - t0 - t_build
+    g = geom
+    print(f"{name}: w={g.w:g} h={g.h:g} l={g.l:g} t0={g.t0:g} n1={g.n1:g} n2={g.n2:g} "
+          f"cy={g.cy:g} mm; material {args.material} ({process.upper()})")
+    print(f"  analytic cavity volume {g.cavity_volume() / 1000:.3f} cm³; "
+          f"{written['triangles']} triangles; built in {t_build:.1f} s, exported in "
+          f"{t_export:.1f} s")
+    for kind in ("step", "stl", "3mf"):
+        print(f"  {written['paths'][kind]}")
+    if args.no_check:
+        return 0
+    return gate(written["paths"]["stl"], bladder.design, process, outdir)
+
+
+def gate(stl: Path, design: dict, process: str, outdir: Path) -> int:
+    from spsc.cad.check import check_mesh
+
+    t0 = time.perf_counter()
+    report = check_mesh(stl, design=design, process=process)
+    report.to_json(outdir / "check.json")
+    print(report.summary())
+    print(f"  check in {time.perf_counter() - t0:.1f} s -> {outdir / 'check.json'}")
+    if not report.passed:
+        print(f"FAILED: {', '.join(report.failed)}")
+        return 1
+    return 0

@@ -1,0 +1,46 @@
+"""``spsc fingertip``: build the fused two-chamber fingertip with FSR pockets and check it."""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+from .cmd_bladder import gate
+
+
+def register(sub) -> None:
+    p = sub.add_parser("fingertip", help="build the fused fingertip (sec. 4.1) and check it",
+                       description="Two Type A chambers (pulp, distal edge) fused into one cavity, "
+                       "five FSR05 pockets on raised pads, rear port, slot and screw mount.")
+    p.add_argument("--angle", type=float, default=45.0,
+                   help="angle between the pulp and distal chamber axes, deg (30-90)")
+    p.add_argument("--pocket-diameter", type=float, default=8.0, help="FSR pocket diameter, mm")
+    p.add_argument("--pocket-depth", type=float, default=0.5, help="FSR pocket depth, mm")
+    p.add_argument("--process", default="sla", help="process of the gate: sla (Silicone 40A, "
+                   "the paper's choice), fdm or molding")
+    p.add_argument("--out", default="build/fingertip", help="output folder")
+    p.add_argument("--no-check", action="store_true", help="skip the printability gate")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from spsc.cad.export import export_part
+    from spsc.cad.fingertip import FingertipSpec, PocketSpec, build_fingertip
+
+    spec = FingertipSpec(angle=args.angle,
+                         pocket=PocketSpec(diameter=args.pocket_diameter, depth=args.pocket_depth))
+    outdir = Path(args.out)
+    t0 = time.perf_counter()
+    tip = build_fingertip(spec)
+    t_build = time.perf_counter() - t0
+    written = export_part(tip.solid, tip.design, outdir, "fingertip")
+    bb = tip.solid.BoundingBox()
+    print(f"fingertip: {bb.xlen:.1f} x {bb.ylen:.1f} x {bb.zlen:.1f} mm, angle {spec.angle:g} deg, "
+          f"{len(tip.design['pockets'])} FSR pockets; cavity {tip.design['cavity_volume_mm3']:.0f} "
+          f"mm³ (B-rep); built in {t_build:.1f} s, {written['triangles']} triangles")
+    for kind in ("step", "stl", "3mf"):
+        print(f"  {written['paths'][kind]}")
+    if args.no_check:
+        return 0
+    return gate(written["paths"]["stl"], tip.design, args.process, outdir)

@@ -1,0 +1,114 @@
+"""SPSCGeometry: validation, the super-ellipse (eqs. 10–16) and the analytic cavity volume."""
+
+import math
+
+import numpy as np
+import pytest
+
+from spsc.cad.errors import ParameterError
+from spsc.cad.geometry import TABLE1_VOLUME_CM3, SPSCGeometry, preset
+
+
+@pytest.mark.parametrize("t", "ABCD")
+def test_table1_volumes(t):
+    # Table 1 prints three significant figures; Type B's 4.0835 cm³ prints as 4.09 in the paper
+    # (0.17 % off, presumably a CAD-mesh value), so 0.2 % covers the rounding of all four.
+    v = preset(t).cavity_volume() / 1000.0
+    np.testing.assert_allclose(v, TABLE1_VOLUME_CM3[t], rtol=2e-3)
+
+
+def test_closed_form_volumes():
+    w, h, l = 7.0, 9.0, 4.0
+    # n1 = 2, n2 = 1: a parabola, r² = w²(1 − z/h)
+    parabola = SPSCGeometry(w, h, l, 0.5, 2.0, 1.0, 0.0).cavity_volume()
+    np.testing.assert_allclose(parabola, math.pi * w * w * h / 2 + 2 * l * (2 / 3) * w * h,
+                               rtol=1e-9)
+    # n1 = n2 = 2: half an ellipsoid plus half an elliptic cylinder
+    ellipse = SPSCGeometry(w, h, l, 0.5, 2.0, 2.0, 0.0).cavity_volume()
+    np.testing.assert_allclose(ellipse, 2 / 3 * math.pi * w * w * h + l * math.pi * w * h / 2,
+                               rtol=1e-9)
+    # n1 = n2 = 2, c_y = 0.5: an ellipsoid centred at z = h̄/2, cut at z = 0 (Type D-like)
+    g = SPSCGeometry(w, h, 0.0, 0.5, 2.0, 2.0, 0.5)
+    hb, wb = g.h_bar, g.w_bar
+    # ellipsoid of semi-axes (wb, wb, hb) centred at z = hb/2, cut at z = 0
+    cap = math.pi * wb**2 * (hb * 2 / 3 + (hb * 0.5 - (0.5 * hb) ** 3 / (3 * hb * hb)))
+    np.testing.assert_allclose(g.cavity_volume(), cap, rtol=1e-9)
+
+
+@pytest.mark.parametrize("t", "ABCD")
+def test_profile_ends_and_radius(t):
+    g = preset(t)
+    X, Y = g.profile([0.0, math.pi - g.delta_u])
+    # cos(π/2) is 6e-17 in floating point, raised to 2/n2 (n2 = 4: 1e-8 relative)
+    np.testing.assert_allclose(X, [0.0, g.w], atol=1e-6)
+    np.testing.assert_allclose(Y, [g.h, 0.0], atol=1e-6)
+    u = np.linspace(0.0, math.pi - g.delta_u, 200)
+    X, Y = g.profile(u)
+    np.testing.assert_allclose(g.radius_at(Y), X, atol=1e-7)
+
+
+@pytest.mark.parametrize("t", "ABCD")
+def test_slope_is_derivative_of_meridian(t):
+    g = preset(t)
+    x = np.linspace(0.05, 0.95, 19) * min(g.w, g.w_bar)
+    eps = 1e-6
+    for upper in ([True, False] if g.cy > 0 else [True]):
+        if not upper:
+            x = g.w + (g.w_bar - g.w) * np.linspace(0.05, 0.95, 19)
+        fd = (g.meridian(x + eps, upper) - g.meridian(x - eps, upper)) / (2 * eps)
+        np.testing.assert_allclose(g.slope(x, upper), fd, rtol=1e-5, atol=1e-8)
+
+
+def test_type_d_branches_meet_at_widest_point():
+    g = preset("D")
+    np.testing.assert_allclose(g.meridian(g.w_bar, True), g.z_widest, atol=1e-12)
+    np.testing.assert_allclose(g.meridian(g.w_bar, False), g.z_widest, atol=1e-12)
+    np.testing.assert_allclose(g.meridian(g.w, False), 0.0, atol=1e-9)
+    assert g.slope(0.5 * (g.w + g.w_bar), True) < 0 < g.slope(0.5 * (g.w + g.w_bar), False)
+
+
+@pytest.mark.parametrize("params", [
+    dict(n1=3, n2=4, cy=0), dict(n1=2, n2=1, cy=0), dict(n1=2, n2=2.2, cy=0.6),
+    dict(n1=2, n2=1, cy=0.5), dict(n1=8, n2=8, cy=0.9)])
+def test_outer_profile_is_normal_offset(params):
+    g = SPSCGeometry(w=10, h=12, l=0, t0=1.0, **params)
+    outer = g.outer_profile_points()
+    dense, _ = g.profile_points(6000)
+    d = np.min(np.hypot(outer[:, None, 0] - dense[None, :, 0],
+                        outer[:, None, 1] - dense[None, :, 1]), axis=1)
+    # the prolonged (Type C) or cut (Type D) end may lie farther; every other point is at t0,
+    # up to the 6000-point sampling of the profile (spacing < 0.01 mm -> error < 1e-4 mm)
+    np.testing.assert_allclose(d[:-1], g.t0, atol=2e-3)
+    assert d[-1] >= g.t0 - 2e-3
+    np.testing.assert_allclose(outer[0], [0.0, g.h + g.t0], atol=1e-12)
+    assert outer[-1, 1] == 0.0
+
+
+@pytest.mark.parametrize("name,value", [
+    ("w", 0), ("w", -1), ("h", 0), ("l", -0.1), ("t0", 0), ("n1", 0.5), ("n2", 0.99),
+    ("cy", -0.1), ("w", float("nan")), ("t0", 20.0)])
+def test_invalid_parameter_is_named(name, value):
+    params = preset("B").as_dict() | {name: value}
+    with pytest.raises(ParameterError) as err:
+        SPSCGeometry(**params)
+    msg = str(err.value)
+    assert msg.startswith(f"{name} = ") and "allowed" in msg and "\n" not in msg
+
+
+def test_unknown_type_and_size():
+    with pytest.raises(ParameterError, match="type = 'E'"):
+        preset("E")
+    with pytest.raises(ParameterError, match="size = 'huge'"):
+        preset("A", size="huge")
+
+
+def test_design_space_warning_but_valid():
+    g = SPSCGeometry(w=10, h=30, l=0, t0=0.1, n1=1.2, n2=1, cy=0)  # valid, outside design space
+    msgs = g.design_space_warnings()
+    assert any(m.startswith("n1") for m in msgs) and any(m.startswith("h/w") for m in msgs)
+    assert preset("D").design_space_warnings() == []
+
+
+def test_gs1_preset():
+    g = preset("A", size="GS1")
+    assert (g.w, g.h, g.l, g.t0, g.n1, g.n2, g.cy) == (10, 10, 10, 1, 3, 4, 0)
