@@ -76,15 +76,12 @@ class BladderSpec:
 
     def __post_init__(self):
         f, p = self.flange, self.port
-        if p.barb_diameter > f.thickness + p.tube_id / 2:
-            raise ParameterError("port.tube_id", p.tube_id,
-                                 f"small enough that the barbs ({p.barb_diameter:g} mm) fit the "
-                                 f"flange thickness {f.thickness:g} mm plus half the tube")
+        need = p.barb_diameter / 2 + p.bore / 2
         if self.port_axis_z + p.bore / 2 >= 0:
             raise ParameterError("flange.thickness", f.thickness,
-                                 f"> barb diameter/2 + bore/2 = "
-                                 f"{p.barb_diameter / 2 + p.bore / 2:g} mm (the bore must pass "
-                                 "under the cavity floor)")
+                                 f"> {need:g} mm for port.tube_id = {p.tube_id:g} mm (the barbs "
+                                 "rest on the build plane and the bore must pass under the "
+                                 "cavity floor)")
 
     @property
     def port_axis_z(self) -> float:
@@ -153,7 +150,8 @@ def build_bladder(spec: BladderSpec) -> Bladder:
     z_axis = spec.port_axis_z
     y_riser = -g.l / 2  # centre of the −y end cap: inside the cavity footprint for any type
     y_tip = y_edge - p.length
-    bore_h = cq.Solid.makeCylinder(p.bore / 2, y_riser - y_tip + p.bore / 2,
+    # the horizontal bore ends on the riser's axis, so capping the riser closes the cavity
+    bore_h = cq.Solid.makeCylinder(p.bore / 2, y_riser - y_tip + 0.5,
                                    cq.Vector(0, y_tip - 0.5, z_axis), cq.Vector(0, 1, 0))
     bore_v = cq.Solid.makeCylinder(p.bore / 2, -z_axis + 0.5, cq.Vector(0, y_riser, z_axis),
                                    cq.Vector(0, 0, 1))
@@ -171,11 +169,14 @@ def build_bladder(spec: BladderSpec) -> Bladder:
         "geometry": g.as_dict(),
         "cavity_volume_mm3": g.cavity_volume(),
         "volume_rtol": 0.002,
+        "cavities": 1,
         "genus": f.holes,
         "min_wall_design_mm": g.t0,
         "port": {"axis_point": [0.0, y_riser, 0.0], "axis_dir": [0.0, 0.0, 1.0],
                  "radius": p.bore / 2 + 0.02, "z_range": [z_axis - p.bore / 2 - 0.05, 0.0]},
-        "wall_region": {"z_min": 0.05},
+        # the wall's root meets the floor, flange and bore (feature edges): judge the wall from
+        # one thickness above the base plane
+        "wall_region": {"z_min": g.t0},
         "exclude": [{"center": [0.0, y_riser, 0.0], "radius": p.bore / 2 + 0.5}],
         "bbox_mm": [[-r_flange, y_tip, -f.thickness], [r_flange, g.l / 2 + r_flange, g.h + g.t0]],
         "print": {"build_direction": [0.0, 0.0, 1.0], "plane": "i-k (x-y), base down"},

@@ -42,10 +42,11 @@ def _section_wire(pts: np.ndarray, mirrored: bool, straight_tail: bool) -> cq.Wo
 def profile_body(pts: np.ndarray, l: float, *, straight_tail: bool = False) -> cq.Solid:
     """The solid under the profile ``pts`` (x, z; apex first, base last): two revolved half
     ends at y = ±l/2 and, for l > 0, the extruded middle, fused into one solid."""
-    half = _section_wire(pts, False, straight_tail).revolve(180, (0, 0, 0), (0, 1, 0)).val()
-    other = half.mirror("XZ")
+    section = _section_wire(pts, False, straight_tail)
     if l <= 0:
-        return half.fuse(other).clean()
+        return section.revolve(360, (0, 0, 0), (0, 1, 0)).val()
+    half = section.revolve(180, (0, 0, 0), (0, 1, 0)).val()
+    other = half.mirror("XZ")
     mid = _section_wire(pts, True, straight_tail).extrude(l / 2, both=True).val()
     return half.translate(cq.Vector(0, l / 2, 0)).fuse(
         mid, other.translate(cq.Vector(0, -l / 2, 0))).clean()

@@ -35,7 +35,19 @@ class TriMesh:
 
 def tessellate(solid: cq.Shape, tolerance: float = TOLERANCE_MM,
                angular_tolerance: float = ANGULAR_TOLERANCE) -> TriMesh:
-    """Triangulate ``solid`` with OCCT and merge the per-face vertices into one closed mesh."""
+    """Triangulate ``solid`` with OCCT and merge the per-face vertices into one closed mesh.
+
+    ``tolerance`` is an absolute chord sag in mm (cadquery's own ``tessellate`` makes it
+    relative to each edge's size, and without interior control long triangles on the revolved
+    B-spline faces deviated 0.045 mm from the B-rep and thinned the measured wall by 5 %)."""
+    from OCP.BRepMesh import BRepMesh_IncrementalMesh
+    from OCP.IMeshTools import IMeshTools_Parameters
+
+    p = IMeshTools_Parameters()
+    p.Deflection = p.DeflectionInterior = tolerance
+    p.Angle = p.AngleInterior = angular_tolerance
+    p.Relative, p.InParallel, p.ControlSurfaceDeflection = False, True, True
+    BRepMesh_IncrementalMesh(solid.wrapped, p)
     verts, tris = solid.tessellate(tolerance, angular_tolerance)
     v = np.array([p.toTuple() for p in verts], dtype=float)
     f = np.array(tris, dtype=np.int64)
@@ -103,9 +115,11 @@ def read_3mf(path: Path) -> TriMesh:
     return TriMesh(np.vstack(verts), np.vstack(faces))
 
 
-def export_part(solid: cq.Shape, design: dict, outdir: Path, name: str) -> dict:
+def export_part(solid: cq.Shape, design: dict, outdir: Path, name: str,
+                mesh: "TriMesh | None" = None) -> dict:
     """Write ``name``.step/.stl/.3mf and ``name``.design.json (the facts ``spsc check`` reads)
-    into ``outdir``; return the paths, the mesh size and the wall-clock time of each step (s)."""
+    into ``outdir``; return the paths, the mesh size and the wall-clock time of each step (s).
+    ``mesh`` replaces the OCCT tessellation of ``solid`` for the STL and 3MF when given."""
     import json
     import time
 
@@ -116,7 +130,7 @@ def export_part(solid: cq.Shape, design: dict, outdir: Path, name: str) -> dict:
     out["step"] = write_step(solid, outdir / f"{name}.step")
     times["step_s"] = time.perf_counter() - t
     t = time.perf_counter()
-    mesh = tessellate(solid)
+    mesh = tessellate(solid) if mesh is None else mesh
     times["tessellate_s"] = time.perf_counter() - t
     t = time.perf_counter()
     out["stl"] = write_stl(mesh, outdir / f"{name}.stl")

@@ -26,7 +26,8 @@ from .chamber import PROFILE_POINTS, profile_body
 from .errors import ParameterError, require
 from .geometry import SPSCGeometry
 
-__all__ = ["PocketSpec", "MountSpec", "FingertipSpec", "Fingertip", "build_fingertip"]
+__all__ = ["PocketSpec", "MountSpec", "FingertipSpec", "Fingertip", "build_fingertip",
+           "measure_pockets"]
 
 
 @dataclass(frozen=True)
@@ -239,7 +240,8 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
              for k in range(pt.barbs)]
     y_riser = -P.l / 2
     y_tip = y_rear - pt.length
-    bore_h = cq.Solid.makeCylinder(pt.bore / 2, y_riser - y_tip + pt.bore / 2 + 0.5,
+    # the horizontal bore ends on the riser's axis, so capping the riser closes the cavity
+    bore_h = cq.Solid.makeCylinder(pt.bore / 2, y_riser - y_tip + 0.5,
                                    cq.Vector(0, y_tip - 0.5, z_axis), cq.Vector(0, 1, 0))
     bore_v = cq.Solid.makeCylinder(pt.bore / 2, -z_axis + 0.5, cq.Vector(0, y_riser, z_axis),
                                    cq.Vector(0, 0, 1))
@@ -270,6 +272,7 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
         "cavity_volume_mm3": float(cavity.Volume()),
         "cavity_volume_source": "exact B-rep of the fused cavity (chambers + channel)",
         "volume_rtol": 0.002,
+        "cavities": 1,
         "genus": mt.screws * (2 if mt.slot_width > 0 and mt.slot_depth > 0 else 1),
         "min_wall_design_mm": min(P.t0, D.t0),
         "port": {"axis_point": [0.0, y_riser, 0.0], "axis_dir": [0.0, 0.0, 1.0],
@@ -282,3 +285,66 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
         "print": {"build_direction": [0.0, 0.0, 1.0], "plane": "i-k (x-y), base down"},
     }
     return Fingertip(spec, solid, cavity, design)
+
+
+def _first_hit(tri: np.ndarray, origin: np.ndarray, direction: np.ndarray) -> float:
+    """Distance along the unit ``direction`` to the nearest triangle of ``tri`` (m, 3, 3) hit
+    from ``origin`` (Möller–Trumbore over all triangles at once); inf if none."""
+    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    p = np.cross(direction, e2)
+    det = np.einsum("ij,ij->i", e1, p)
+    ok = np.abs(det) > 1e-14
+    inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+    s = origin - tri[:, 0]
+    u = np.einsum("ij,ij->i", s, p) * inv
+    q = np.cross(s, e1)
+    v = (q @ direction) * inv
+    t = np.einsum("ij,ij->i", e2, q) * inv
+    hit = ok & (u >= -1e-12) & (v >= -1e-12) & (u + v <= 1 + 1e-12) & (t > 0)
+    return float(t[hit].min()) if hit.any() else math.inf
+
+
+def measure_pockets(solid_mesh, cavity_mesh, design: dict, *, samples: int = 200) -> dict:
+    """Measure the FSR pockets on an exported fingertip mesh.
+
+    A pocket counts when a ray cast along −normal at its centre first meets the mesh at the
+    design floor (±0.02 mm) and a ray just outside its rim (in one of 8 directions) meets the
+    pad top one ``depth`` higher, i.e. the recess is really there. The wall under each pocket is the closest-point
+    distance (mm) from points of its floor disc to the cavity surface ``cavity_mesh``.
+    Both meshes are :class:`~spsc.cad.export.TriMesh`; returns count, per-pocket minimum wall
+    and the overall minimum.
+    """
+    import pyvista as pv
+
+    def poly(m):
+        faces = np.hstack([np.full((len(m.faces), 1), 3), m.faces]).ravel()
+        return pv.PolyData(m.vertices, faces)
+
+    cavity = poly(cavity_mesh)
+    tri = solid_mesh.vertices[solid_mesh.faces]
+    lift, tol = 1.5, 0.02
+    found, walls = 0, []
+    for pk in design["pockets"]:
+        c, n, r, depth = (np.asarray(pk["floor_center"]), np.asarray(pk["normal"]),
+                          pk["radius"], pk["depth"])
+        u = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
+        u /= np.linalg.norm(u)
+
+        def first_hit(p0):
+            return _first_hit(tri, p0 + n * (depth + lift), -n)
+
+        floor_ok = abs(first_hit(c) - (depth + lift)) < tol
+        v = np.cross(n, u)
+        # the pad top is one depth above the floor somewhere around the rim (neighbouring pads
+        # overlap and the lead channel opens one side, so not in every direction)
+        rim_ok = any(abs(first_hit(c + (r + 0.4) * (math.cos(a) * u + math.sin(a) * v)) - lift)
+                     < tol for a in np.linspace(0.0, 2 * math.pi, 8, endpoint=False))
+        found += bool(floor_ok and rim_ok)
+        rr = (r - 0.1) * np.sqrt(np.linspace(0.0, 1.0, samples))
+        ang = np.linspace(0.0, 2 * math.pi * 21, samples)  # a spiral covering the disc
+        pts = c + rr[:, None] * (np.cos(ang)[:, None] * u + np.sin(ang)[:, None] * v)
+        d = np.abs(pv.PolyData(pts).compute_implicit_distance(cavity)["implicit_distance"])
+        walls.append(float(d.min()))
+    return {"pocket_count": found, "pockets_designed": len(design["pockets"]),
+            "min_wall_under_pockets_mm": min(walls) if walls else None,
+            "wall_under_each_pocket_mm": walls}

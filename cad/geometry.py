@@ -220,7 +220,8 @@ class SPSCGeometry:
         X[0], Y[0], X[-1], Y[-1] = 0.0, self.h, self.w, 0.0
         nx, nz = self.outward_normal(X, Y)
         nx[0], nz[0] = 0.0, 1.0
-        return np.column_stack([X, Y]), np.column_stack([nx, nz])
+        keep = _distinct(np.column_stack([X, Y]), 1e-6 * self.w)
+        return np.column_stack([X, Y])[keep], np.column_stack([nx, nz])[keep]
 
     def outer_profile_points(self, n: int = 121) -> np.ndarray:
         """The outer wall surface: the profile offset by t0 along its normal, from (0, h + t0)
@@ -247,7 +248,20 @@ class SPSCGeometry:
             off = np.vstack([off, end])
         else:
             off[-1, 1] = 0.0
-        return off
+        return off[_distinct(off, 1e-6 * self.w)]
+
+
+def _distinct(pts: np.ndarray, tol: float) -> np.ndarray:
+    """Mask keeping the first and last point and every point farther than ``tol`` from the last
+    kept one (near-coincident points break spline interpolation, e.g. c_y → 0 with n2 = 1)."""
+    keep = np.zeros(len(pts), dtype=bool)
+    keep[0] = True
+    last = pts[0]
+    for i in range(1, len(pts) - 1):
+        if np.hypot(*(pts[i] - last)) > tol and np.hypot(*(pts[-1] - pts[i])) > tol:
+            keep[i], last = True, pts[i]
+    keep[-1] = True
+    return keep
 
 
 def _fan_corners(pts, nrm, max_turn=math.radians(3.0)):

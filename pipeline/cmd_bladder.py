@@ -35,6 +35,7 @@ def process_for(material_name: str) -> str:
 def run(args: argparse.Namespace) -> int:
     from spsc.cad.bladder import BladderSpec, FlangeSpec, PortSpec, build_bladder
     from spsc.cad.export import export_part
+    from spsc.cad.meshbuild import bladder_mesh
 
     geom = geometry_from_args(args)
     process = process_for(args.material)
@@ -47,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     bladder = build_bladder(spec)
     t_build = time.perf_counter() - t0
-    written = export_part(bladder.solid, bladder.design, outdir, name)
+    written = export_part(bladder.solid, bladder.design, outdir, name, mesh=bladder_mesh(spec))
     t_export = time.perf_counter() - t0 - t_build
     g = geom
     print(f"{name}: w={g.w:g} h={g.h:g} l={g.l:g} t0={g.t0:g} n1={g.n1:g} n2={g.n2:g} "
@@ -62,13 +63,21 @@ def run(args: argparse.Namespace) -> int:
     return gate(written["paths"]["stl"], bladder.design, process, outdir)
 
 
-def gate(stl: Path, design: dict, process: str, outdir: Path) -> int:
+def gate(stl: Path, design: dict, process: str, outdir: Path, extra: list = ()) -> int:
+    """Run the printability gate on ``stl`` (plus ``extra`` part-specific checks), write
+    check.json and print the summary; 0 if passed, 1 naming the failed checks."""
+    import dataclasses
+
     from spsc.cad.check import check_mesh
 
     t0 = time.perf_counter()
     report = check_mesh(stl, design=design, process=process)
+    if extra:
+        report = dataclasses.replace(report, checks=tuple(report.checks) + tuple(extra))
     report.to_json(outdir / "check.json")
     print(report.summary())
+    for c in extra:
+        print(c.message)
     print(f"  check in {time.perf_counter() - t0:.1f} s -> {outdir / 'check.json'}")
     if not report.passed:
         print(f"FAILED: {', '.join(report.failed)}")

@@ -8,6 +8,10 @@ from pathlib import Path
 
 from .cmd_bladder import gate
 
+#: Chord sag (mm) and angle (rad) of the fingertip's export mesh: its many small features would
+#: give 600k triangles at the bladder's settings; the SLA gate (0.5 mm) has ample margin.
+MESH_TOLERANCE = (0.005, 0.1)
+
 
 def register(sub) -> None:
     p = sub.add_parser("fingertip", help="build the fused fingertip (sec. 4.1) and check it",
@@ -25,8 +29,8 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from spsc.cad.export import export_part
-    from spsc.cad.fingertip import FingertipSpec, PocketSpec, build_fingertip
+    from spsc.cad.export import export_part, tessellate
+    from spsc.cad.fingertip import FingertipSpec, PocketSpec, build_fingertip, measure_pockets
 
     spec = FingertipSpec(angle=args.angle,
                          pocket=PocketSpec(diameter=args.pocket_diameter, depth=args.pocket_depth))
@@ -34,7 +38,8 @@ def run(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     tip = build_fingertip(spec)
     t_build = time.perf_counter() - t0
-    written = export_part(tip.solid, tip.design, outdir, "fingertip")
+    mesh = tessellate(tip.solid, *MESH_TOLERANCE)
+    written = export_part(tip.solid, tip.design, outdir, "fingertip", mesh=mesh)
     bb = tip.solid.BoundingBox()
     print(f"fingertip: {bb.xlen:.1f} x {bb.ylen:.1f} x {bb.zlen:.1f} mm, angle {spec.angle:g} deg, "
           f"{len(tip.design['pockets'])} FSR pockets; cavity {tip.design['cavity_volume_mm3']:.0f} "
@@ -43,4 +48,23 @@ def run(args: argparse.Namespace) -> int:
         print(f"  {written['paths'][kind]}")
     if args.no_check:
         return 0
-    return gate(written["paths"]["stl"], tip.design, args.process, outdir)
+    pockets = measure_pockets(mesh, tessellate(tip.cavity, *MESH_TOLERANCE), tip.design)
+    return gate(written["paths"]["stl"], tip.design, args.process, outdir,
+                extra=_pocket_checks(pockets, spec))
+
+
+def _pocket_checks(m: dict, spec) -> list:
+    """Gating checks of the pockets: all designed pockets found, wall under them >= t0."""
+    from spsc.cad.check import Check
+
+    t0 = min(spec.pulp.t0, spec.distal.t0)
+    wall = m["min_wall_under_pockets_mm"]
+    return [
+        Check("pocket_count", m["pocket_count"] == m["pockets_designed"], m["pocket_count"],
+              m["pockets_designed"], f"FSR pockets found {m['pocket_count']} of "
+              f"{m['pockets_designed']} designed"),
+        Check("wall_under_pockets", wall >= t0 - 0.01, wall, t0,
+              f"min wall under pockets {wall:.3f} mm (design t0 {t0:g} mm, pocket floor "
+              f"{spec.pocket.clearance:g} mm above the wall's tangent plane)",
+              {"per_pocket_mm": m["wall_under_each_pocket_mm"]}),
+    ]

@@ -1,0 +1,238 @@
+"""Bladder and fingertip solids, their exports, and the property test over the design space."""
+
+import math
+
+import numpy as np
+import pytest
+import trimesh
+from hypothesis import HealthCheck, Phase, example, given, settings
+from hypothesis import strategies as st
+
+from spsc.cad.bladder import BladderSpec, FlangeSpec, PortSpec, build_bladder
+from spsc.cad.chamber import cavity_solid, wall_solid
+from spsc.cad.errors import ParameterError
+from spsc.cad.export import read_3mf, tessellate, write_3mf, write_step, write_stl
+from spsc.cad.geometry import SPSCGeometry, preset
+from spsc.cad.meshbuild import bladder_mesh, chamber_manifold
+
+
+def _genus(mesh: trimesh.Trimesh) -> int:
+    return (2 - mesh.euler_number) // 2
+
+
+@pytest.fixture(scope="module")
+def bladder_b():
+    return build_bladder(BladderSpec(preset("B")))
+
+
+def test_cavity_brep_and_mesh_volume_match_analytic():
+    g = preset("D")
+    cav = cavity_solid(g)
+    # the spline through 121 profile points: B-rep within 1e-4 of the analytic integral
+    np.testing.assert_allclose(cav.Volume(), g.cavity_volume(), rtol=1e-4)
+    mesh = tessellate(cav).to_trimesh()
+    assert mesh.is_watertight
+    # the export tessellation (chord sag 0.002 mm): within the issue's 0.2 %
+    np.testing.assert_allclose(mesh.volume, g.cavity_volume(), rtol=2e-3)
+
+
+def test_wall_is_solid_shell_of_thickness_t0():
+    g = preset("C")
+    wall = wall_solid(g)
+    assert wall.isValid() and len(wall.Solids()) == 1
+    # wall volume ≈ surface area × t0 for a thin wall: bounded by the cavity and outer areas
+    mesh = tessellate(wall, 0.01, 0.1).to_trimesh()
+    assert mesh.is_watertight and _genus(mesh) == 0
+
+
+def test_bladder_solid_is_one_watertight_part_of_designed_genus(bladder_b):
+    s = bladder_b.solid
+    assert s.isValid() and len(s.Solids()) == 1
+    mesh = tessellate(s).to_trimesh()
+    assert mesh.is_watertight and mesh.body_count == 1
+    assert _genus(mesh) == bladder_b.design["genus"] == 4
+    # OCCT's BoundingBox is padded by tolerances; the mesh's is tight (vertices lie on the
+    # exact surfaces, chord sag 0.002 mm only shrinks curved extents)
+    lo, hi = np.array(bladder_b.design["bbox_mm"])
+    np.testing.assert_allclose(mesh.bounds, [lo, hi], atol=3e-3)
+    # part coordinates: base plane z = 0, dome top at h + t0, floor below
+    g = bladder_b.spec.geometry
+    np.testing.assert_allclose(mesh.bounds[1, 2], g.h + g.t0, atol=1e-6)
+    assert mesh.bounds[0, 2] < 0
+
+
+def test_export_mesh_matches_brep(bladder_b):
+    """The STL/3MF mesh (manifold3d) and the STEP B-rep (OCCT) are the same part."""
+    mesh = bladder_mesh(bladder_b.spec).to_trimesh()
+    assert mesh.is_watertight and mesh.body_count == 1
+    assert _genus(mesh) == bladder_b.design["genus"]
+    # circles with chord sag 0.004 mm on radii >= 0.7 mm (the bore) and a profile polyline
+    # with sag < 0.002 mm: the solid volume agrees within 0.1 %
+    np.testing.assert_allclose(mesh.volume, bladder_b.solid.Volume(), rtol=1e-3)
+    lo, hi = np.array(bladder_b.design["bbox_mm"])
+    np.testing.assert_allclose(mesh.bounds, [lo, hi], atol=5e-3)
+    g = bladder_b.spec.geometry
+    cav = chamber_manifold(g.profile_points(161)[0], g.l)
+    np.testing.assert_allclose(cav.volume(), g.cavity_volume(), rtol=5e-4)
+
+
+def test_flange_holes_set_the_genus():
+    b = build_bladder(BladderSpec(preset("A"), FlangeSpec(holes=2)))
+    assert _genus(tessellate(b.solid, 0.02, 0.2).to_trimesh()) == 2
+
+
+def test_exports_round_trip(tmp_path, bladder_b):
+    import cadquery as cq
+
+    mesh = tessellate(bladder_b.solid)
+    write_stl(mesh, tmp_path / "b.stl")
+    write_3mf(mesh, tmp_path / "b.3mf")
+    write_step(bladder_b.solid, tmp_path / "b.step")
+    stl = trimesh.load(tmp_path / "b.stl")
+    back = read_3mf(tmp_path / "b.3mf")
+    assert len(stl.faces) == len(back.faces) == len(mesh.faces)
+    np.testing.assert_allclose(trimesh.Trimesh(back.vertices, back.faces).volume, stl.volume,
+                               rtol=1e-6)
+    step = cq.importers.importStep(str(tmp_path / "b.step")).val()
+    np.testing.assert_allclose(step.Volume(), bladder_b.solid.Volume(), rtol=1e-6)
+
+
+@pytest.mark.parametrize("make,name", [
+    (lambda: FlangeSpec(holes=3), "flange.holes"),
+    (lambda: BladderSpec(preset("B"), port=PortSpec(tube_id=6.0)), "flange.thickness"),
+    (lambda: BladderSpec(preset("B"), flange=FlangeSpec(thickness=1.0)), "flange.thickness"),
+])
+def test_bladder_bad_input_names_parameter(make, name):
+    with pytest.raises(ParameterError, match=f"^{name} = "):
+        make()
+
+
+def test_port_bore_must_fit_inside_tube():
+    with pytest.raises(ParameterError, match="^port.bore = "):
+        PortSpec(tube_id=2.0, bore=2.5)
+
+
+# -- property test over the design space (DESIGN.md) -----------------------------------------
+
+design_space = st.builds(
+    lambda w, hw, lw, tw, n1, n2, cy: dict(w=w, h=hw * w, l=lw * w, t0=tw * w, n1=n1, n2=n2,
+                                            cy=cy),
+    w=st.floats(5.0, 20.0), hw=st.floats(0.5, 2.0), lw=st.floats(0.0, 3.0),
+    tw=st.floats(0.02, 0.2), n1=st.floats(2.0, 8.0), n2=st.floats(1.0, 8.0),
+    cy=st.floats(0.0, 0.9))
+
+
+def _property(params):
+    try:
+        g = SPSCGeometry(**params)
+        b = build_bladder(BladderSpec(g))
+    except ParameterError as exc:  # a clear, one-line rejection is an allowed outcome
+        assert "\n" not in str(exc) and " = " in str(exc)
+        return
+    mesh = bladder_mesh(b.spec).to_trimesh()
+    assert b.solid.isValid() and len(b.solid.Solids()) == 1
+    assert mesh.is_watertight and mesh.body_count == 1
+    assert _genus(mesh) == b.design["genus"]
+    cav = chamber_manifold(g.profile_points(161)[0], g.l)
+    # the issue's bound for every draw: mesh cavity volume within 0.5 % of the analytic one
+    np.testing.assert_allclose(cav.volume(), g.cavity_volume(), rtol=5e-3)
+    np.testing.assert_allclose(cavity_solid(g).Volume(), g.cavity_volume(), rtol=5e-3)
+
+
+# each draw builds a CAD part (seconds): no shrinking, the failing draw is printed as is
+FAST = dict(deadline=None, phases=[Phase.explicit, Phase.reuse, Phase.generate],
+            suppress_health_check=[HealthCheck.too_slow])
+
+
+@settings(max_examples=3, derandomize=True, **FAST)
+@given(design_space)
+@example(dict(w=5.0, h=2.5, l=0.0, t0=0.1, n1=2.0, n2=1.0, cy=0.0))  # once an invalid solid
+def test_design_space_builds_or_rejects(params):
+    _property(params)
+
+
+@pytest.mark.slow
+@settings(max_examples=40, **FAST)
+@given(design_space)
+def test_design_space_builds_or_rejects_many(params):
+    _property(params)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("t", "ACD")
+def test_every_type_builds(t):
+    b = build_bladder(BladderSpec(preset(t)))
+    mesh = tessellate(b.solid).to_trimesh()
+    assert mesh.is_watertight and _genus(mesh) == 4
+
+
+# -- the fused fingertip --------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def fingertip():
+    from spsc.cad.fingertip import build_fingertip
+
+    return build_fingertip()
+
+
+def test_fingertip_one_cavity_five_pockets(fingertip):
+    from spsc.cad.fingertip import measure_pockets
+
+    assert len(fingertip.cavity.Solids()) == 1          # the channel joins both chambers
+    solid = tessellate(fingertip.solid)
+    mesh = solid.to_trimesh()
+    assert mesh.is_watertight and mesh.body_count == 1
+    assert _genus(mesh) == fingertip.design["genus"]
+    m = measure_pockets(solid, tessellate(fingertip.cavity), fingertip.design)
+    assert m["pocket_count"] == m["pockets_designed"] == 5
+    t0 = fingertip.spec.pulp.t0
+    # the pocket floor lies `clearance` above the wall's tangent plane: wall >= t0 + clearance
+    # minus the chord sag of two tessellations (2 × 0.002 mm)
+    assert m["min_wall_under_pockets_mm"] >= t0 + fingertip.spec.pocket.clearance - 5e-3
+
+
+def test_pocket_probe_fails_without_pockets(fingertip):
+    """The measurement can fail: a mesh without the recesses counts no pocket."""
+    from spsc.cad.fingertip import measure_pockets
+
+    design = dict(fingertip.design)
+    design["pockets"] = [dict(p, floor_center=list(np.array(p["floor_center"]) + 0.3 *
+                                                    np.array(p["normal"])))
+                         for p in fingertip.design["pockets"]]
+    solid = tessellate(fingertip.solid, 0.02, 0.2)
+    m = measure_pockets(solid, tessellate(fingertip.cavity, 0.02, 0.2), design)
+    assert m["pocket_count"] == 0
+
+
+def test_fingertip_bad_angle():
+    from spsc.cad.fingertip import FingertipSpec
+
+    with pytest.raises(ParameterError, match="^angle = 10"):
+        FingertipSpec(angle=10)
+    assert math.isfinite(FingertipSpec().width)
+
+
+# -- the gate on built parts (the command users run) -------------------------------------------
+
+def test_gate_passes_preset_and_fails_thin_wall(tmp_path, capsys):
+    import json
+
+    from spsc.pipeline.cli import main
+
+    assert main(["bladder", "--type", "B", "--out", str(tmp_path / "b")]) == 0
+    report = json.loads((tmp_path / "b" / "check.json").read_text())
+    assert report["passed"] and {c["name"] for c in report["checks"]} >= {
+        "watertight", "manifold", "self_intersections", "one_part", "genus", "cavity_count",
+        "min_wall", "cavity_volume", "overhang"}
+    for kind in ("step", "stl", "3mf"):
+        assert (tmp_path / "b" / f"bladder-B.{kind}").stat().st_size > 10_000
+    # a 0.5 mm wall is valid geometry: it builds, and fails the FDM gate naming min_wall ...
+    assert main(["bladder", "--type", "B", "--t0", "0.5", "--out", str(tmp_path / "t")]) == 1
+    out = capsys.readouterr().out
+    assert "FAILED: min_wall" in out
+    wall = [c for c in json.loads((tmp_path / "t" / "check.json").read_text())["checks"]
+            if c["name"] == "min_wall"][0]
+    np.testing.assert_allclose(wall["value"], 0.5, atol=0.01)
+    # ... and passes for SLA (Elastic 50A), whose minimum is 0.5 mm
+    assert main(["bladder", "--type", "B", "--t0", "0.5", "--material", "elastic50a",
+                 "--out", str(tmp_path / "s")]) == 0
