@@ -1,1 +1,41 @@
-"""placeholder"""
+"""Fast physics of the SPSC: hyperelastic laws, the lumped air-spring model (eqs. 1–9), the
+simplified intersection model, the Yang–Feng membrane problem solved by a global Newton on a
+box-scheme discretisation (eqs. 15–38), and identification from bench data (eqs. 39–40).
+
+Every model returns a :class:`Curve` (``spsc.membrane.curve``).
+"""
+
+from .curve import CURVE_COLUMNS, Curve
+from .identify import BenchData, identify, predict, read_bench
+from .lumped import (LOW_STIFFNESS_RESERVOIR_MM3, P_AMB_KPA, Setup, jnd_depth, lumped_curve,
+                     mean_sensitivity, mean_stiffness)
+from .materials import CATALOGUE, Material, material
+from .simplified import simplified_curve
+from .shape import Shape
+from .solver import Inflation, MembraneResult, SolverSettings, inflate, solve
+
+__all__ = [
+    "CURVE_COLUMNS",
+    "CATALOGUE",
+    "BenchData",
+    "Curve",
+    "LOW_STIFFNESS_RESERVOIR_MM3",
+    "Material",
+    "MembraneResult",
+    "P_AMB_KPA",
+    "Setup",
+    "Shape",
+    "SolverSettings",
+    "Inflation",
+    "identify",
+    "inflate",
+    "jnd_depth",
+    "lumped_curve",
+    "material",
+    "mean_sensitivity",
+    "mean_stiffness",
+    "predict",
+    "read_bench",
+    "simplified_curve",
+    "solve",
+]

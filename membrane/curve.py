@@ -1,0 +1,230 @@
+"""The one result type: a static curve F(y), P(y), A(y), ΔV(y) plus what produced it.
+
+Every model (membrane, simplified, lumped, FEM) and the bench produce a :class:`Curve`.
+Units are those of the edge (DESIGN.md): y in mm from first contact with the inflated chamber
+(the paper's contact depth y_s), force in N, gauge pressure in kPa, contact area in mm², volume
+change in mm³ (cavity volume lost since first contact). JSON and CSV round-trip it.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from spsc.cad.errors import ParameterError
+
+__all__ = ["Curve", "CURVE_COLUMNS"]
+
+#: Column names of the curve arrays, in JSON (``"curve"`` object) and CSV header order.
+CURVE_COLUMNS = ("y_mm", "force_N", "pressure_kPa", "contact_area_mm2", "volume_change_mm3")
+_META = ("model", "geometry", "material", "setup", "nominal_volume_mm3",
+         "inflated_volume_mm3", "inflated_height_mm")
+
+
+def _array(name: str, value) -> np.ndarray:
+    a = np.array(value, dtype=float).reshape(-1)
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class Curve:
+    """A static curve of an SPSC pressed by a rigid plate.
+
+    Parameters
+    ----------
+    y_mm, force_N, pressure_kPa, contact_area_mm2, volume_change_mm3 : array_like
+        Plate travel from first contact (mm, strictly increasing), plate force (N), gauge
+        pressure (kPa), contact area (mm²) and cavity volume lost since first contact (mm³).
+        Points that were not computed (non-converged) hold NaN.
+    model : str
+        What produced the curve (``membrane``, ``simplified``, ``lumped``, ``fem``, ``bench`` …).
+    geometry : dict
+        The seven parameters (w, h, l, t0, n1, n2, cy), mm.
+    material : str
+        Material catalogue name (or ``""``).
+    setup : dict
+        ``p_i_kPa`` (gauge), ``reservoir_mm3``, ``polytropic_n``.
+    nominal_volume_mm3, inflated_volume_mm3 : float
+        Cavity volume (bladder only) before and after inflation, mm³.
+    inflated_height_mm : float
+        Height of the cavity apex above z = 0 after inflation, mm.
+    converged : array_like of bool, optional
+        Per-point status (default: all True).
+    message : tuple of str, optional
+        Per-point reason ("" where converged).
+    """
+
+    y_mm: np.ndarray
+    force_N: np.ndarray
+    pressure_kPa: np.ndarray
+    contact_area_mm2: np.ndarray
+    volume_change_mm3: np.ndarray
+    model: str = "membrane"
+    geometry: dict = field(default_factory=dict)
+    material: str = ""
+    setup: dict = field(default_factory=dict)
+    nominal_volume_mm3: float = float("nan")
+    inflated_volume_mm3: float = float("nan")
+    inflated_height_mm: float = float("nan")
+    converged: np.ndarray | None = None
+    message: tuple[str, ...] | None = None
+
+    def __post_init__(self):
+        n = None
+        for name in CURVE_COLUMNS:
+            a = _array(name, getattr(self, name))
+            if n is None:
+                n = a.size
+            elif a.size != n:
+                raise ParameterError(f"len({name})", a.size, f"= len(y_mm) = {n}")
+            object.__setattr__(self, name, a)
+        if n < 1:
+            raise ParameterError("len(y_mm)", n, ">= 1 point")
+        if np.any(~np.isfinite(self.y_mm)):
+            raise ParameterError("y_mm", "non-finite value", "finite plate positions (mm)")
+        if n > 1 and np.any(np.diff(self.y_mm) <= 0):
+            k = int(np.argmax(np.diff(self.y_mm) <= 0)) + 1
+            raise ParameterError(f"y_mm[{k}]", float(self.y_mm[k]),
+                                 f"> y_mm[{k - 1}] = {self.y_mm[k - 1]:g} (strictly increasing)")
+        conv = np.ones(n, bool) if self.converged is None else np.array(self.converged, bool)
+        if conv.shape != (n,):
+            raise ParameterError("len(converged)", conv.size, f"= len(y_mm) = {n}")
+        conv.setflags(write=False)
+        object.__setattr__(self, "converged", conv)
+        msg = ("",) * n if self.message is None else tuple(str(m) for m in self.message)
+        if len(msg) != n:
+            raise ParameterError("len(message)", len(msg), f"= len(y_mm) = {n}")
+        object.__setattr__(self, "message", msg)
+        object.__setattr__(self, "geometry", dict(self.geometry))
+        object.__setattr__(self, "setup", dict(self.setup))
+        for name in ("nominal_volume_mm3", "inflated_volume_mm3", "inflated_height_mm"):
+            v = getattr(self, name)
+            object.__setattr__(self, name, float("nan") if v is None else float(v))
+
+    # -- derived quantities ------------------------------------------------------------------
+    def __len__(self) -> int:
+        return self.y_mm.size
+
+    @property
+    def all_converged(self) -> bool:
+        return bool(np.all(self.converged))
+
+    def stiffness(self) -> np.ndarray:
+        """dF/dy in N/mm (second-order finite differences on the possibly uneven y grid)."""
+        return _gradient(self.force_N, self.y_mm)
+
+    def sensitivity(self) -> np.ndarray:
+        """dP/dy in kPa/mm (second-order finite differences)."""
+        return _gradient(self.pressure_kPa, self.y_mm)
+
+    def replace(self, **changes) -> "Curve":
+        return replace(self, **changes)
+
+    # -- JSON --------------------------------------------------------------------------------
+    def to_dict(self) -> dict:
+        """The DESIGN.md JSON object (NaN written as null)."""
+        out = {k: _clean(getattr(self, k)) for k in _META}
+        curve = {k: _clean(getattr(self, k)) for k in CURVE_COLUMNS}
+        if not self.all_converged or any(self.message):
+            curve["converged"] = [bool(c) for c in self.converged]
+            curve["message"] = list(self.message)
+        out["curve"] = curve
+        return out
+
+    def to_json(self, path: str | Path | None = None, **kwargs) -> str:
+        text = json.dumps(self.to_dict(), **({"indent": 1} | kwargs))
+        if path is not None:
+            Path(path).write_text(text + "\n")
+        return text
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "Curve":
+        if "curve" not in data:
+            raise ParameterError("JSON key", "curve", "an object with " + ", ".join(CURVE_COLUMNS))
+        c = data["curve"]
+        missing = [k for k in CURVE_COLUMNS if k not in c]
+        if missing:
+            raise ParameterError("curve key", missing[0], "present: " + ", ".join(CURVE_COLUMNS))
+        arrays = {k: [np.nan if v is None else v for v in c[k]] for k in CURVE_COLUMNS}
+        meta = {k: data[k] for k in _META if k in data}
+        return cls(**arrays, **meta, converged=c.get("converged"),
+                   message=tuple(c["message"]) if "message" in c else None)
+
+    @classmethod
+    def from_json(cls, source: str | Path) -> "Curve":
+        """From a JSON string or a path to a JSON file."""
+        text = str(source)
+        if not text.lstrip().startswith("{"):
+            text = Path(source).read_text()
+        return cls.from_dict(json.loads(text))
+
+    # -- CSV ---------------------------------------------------------------------------------
+    def to_csv(self, path: str | Path | None = None) -> str:
+        """CSV with the five columns (plus ``converged``); metadata in ``# key: json`` lines."""
+        buf = io.StringIO()
+        for k in _META:
+            buf.write(f"# {k}: {json.dumps(_clean(getattr(self, k)))}\n")
+        buf.write(",".join(CURVE_COLUMNS + ("converged",)) + "\n")
+        for i in range(len(self)):
+            vals = [_fmt(getattr(self, k)[i]) for k in CURVE_COLUMNS]
+            buf.write(",".join(vals + [str(int(self.converged[i]))]) + "\n")
+        text = buf.getvalue()
+        if path is not None:
+            Path(path).write_text(text)
+        return text
+
+    @classmethod
+    def from_csv(cls, source: str | Path) -> "Curve":
+        """From a CSV string (containing a newline) or a path written by :meth:`to_csv`."""
+        text = str(source)
+        if "\n" not in text:
+            text = Path(source).read_text()
+        meta, rows, header = {}, [], None
+        for line in text.splitlines():
+            if line.startswith("#"):
+                key, _, val = line[1:].partition(":")
+                if key.strip() in _META:
+                    meta[key.strip()] = json.loads(val)
+            elif line.strip():
+                if header is None:
+                    header = [h.strip() for h in line.split(",")]
+                else:
+                    rows.append([v.strip() for v in line.split(",")])
+        if header is None:
+            raise ParameterError("CSV", "no header", "a header line with " + ",".join(CURVE_COLUMNS))
+        missing = [k for k in CURVE_COLUMNS if k not in header]
+        if missing:
+            raise ParameterError("CSV column", missing[0], "present: " + ",".join(CURVE_COLUMNS))
+        cols = {k: [float(r[header.index(k)]) for r in rows] for k in CURVE_COLUMNS}
+        conv = None
+        if "converged" in header:
+            conv = [bool(int(r[header.index("converged")])) for r in rows]
+        return cls(**cols, **meta, converged=conv)
+
+
+def _gradient(f: np.ndarray, y: np.ndarray) -> np.ndarray:
+    if y.size < 2:
+        return np.zeros_like(f)
+    return np.gradient(f, y, edge_order=2 if y.size > 2 else 1)
+
+
+def _clean(v):
+    if isinstance(v, np.ndarray):
+        return [None if not math.isfinite(x) else float(x) for x in v.tolist()]
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, dict):
+        return {k: _clean(x) for k, x in v.items()}
+    if isinstance(v, (np.floating, np.integer)):
+        return v.item()
+    return v
+
+
+def _fmt(x: float) -> str:
+    return "nan" if not math.isfinite(x) else repr(float(x))

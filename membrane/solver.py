@@ -1,0 +1,220 @@
+"""One entry point for the membrane model (sec. 2.3, Algorithm 1 replaced by a global Newton):
+inflate at p_i, close the valve, press with a rigid frictionless plate along the stroke.
+
+The load path: inflate at p_i (Newton from a tensioned guess, pressure continuation if that
+fails), close the gas, then one Newton solve of :class:`.bvp.BoxScheme` per plate position,
+warm-started by a secant predictor with step halving (:mod:`.stroke`). A point that does not
+converge carries its reason and NaN values, never a number.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from spsc.cad.errors import ParameterError, require
+from spsc.cad.geometry import SPSCGeometry
+
+from .bvp import BoxScheme
+from .curve import Curve
+from .materials import Material, material as catalogue_material
+from .meridian import Meridian
+from .shape import Shape, make_shape
+from .stroke import Press
+
+__all__ = ["SolverSettings", "MembraneResult", "Inflation", "solve", "inflate"]
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    """Discretisation and Newton controls.
+
+    inflation_intervals : int  intervals of the inflation grid (>= 8)
+    contact_intervals, free_intervals : int  intervals on [0, s_Γ] and [s_Γ, L] (>= 4, >= 8)
+    tol : float  max scaled residual for convergence (> 0)
+    max_iter : int  Newton iterations per solve (>= 2)
+    max_halvings : int  step halvings allowed between two requested plate positions (>= 0)
+    """
+
+    inflation_intervals: int = 192
+    contact_intervals: int = 48
+    free_intervals: int = 144
+    tol: float = 1e-9
+    max_iter: int = 25
+    max_halvings: int = 6
+
+    def __post_init__(self):
+        require("inflation_intervals", self.inflation_intervals, ge=8)
+        require("contact_intervals", self.contact_intervals, ge=4)
+        require("free_intervals", self.free_intervals, ge=8)
+        require("tol", self.tol, gt=0)
+        require("max_iter", self.max_iter, ge=2)
+        require("max_halvings", self.max_halvings, ge=0)
+
+    def scaled(self, factor: float) -> "SolverSettings":
+        """Same settings with every interval count multiplied by ``factor`` (refinement studies)."""
+        from dataclasses import replace
+        return replace(self, inflation_intervals=int(round(self.inflation_intervals * factor)),
+                       contact_intervals=int(round(self.contact_intervals * factor)),
+                       free_intervals=int(round(self.free_intervals * factor)))
+
+
+@dataclass(frozen=True, eq=False)
+class MembraneResult:
+    """What :func:`solve` returns: the :class:`Curve`, the inflated shape, the shape at each
+    plate position (None where not converged), and why/where it stopped."""
+
+    curve: Curve
+    inflated: Shape
+    shapes: tuple
+    converged: bool
+    message: str
+    y_reached_mm: float
+    seconds: float
+    newton_iterations: int = 0
+    notes: tuple = field(default_factory=tuple)
+
+
+@dataclass(frozen=True, eq=False)
+class Inflation:
+    """The inflation problem's outcome: the inflated :class:`Shape` (None if it failed),
+    whether it converged, why not, and the Newton iterations spent."""
+
+    shape: Shape | None
+    converged: bool
+    message: str
+    iterations: int
+
+
+def _material(mat) -> Material:
+    return mat if isinstance(mat, Material) else catalogue_material(mat)
+
+
+def _stress_guess(bs: BoxScheme, p_mpa: float) -> np.ndarray:
+    """Reference shape with the meridional stretch of the cap balance T1 = pρ/(2 sin φ) (linear
+    law), so the first Newton step starts from a tensioned membrane."""
+    mer = bs.mer
+    s = bs.nodes()
+    x, phi = mer.x(s), mer.angle(s)
+    T1 = 0.5 * p_mpa * np.minimum(x / np.maximum(np.sin(phi), 1e-3), 2.0 * mer.geometry.w)
+    T1[0] = T1[1]
+    l1 = 1.0 + T1 / (4.0 * bs.scale_T)
+    return np.column_stack([x, mer.y(s), phi, l1]).ravel()
+
+
+def inflate(geometry: SPSCGeometry, material, pressure_kPa: float, *,
+            settings: SolverSettings | None = None, edge: str = "clamped"):
+    """Inflation problem at gauge pressure ``pressure_kPa`` (kPa) → :class:`Inflation`.
+    Newton from a tensioned guess; pressure continuation if that fails. ``edge="symmetric"``
+    replaces the clamped edge by a symmetry plane (φ = π/2, η = 0), for the sphere check."""
+    settings = settings or SolverSettings()
+    mat = _material(material)
+    p = require("pressure", pressure_kPa, ge=0, unit="kPa gauge") * 1e-3
+    mer = Meridian(geometry)
+    bs = BoxScheme(mer, mat, 0, settings.inflation_intervals, edge=edge)
+    if p == 0.0:
+        s = bs.nodes()
+        v = np.column_stack([mer.x(s), mer.y(s), mer.angle(s), np.ones_like(s)]).ravel()
+        return Inflation(make_shape(bs, v, 0.0), True, "", 0)
+    r = bs.newton(_stress_guess(bs, p), p=p, tol=settings.tol, max_iter=settings.max_iter)
+    iters = r.iterations
+    if not r.converged:  # continuation in pressure from a small one
+        frac, v, done = 0.125, None, 0.0
+        while done < 1.0 and frac > 1e-3:
+            target = min(1.0, done + frac)
+            guess = _stress_guess(bs, target * p) if v is None else v
+            rr = bs.newton(guess, p=target * p, tol=settings.tol, max_iter=settings.max_iter)
+            iters += rr.iterations
+            if rr.converged:
+                v, done, frac = rr.v, target, frac * 2.0
+            else:
+                frac *= 0.5
+        if done < 1.0:
+            return Inflation(None, False, f"inflation did not converge ({r.message}); pressure "
+                             f"continuation reached {done * pressure_kPa:.4g} kPa", iters)
+        r.v = v
+    return Inflation(make_shape(bs, r.v, p), True, "", iters)
+
+
+def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm3: float = 0.0,
+          stroke_mm: float = 6.0, points: int = 41, polytropic_n: float = 1.0,
+          settings: SolverSettings | None = None) -> MembraneResult:
+    """Inflate at ``pressure_kPa`` (kPa gauge), close the gas (bladder + reservoir
+    ``reservoir_mm3``, mm³, polytropic index n, eq. 34) and press with a plate over
+    ``points`` positions y ∈ [0, ``stroke_mm``] mm from first contact.
+
+    ``material`` is a :class:`Material` or a catalogue name. Returns a :class:`MembraneResult`
+    whose ``curve`` has force (N) = p·A (eq. 38 with the deformed radius), gauge pressure (kPa),
+    contact area (mm²) and volume change (mm³) per position.
+    """
+    t_start = time.perf_counter()
+    settings = settings or SolverSettings()
+    mat = _material(material)
+    if not isinstance(geometry, SPSCGeometry):
+        raise ParameterError("geometry", type(geometry).__name__, "an SPSCGeometry")
+    p_i = require("pressure", pressure_kPa, ge=0, le=1000, unit="kPa gauge")
+    v_r = require("reservoir", reservoir_mm3, ge=0, unit="mm³")
+    n_poly = require("polytropic_n", polytropic_n, ge=1, le=1.4)
+    stroke = require("stroke", stroke_mm, ge=0, lt=geometry.h,
+                     unit=f"mm, below the chamber height h = {geometry.h:g} mm")
+    npts = int(require("points", points, ge=1, le=10001))
+    if stroke == 0.0:
+        npts = 1
+    elif npts < 2:
+        raise ParameterError("points", points, ">= 2 for a stroke > 0")
+
+    inf = inflate(geometry, mat, p_i, settings=settings)
+    infl, ok, msg, iters = inf.shape, inf.converged, inf.message, inf.iterations
+    y = np.linspace(0.0, stroke, npts)
+    meta = dict(geometry=geometry.as_dict(), material=mat.name,
+                setup={"p_i_kPa": p_i, "reservoir_mm3": v_r, "polytropic_n": n_poly},
+                nominal_volume_mm3=geometry.cavity_volume())
+    nan = np.full(npts, np.nan)
+    if not ok:
+        curve = Curve(y, nan, nan, nan, nan, model="membrane", converged=np.zeros(npts, bool),
+                      message=(msg,) * npts, **meta)
+        return MembraneResult(curve, None, (None,) * npts, False, msg, float("nan"),
+                              time.perf_counter() - t_start, iters)
+    apex = float(infl.eta[0])
+    if stroke >= apex:
+        raise ParameterError("stroke", stroke_mm,
+                             f"< inflated chamber height {apex:.4g} mm (the plate would reach "
+                             "the base)")
+
+    press = Press(geometry, mat, infl, settings, p_i * 1e-3, v_r, n_poly)
+    F, P, A, DV = (nan.copy() for _ in range(4))
+    F[0], P[0], A[0], DV[0] = 0.0, p_i, 0.0, 0.0
+    conv = np.zeros(npts, bool)
+    conv[0] = True
+    msgs = [""] * npts
+    shapes = [infl] + [None] * (npts - 1)
+    stop = ""
+    for k in range(1, npts):
+        sh, why = press.advance(y[k])
+        if sh is not None and why:
+            msgs[k] = why
+        if sh is None:
+            stop = f"no equilibrium found beyond y = {press.y:.4g} mm: {why}"
+            for j in range(k, npts):
+                msgs[j] = stop if j == k else f"not attempted (continuation stopped at y = {press.y:.4g} mm)"
+            break
+        rG = sh.contact_radius
+        A[k] = math.pi * rG * rG + 2.0 * geometry.l * rG
+        P[k] = sh.pressure_kPa
+        F[k] = 1e-3 * P[k] * A[k]
+        DV[k] = infl.volume_mm3 - sh.volume_mm3
+        conv[k], shapes[k] = True, sh
+    curve = Curve(y, F, P, A, DV, model="membrane", inflated_volume_mm3=infl.volume_mm3,
+                  inflated_height_mm=apex, converged=conv, message=tuple(msgs), **meta)
+    done = bool(conv.all())
+    notes = []
+    wr = infl.T2 <= 0.0
+    if wr.any():
+        notes.append(f"inflated: hoop wrinkles (T2 = 0) over s = {infl.s[wr][0]:.3g}–"
+                     f"{infl.s[wr][-1]:.3g} mm of the meridian (tension-field membrane)")
+    return MembraneResult(curve, infl, tuple(shapes), done, stop,
+                          float(y[conv][-1]), time.perf_counter() - t_start,
+                          iters + press.iterations, tuple(notes))

@@ -1,0 +1,82 @@
+"""``spsc identify``: A(y), ΔV(y) from one bench test (eqs. 39–40) and the predicted curves at
+other setup pressures and reservoirs (eqs. 6–7).
+
+    spsc identify bench.csv --pressure 40 --type D [--bladder-volume MM3] [--reservoir MM3]
+
+The bench CSV has columns y_mm, force_N, pressure_kPa (gauge) and optionally elastic_force_N.
+V_b,i defaults to the nominal cavity volume of the named type (or of the seven parameters).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from spsc.cad.errors import ParameterError, require
+
+from .cmd_membrane import PARAMS, add_geometry_options, geometry_from_args
+
+
+def _floats(name: str, text: str) -> list[float]:
+    try:
+        return [float(v) for v in str(text).split(",") if v.strip()]
+    except ValueError:
+        raise ParameterError(name, text, "comma-separated numbers") from None
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser("identify", help="identify A(y), ΔV(y) from bench data",
+                              description=__doc__.split("\n\n")[0])
+    p.add_argument("bench", help="bench CSV: y_mm, force_N, pressure_kPa[, elastic_force_N]")
+    p.add_argument("--pressure", type=float, required=True, help="setup pressure of the test, kPa gauge")
+    add_geometry_options(p)
+    p.add_argument("--bladder-volume", type=float, help="V_b,i in mm³ (default: nominal cavity)")
+    p.add_argument("--reservoir", type=float, default=0.0, help="reservoir of the test, mm³")
+    p.add_argument("--polytropic-n", type=float, default=1.0, help="polytropic index (1: isothermal)")
+    p.add_argument("--predict-pressures", default="10,20,30,40", help="kPa gauge, comma-separated")
+    p.add_argument("--predict-reservoirs", default="0,40000", help="mm³, comma-separated")
+    p.add_argument("--json", help="write identified and predicted curves here")
+    p.add_argument("--csv", help="write the identified curve CSV here")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from spsc.membrane.identify import identify, predict, read_bench
+
+    geometry, name = {}, ""
+    if args.type or any(getattr(args, k) is not None for k in PARAMS):
+        geom = geometry_from_args(args)
+        geometry = geom.as_dict()
+        vb = geom.cavity_volume() if args.bladder_volume is None else args.bladder_volume
+    elif args.bladder_volume is not None:
+        vb = args.bladder_volume
+    else:
+        raise ParameterError("bladder volume", None,
+                             "--type, the seven parameters or --bladder-volume MM3")
+    vb = require("bladder_volume", vb, gt=0, unit="mm³")
+    pressures = _floats("predict-pressures", args.predict_pressures)
+    reservoirs = _floats("predict-reservoirs", args.predict_reservoirs)
+    bench = read_bench(args.bench)
+    ident = identify(bench, pressure_kPa=args.pressure, bladder_volume_mm3=vb,
+                     reservoir_mm3=args.reservoir, polytropic_n=args.polytropic_n,
+                     geometry=geometry, material=name)
+    preds = [predict(ident, pressure_kPa=p, reservoir_mm3=r, bladder_volume_mm3=vb,
+                     polytropic_n=args.polytropic_n, elastic_force_N=bench.elastic_force_N)
+             for r in reservoirs for p in pressures]
+    if args.json:
+        data = ident.to_dict()  # the Curve JSON of DESIGN.md, plus the predictions
+        data["predictions"] = [c.to_dict() for c in preds]
+        Path(args.json).write_text(json.dumps(data, indent=1) + "\n")
+    if args.csv:
+        ident.to_csv(args.csv)
+    print(f"identified from {args.bench}: p_i = {args.pressure:g} kPa, V_b,i = {vb:.1f} mm³, "
+          f"V_r = {args.reservoir:g} mm³")
+    print(f"{'y_mm':>7} {'A_mm2':>9} {'dV_mm3':>9}")
+    step = max(1, (len(ident) - 1) // 10)
+    for k in range(0, len(ident), step):
+        print(f"{ident.y_mm[k]:7.3f} {ident.contact_area_mm2[k]:9.2f} {ident.volume_change_mm3[k]:9.2f}")
+    print(f"{'p_i_kPa':>8} {'V_r_mm3':>9} {'F_end_N':>9} {'p_end_kPa':>10}")
+    for c in preds:
+        print(f"{c.setup['p_i_kPa']:8.4g} {c.setup['reservoir_mm3']:9.6g} {c.force_N[-1]:9.3f} "
+              f"{c.pressure_kPa[-1]:10.3f}")
+    return 0

@@ -1,0 +1,78 @@
+"""The Curve result type: validation, JSON/CSV round trips, derivatives."""
+
+import json
+
+import numpy as np
+import pytest
+
+from spsc.cad.errors import ParameterError
+from spsc.membrane.curve import CURVE_COLUMNS, Curve
+
+
+def _curve(**kw):
+    y = np.linspace(0.0, 6.0, 13)
+    base = dict(y_mm=y, force_N=2.0 * y**2 + y, pressure_kPa=40.0 + 3.0 * y**2,
+                contact_area_mm2=50.0 * y, volume_change_mm3=20.0 * y**2, model="membrane",
+                geometry={"w": 11, "h": 13, "l": 3, "t0": 1, "n1": 2, "n2": 2.2, "cy": 0.6},
+                material="tpu60a", setup={"p_i_kPa": 40, "reservoir_mm3": 0, "polytropic_n": 1},
+                nominal_volume_mm3=6505.0, inflated_volume_mm3=7000.0, inflated_height_mm=14.9)
+    base.update(kw)
+    return Curve(**base)
+
+
+def test_json_round_trip_keeps_everything(tmp_path):
+    c = _curve()
+    d = json.loads(c.to_json())
+    assert list(d) == ["model", "geometry", "material", "setup", "nominal_volume_mm3",
+                       "inflated_volume_mm3", "inflated_height_mm", "curve"]
+    assert list(d["curve"]) == list(CURVE_COLUMNS)
+    c2 = Curve.from_json(c.to_json(tmp_path / "c.json"))
+    c3 = Curve.from_json(tmp_path / "c.json")
+    for cc in (c2, c3):
+        for k in CURVE_COLUMNS:
+            np.testing.assert_array_equal(getattr(cc, k), getattr(c, k))
+        assert cc.geometry == c.geometry and cc.setup == c.setup and cc.material == "tpu60a"
+        assert cc.inflated_height_mm == 14.9
+
+
+def test_nan_points_and_messages_round_trip(tmp_path):
+    f = _curve().force_N.copy()
+    f[-3:] = np.nan
+    conv = np.isfinite(f)
+    msg = tuple("" if ok else "no equilibrium" for ok in conv)
+    c = _curve(force_N=f, converged=conv, message=msg)
+    text = c.to_json()
+    assert "NaN" not in text  # strict JSON: null, not NaN
+    c2 = Curve.from_json(text)
+    np.testing.assert_array_equal(c2.converged, conv)
+    assert c2.message == msg and not c2.all_converged
+    np.testing.assert_array_equal(np.isnan(c2.force_N), ~conv)
+    c3 = Curve.from_csv(c.to_csv(tmp_path / "c.csv"))
+    np.testing.assert_array_equal(c3.converged, conv)
+    np.testing.assert_allclose(c3.force_N[conv], f[conv], rtol=0, atol=0)
+
+
+def test_csv_round_trip_is_exact(tmp_path):
+    c = _curve()
+    c.to_csv(tmp_path / "x.csv")
+    c2 = Curve.from_csv(tmp_path / "x.csv")
+    for k in CURVE_COLUMNS:
+        np.testing.assert_array_equal(getattr(c2, k), getattr(c, k))
+    assert c2.model == "membrane" and c2.nominal_volume_mm3 == 6505.0
+
+
+def test_derivatives_are_second_order_exact_on_quadratics():
+    c = _curve()
+    # np.gradient with edge_order=2 is exact for quadratics: tolerance is round-off only
+    np.testing.assert_allclose(c.stiffness(), 4.0 * c.y_mm + 1.0, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(c.sensitivity(), 6.0 * c.y_mm, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("change, name", [
+    (dict(force_N=np.zeros(3)), "len(force_N)"),
+    (dict(y_mm=np.r_[0.0, 1.0, 1.0, *np.arange(2.0, 12.0)]), "y_mm[2]"),
+])
+def test_invalid_curves_are_one_line_errors(change, name):
+    with pytest.raises(ParameterError) as e:
+        _curve(**change)
+    assert name in str(e.value) and "\n" not in str(e.value)
