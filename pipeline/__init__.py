@@ -1,1 +1,1 @@
-"""placeholder"""
+"""The spsc command line and the study runner."""
