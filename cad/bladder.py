@@ -20,7 +20,7 @@ from .chamber import PROFILE_POINTS, cavity_solid, outer_solid
 from .errors import ParameterError, require
 from .geometry import SPSCGeometry
 
-__all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "Bladder", "build_bladder"]
+__all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "Bladder", "build_bladder", "nipple"]
 
 
 @dataclass(frozen=True)
@@ -119,11 +119,9 @@ def _hole_centres(spec: BladderSpec, r_mid: float) -> list[tuple[float, float]]:
     return out
 
 
-def _nipple(spec: BladderSpec, y_start: float) -> cq.Solid:
-    """Shaft + saw-tooth barbs along −y from the flange edge ``y_start``; the sharp step of each
-    barb faces the flange so a pushed-on tube is held."""
-    p = spec.port
-    z = spec.port_axis_z
+def nipple(p: PortSpec, y_start: float, z: float) -> cq.Solid:
+    """Shaft + saw-tooth barbs along −y from the face at ``y_start``, axis at height ``z``; the
+    sharp step of each barb faces the part so a pushed-on tube is held."""
     d = cq.Vector(0, -1, 0)
     shaft = cq.Solid.makeCylinder(p.tube_id / 2, p.length + 1.0,
                                   cq.Vector(0, y_start + 1.0, z), d)
@@ -145,7 +143,7 @@ def build_bladder(spec: BladderSpec) -> Bladder:
     r_flange = r_wall + f.width
     plate = _stadium(r_flange, g.l, -f.thickness, f.thickness)
     y_edge = -(g.l / 2 + r_flange)
-    body = outer_solid(g).fuse(plate, _nipple(spec, y_edge)).clean()
+    body = outer_solid(g).fuse(plate, nipple(p, y_edge, spec.port_axis_z)).clean()
 
     z_axis = spec.port_axis_z
     y_riser = -g.l / 2  # centre of the −y end cap: inside the cavity footprint for any type

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import cadquery as cq
 import numpy as np
 
-from .bladder import PortSpec
+from .bladder import PortSpec, nipple
 from .chamber import PROFILE_POINTS, profile_body
 from .errors import ParameterError, require
 from .geometry import SPSCGeometry
@@ -230,14 +230,7 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
 
     # port along −y at the rear face; bore rises into the pulp cavity at the rear cap centre
     z_axis = -b + mt.slot_depth + pt.barb_diameter / 2 + P.t0
-    port_spec_y0 = y_rear
-    d = cq.Vector(0, -1, 0)
-    nipple = cq.Solid.makeCylinder(pt.tube_id / 2, pt.length + 1.0,
-                                   cq.Vector(0, port_spec_y0 + 1.0, z_axis), d)
-    pitch = pt.length / (pt.barbs + 0.5) if pt.barbs else 0.0
-    barbs = [cq.Solid.makeCone(pt.barb_diameter / 2, pt.tube_id / 2, pitch * 0.9,
-                               cq.Vector(0, port_spec_y0 - (k + 0.5) * pitch, z_axis), d)
-             for k in range(pt.barbs)]
+    port = nipple(pt, y_rear, z_axis)
     y_riser = -P.l / 2
     y_tip = y_rear - pt.length
     # the horizontal bore ends on the riser's axis, so capping the riser closes the cavity
@@ -262,7 +255,7 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
         if part.Volume() <= 0 or not part.isValid():
             raise RuntimeError("fingertip: a cavity part is empty or invalid")
     cavity = pulp_cav.fuse(dist_cav, channel).clean()
-    outer = body.fuse(pulp_out, dist_out, nipple, *barbs, *adds).clean()
+    outer = body.fuse(pulp_out, dist_out, port, *adds).clean()
     solid = outer.cut(cavity, bore_h, bore_v, *cuts, *mount_cuts).clean()
     if not solid.isValid():
         raise RuntimeError("OCCT produced an invalid fingertip solid")
