@@ -35,32 +35,30 @@ def _segments(radius: float, degrees: float = 360.0) -> int:
     return max(8, 4 * math.ceil(n / 4))
 
 
-def _section(pts: np.ndarray, mirrored: bool) -> m3.CrossSection:
-    """Section under the profile ``pts`` (apex first, base last) in (radius, height)."""
+def chamber_manifold(pts: np.ndarray, l: float, *, sink: float = 0.0) -> m3.Manifold:
+    """The solid under the profile ``pts`` (x, z; apex first, base last): revolved ends at
+    y = ±l/2 and the extruded middle.
+
+    The body {(x, y, z): dist((x, y), segment y ∈ [−l/2, l/2]) <= r(z)} is convex for every
+    convex profile (r concave), so it is the convex hull of its horizontal stadium rings: one
+    piece, no seams where ends and middle meet. ``sink`` > 0 prolongs the base ring vertically
+    down to z = −sink, so a union with a plate below shares no coplanar face (an STL cannot
+    represent the coincident vertices such a union leaves).
+    """
     pts = np.asarray(pts, float)
-    up = pts[::-1]
-    if mirrored:
-        ring = np.vstack([up, (pts[1:] * [-1.0, 1.0])])
-    else:
-        ring = np.vstack([[0.0, 0.0], up])
-    return m3.CrossSection([ring.tolist()])
-
-
-def chamber_manifold(pts: np.ndarray, l: float) -> m3.Manifold:
-    """The solid under the profile: revolved ends at y = ±l/2 plus the extruded middle."""
-    r = float(np.max(pts[:, 0]))
-    n = _segments(r)
-    if l <= 0:
-        return m3.Manifold.revolve(_section(pts, False), n)
-    # revolve turns the section's y into z; the half turn sweeps x>0 into y>0
-    half = m3.Manifold.revolve(_section(pts, False), n, 180.0)
-    if half.bounding_box()[1] < -1e-9:  # make it the +y half whatever the library's sense
-        half = half.mirror([0.0, 1.0, 0.0])
-    ends = half.translate([0.0, l / 2, 0.0]) + half.mirror([0.0, 1.0, 0.0]).translate(
-        [0.0, -l / 2, 0.0])
-    mid = m3.Manifold.extrude(_section(pts, True), l).rotate([90.0, 0.0, 0.0])
-    mid = mid.translate([0.0, -l / 2 - mid.bounding_box()[1], 0.0])  # span y ∈ [−l/2, l/2]
-    return ends + mid
+    if sink > 0:
+        pts = np.vstack([pts, [pts[-1, 0], -sink]])
+    n = _segments(float(pts[:, 0].max()))
+    a = np.linspace(0.0, math.pi, n // 2 + 1)
+    rings = []
+    for r, z in pts:
+        if r <= 1e-9:
+            rings.append([[0.0, -l / 2, z], [0.0, l / 2, z]])
+            continue
+        xs = np.concatenate([r * np.cos(a), -r * np.cos(a)])
+        ys = np.concatenate([l / 2 + r * np.sin(a), -l / 2 - r * np.sin(a)])
+        rings.append(np.column_stack([xs, ys, np.full_like(xs, z)]))
+    return m3.Manifold.hull_points(np.vstack(rings))
 
 
 def _cylinder(radius, height, start, direction, r_top=None) -> m3.Manifold:
@@ -99,7 +97,8 @@ def bladder_mesh(spec: BladderSpec) -> TriMesh:
     r_flange = r_wall + f.width
     y_edge = -(g.l / 2 + r_flange)
     z_axis = spec.port_axis_z
-    solid = chamber_manifold(outer, g.l) + _stadium(r_flange, g.l, -f.thickness, f.thickness)
+    solid = chamber_manifold(outer, g.l, sink=f.thickness / 2) + _stadium(
+        r_flange, g.l, -f.thickness, f.thickness)
     down = [0.0, -1.0, 0.0]
     solid += _cylinder(p.tube_id / 2, p.length + 1.0, [0.0, y_edge + 1.0, z_axis], down)
     if p.barbs:
