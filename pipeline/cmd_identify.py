@@ -14,7 +14,7 @@ from pathlib import Path
 
 from spsc.cad.errors import ParameterError, require
 
-from .cmd_membrane import PARAMS, add_geometry_options, geometry_from_args
+from .options import add_geometry_options, geometry_from_args, geometry_given
 
 
 def _floats(name: str, text: str) -> list[float]:
@@ -44,7 +44,7 @@ def run(args) -> int:
     from spsc.membrane.identify import identify, predict, read_bench
 
     geometry, name = {}, ""
-    if args.type or any(getattr(args, k) is not None for k in PARAMS):
+    if geometry_given(args):
         geom = geometry_from_args(args)
         geometry = geom.as_dict()
         vb = geom.cavity_volume() if args.bladder_volume is None else args.bladder_volume

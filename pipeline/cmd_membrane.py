@@ -15,30 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.cad.errors import ParameterError
-from spsc.cad.geometry import SPSCGeometry, preset
-
-PARAMS = ("w", "h", "l", "t0", "n1", "n2", "cy")
-
-
-def add_geometry_options(p) -> None:
-    """--type/--size or the seven parameters (which override the type's)."""
-    p.add_argument("--type", help="notable type A, B, C or D (Table 1)")
-    p.add_argument("--size", default="table1", help="footprint of --type: table1 (default) or GS1")
-    for name in PARAMS:
-        p.add_argument(f"--{name}", type=float, help=f"geometry parameter {name} (mm for lengths)")
-
-
-def geometry_from_args(args) -> SPSCGeometry:
-    given = {k: getattr(args, k) for k in PARAMS if getattr(args, k) is not None}
-    if args.type:
-        return preset(args.type, args.size, **given)
-    if len(given) < len(PARAMS):
-        missing = [k for k in PARAMS if k not in given]
-        raise ParameterError("geometry", "incomplete",
-                             "--type A-D, or all seven parameters (missing: --"
-                             + ", --".join(missing) + ")")
-    return SPSCGeometry(**given)
+from .options import add_geometry_options, geometry_from_args
 
 
 def register(subparsers) -> None:

@@ -10,13 +10,14 @@ from spsc.pipeline.cli import main
 
 @pytest.mark.parametrize("argv,name", [
     (["bladder", "--type", "E"], "type"),
-    (["bladder", "--n1", "0.5"], "n1"),
-    (["bladder", "--cy", "-1"], "cy"),
-    (["bladder", "--w", "0"], "w"),
-    (["bladder", "--t0", "-1"], "t0"),
-    (["bladder", "--w", "abc"], "w"),
-    (["bladder", "--material", "rubber"], "material"),
-    (["bladder", "--flange-holes", "3"], "flange.holes"),
+    (["bladder", "--type", "B", "--n1", "0.5"], "n1"),
+    (["bladder", "--type", "B", "--cy", "-1"], "cy"),
+    (["bladder", "--type", "B", "--w", "0"], "w"),
+    (["bladder", "--w", "5"], "geometry"),
+    (["bladder", "--type", "B", "--t0", "-1"], "t0"),
+    (["bladder", "--type", "B", "--w", "abc"], "w"),
+    (["bladder", "--type", "B", "--material", "rubber"], "material"),
+    (["bladder", "--type", "B", "--flange-holes", "3"], "flange.holes"),
     (["fingertip", "--angle", "10"], "angle"),
     (["check", "/nonexistent/part.stl"], None),
 ])
