@@ -23,7 +23,8 @@ def design_path_for(mesh_path: str | os.PathLike) -> Path:
 
 
 def load_design(path: str | os.PathLike) -> dict:
-    """Read and validate a design sidecar JSON (keys: see :mod:`spsc.cad.check`)."""
+    """Read a design sidecar JSON and validate it (keys: see :mod:`spsc.cad.check`); returns the
+    dict as written, which :func:`check_mesh` parses (parsing is not idempotent)."""
     p = Path(path)
     if not p.is_file():
         raise FileNotFoundError(2, "no such file", str(p))
@@ -32,7 +33,8 @@ def load_design(path: str | os.PathLike) -> dict:
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise ParameterError("design", str(p),
                              f"a JSON object ({exc.__class__.__name__})") from None
-    return parse_design(data)
+    parse_design(data)
+    return data
 
 
 def parse_design(design: dict | None) -> dict:

@@ -389,3 +389,16 @@ def test_cli_bad_input_is_one_line_and_exit_2(tmp_path, capsys, argv_tail, needl
     assert main(argv) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("spsc check: error:") and needle in err[0]
+
+
+def test_cli_reads_a_bounds_form_sidecar_of_a_real_bladder(tmp_path, capsys):
+    """The sidecar written by ``spsc bladder`` (bbox as [[min], [max]]) is read by ``spsc check``."""
+    from spsc.cad.bladder import BladderSpec, build_bladder
+    from spsc.cad.export import export_part
+    from spsc.cad.geometry import preset
+    from spsc.cad.meshbuild import bladder_mesh
+
+    b = build_bladder(BladderSpec(preset("C")))
+    w = export_part(b.solid, b.design, tmp_path, "c", mesh=bladder_mesh(b.spec))
+    assert main(["check", str(w["paths"]["stl"])]) == 0
+    assert "PASSED" in capsys.readouterr().out
