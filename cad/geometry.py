@@ -48,6 +48,10 @@ DESIGN_SPACE = {
 }
 
 
+#: Lengths below this (mm) are zero: OCCT's Precision::Confusion.
+LENGTH_CONFUSION_MM = 1e-7
+
+
 class DesignSpaceWarning(UserWarning):
     """The geometry is valid but outside the design space the solvers are verified on."""
 
@@ -61,7 +65,8 @@ class SPSCGeometry:
     w, h : float
         Cavity semi-width at the clamped edge and cavity height (mm), > 0.
     l : float
-        Length of the extruded middle part (mm), >= 0; ``l = 0`` is a pure dome.
+        Length of the extruded middle part (mm), >= 0; ``l = 0`` is a pure dome (so is any
+        l < 1e-7 mm, which no solid modeller can tell from zero).
     t0 : float
         Wall thickness (mm), > 0. A wall under a process minimum is valid geometry; it fails the
         printability gate, not this constructor.
@@ -87,6 +92,8 @@ class SPSCGeometry:
             object.__setattr__(self, name, require(name, getattr(self, name), unit=unit, **kw))
         if self.t0 >= self.w:
             raise ParameterError("t0", self.t0, f"< w = {self.w:g} (mm)")
+        if self.l < LENGTH_CONFUSION_MM:  # no solid modeller can tell such a length from zero
+            object.__setattr__(self, "l", 0.0)
 
     # -- derived quantities, eqs. 12–14 -------------------------------------------------------
     @property

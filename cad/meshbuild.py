@@ -41,13 +41,15 @@ def chamber_manifold(pts: np.ndarray, l: float, *, sink: float = 0.0) -> m3.Mani
 
     The body {(x, y, z): dist((x, y), segment y ∈ [−l/2, l/2]) <= r(z)} is convex for every
     convex profile (r concave), so it is the convex hull of its horizontal stadium rings: one
-    piece, no seams where ends and middle meet. ``sink`` > 0 prolongs the base ring vertically
-    down to z = −sink, so a union with a plate below shares no coplanar face (an STL cannot
-    represent the coincident vertices such a union leaves).
+    piece, no seams where ends and middle meet. ``sink`` > 0 prolongs the profile's last
+    (straight) segment from z = 0 down to z = −sink in place of the base ring, so a union with
+    a plate whose top is z = 0 shares no coplanar face or ring (an STL cannot represent the
+    coincident vertices such a union leaves); above z = 0 the surface is unchanged.
     """
     pts = np.asarray(pts, float)
     if sink > 0:
-        pts = np.vstack([pts, [pts[-1, 0], -sink]])
+        d = pts[-1] - pts[-2]
+        pts = np.vstack([pts[:-1], pts[-2] + d * ((-sink - pts[-2, 1]) / d[1])])
     n = _segments(float(pts[:, 0].max()))
     a = np.linspace(0.0, math.pi, n // 2 + 1)
     rings = []

@@ -147,6 +147,8 @@ FAST = dict(deadline=None, phases=[Phase.explicit, Phase.reuse, Phase.generate],
 @settings(max_examples=3, derandomize=True, **FAST)
 @given(design_space)
 @example(dict(w=5.0, h=2.5, l=0.0, t0=0.1, n1=2.0, n2=1.0, cy=0.0))  # once an invalid solid
+@example(dict(w=11.1, h=19.4, l=2.5e-308, t0=2.0, n1=3.33, n2=4.14, cy=0.159))  # OCCT failed
+@example(dict(w=12.05, h=6.03, l=0.0, t0=0.241, n1=2.0, n2=1.0, cy=0.0))  # coincident STL verts
 def test_design_space_builds_or_rejects(params):
     _property(params)
 
