@@ -1,1 +1,35 @@
-"""placeholder"""
+"""3D hyperelastic FEM check of an SPSC: P2/P1 mixed tetrahedra of the wall, follower cavity
+pressure, closed gas cavity with reservoir, frictionless rigid plate (DESIGN.md, issue 4)."""
+
+from .gas import P_AMB, GasCavity
+from .material import NearlyIncompressible
+from .mesh import TetMesh, block, cached_mesh, sphere_shell, spsc_wall, spsc_wall_tetwild
+from .model import FEMModel, Load
+from .pressure import CavitySurface
+from .run import ChamberRun, run_chamber, to_curve, write_vtu
+from .solver import CloseValve, Inflate, Press, Result, Settings, solve
+
+__all__ = [
+    "CavitySurface",
+    "ChamberRun",
+    "CloseValve",
+    "FEMModel",
+    "GasCavity",
+    "Inflate",
+    "Load",
+    "NearlyIncompressible",
+    "P_AMB",
+    "Press",
+    "Result",
+    "Settings",
+    "TetMesh",
+    "block",
+    "cached_mesh",
+    "run_chamber",
+    "solve",
+    "sphere_shell",
+    "spsc_wall",
+    "spsc_wall_tetwild",
+    "to_curve",
+    "write_vtu",
+]

@@ -1,0 +1,371 @@
+"""Quadratic tetrahedral meshes of the bladder wall, with tagged boundaries.
+
+Two paths:
+
+* :func:`spsc_wall` — a structured mesh of the wall of a parametric chamber, swept from its
+  meridional section (cavity profile to outer profile, ``layers`` elements through the
+  thickness): extruded along y over the middle part of length l and revolved about the end axes.
+  Symmetry and base planes are exact, the 10-node elements are isoparametric (edge nodes on the
+  curved surfaces), and the thickness resolution is controlled.
+* :func:`tetwild_mesh` — pytetwild tetrahedra of any closed surface (e.g. a CAD STL), promoted to
+  P2; facets are tagged by a caller's classifier.
+
+A hexahedral grid is split into six tetrahedra along its main diagonal (consistent across
+neighbours); coincident nodes (the revolution axis, a sphere's pole) are merged and the
+tetrahedra that collapse are dropped. Facet tags: ``base`` (z = 0), ``sym_x`` (x = 0), ``sym_y``
+(y = 0), ``cavity`` (inner surface), ``outer``. Facets are 6-node triangles ordered so that their
+normal points out of the solid.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from spsc.cad.errors import require
+from spsc.cad.geometry import SPSCGeometry
+
+from .element import TET_EDGES, TET_FACES
+
+__all__ = ["TetMesh", "spsc_wall", "sphere_shell", "block", "tetwild_mesh", "spsc_wall_tetwild",
+           "boundary_facets", "p1_to_p2", "cached_mesh", "CACHE_DIR"]
+
+CACHE_DIR = Path("build/cache/fem")
+#: part of every cache key: bump it when a mesh generator changes its output
+MESH_VERSION = 1
+
+
+@dataclass(frozen=True, eq=False)
+class TetMesh:
+    """P2 tetrahedral mesh: ``nodes`` (N, 3) in mm, ``tets`` (nel, 10) in VTK order,
+    ``facets`` tag -> (nf, 6) outward-oriented boundary triangles, ``symmetry`` the number of
+    copies of the mesh that make the full part (4 for a quarter model, 8 for a sphere octant)."""
+
+    nodes: np.ndarray
+    tets: np.ndarray
+    facets: dict = field(default_factory=dict)
+    symmetry: int = 1
+
+    @property
+    def n_tets(self) -> int:
+        return self.tets.shape[0]
+
+    def nodes_on(self, *tags: str) -> np.ndarray:
+        """Sorted node indices on the facets of the given tags."""
+        return np.unique(np.concatenate([self.facets[t].ravel() for t in tags]))
+
+    def to_pyvista(self, displacement=None):
+        """A pyvista UnstructuredGrid of quadratic tetrahedra (optionally with point data)."""
+        import pyvista as pv
+
+        cells = np.hstack([np.full((self.n_tets, 1), 10), self.tets]).ravel()
+        types = np.full(self.n_tets, pv.CellType.QUADRATIC_TETRA, dtype=np.uint8)
+        grid = pv.UnstructuredGrid(cells, types, self.nodes.copy())
+        if displacement is not None:
+            grid.point_data["displacement"] = np.asarray(displacement)
+        return grid
+
+    def save(self, path) -> None:
+        np.savez_compressed(path, nodes=self.nodes, tets=self.tets, symmetry=self.symmetry,
+                            **{f"facets_{k}": v for k, v in self.facets.items()})
+
+    @classmethod
+    def load(cls, path) -> "TetMesh":
+        with np.load(path) as z:
+            facets = {k[7:]: z[k] for k in z.files if k.startswith("facets_")}
+            return cls(z["nodes"], z["tets"], facets, int(z["symmetry"]))
+
+
+# -- topology -----------------------------------------------------------------------------------
+def boundary_facets(tets: np.ndarray) -> np.ndarray:
+    """6-node boundary triangles (nf, 6) of positively oriented P2 tetrahedra, normal outward."""
+    faces = []
+    for verts, edges in TET_FACES:
+        faces.append(np.hstack([tets[:, list(verts)], tets[:, [4 + e for e in edges]]]))
+    faces = np.vstack(faces)
+    key = np.sort(faces[:, :3], axis=1)
+    _, idx, count = np.unique(key, axis=0, return_index=True, return_counts=True)
+    return faces[idx[count == 1]]
+
+
+def _orient(nodes, tets):
+    """Flip negatively oriented tetrahedra (swap vertices 1 and 2 and their edges)."""
+    a, b, c, d = (nodes[tets[:, i]] for i in range(4))
+    vol = np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)
+    flip = vol < 0
+    tets = tets.copy()
+    tets[flip] = tets[flip][:, [0, 2, 1, 3, 6, 5, 4, 7, 9, 8]]
+    return tets, np.abs(vol) / 6.0
+
+
+def _merge(points, tets, tol):
+    """Merge coincident points, drop collapsed tetrahedra, renumber compactly."""
+    key = np.round(points / tol).astype(np.int64)
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    tets = inverse.ravel()[tets]
+    ok = np.all(np.diff(np.sort(tets[:, :4], axis=1), axis=1) != 0, axis=1)
+    tets = tets[ok]
+    used, tets = np.unique(tets, return_inverse=True)
+    return first[used], tets.reshape(-1, 10)
+
+
+def _kuhn_p2(shape):
+    """P2 tetrahedra (flat fine-grid indices) of a coarse grid with ``shape`` cells, whose fine
+    grid has (2a+1, 2b+1, 2c+1) points: six per cell along its main diagonal."""
+    a, b, c = shape
+    fine = (2 * a + 1, 2 * b + 1, 2 * c + 1)
+    cell = np.stack(np.meshgrid(np.arange(a), np.arange(b), np.arange(c), indexing="ij"),
+                    axis=-1).reshape(-1, 3) * 2
+    out = []
+    for perm in itertools.permutations(range(3)):
+        steps = [np.zeros(3, int)]
+        for axis in perm:
+            s = steps[-1].copy()
+            s[axis] += 2
+            steps.append(s)
+        verts = [cell + s for s in steps]
+        mids = [(verts[i] + verts[j]) // 2 for i, j in TET_EDGES]
+        out.append(np.stack([np.ravel_multi_index(tuple(v.T), fine) for v in verts + mids],
+                            axis=1))
+    return np.vstack(out)
+
+
+def _swept(section, y_half, n_y, n_phi, tol=1e-7):
+    """Sweep a fine section grid (2m+1, 2k+1, 2) of (ρ, z) points: extruded along y over
+    [0, y_half] with n_y cells, then revolved by φ ∈ [0, π/2] about the axis (x = 0, y = y_half)
+    with n_phi cells. Returns nodes, tets and the through-thickness fine index of each node."""
+    rho, z = section[..., 0], section[..., 1]
+    ys = np.linspace(0.0, y_half, 2 * n_y + 1) if n_y else np.zeros(0)
+    phis = np.linspace(0.0, math.pi / 2, 2 * n_phi + 1)
+    slabs = [np.stack([rho, np.full_like(rho, y), z], axis=-1) for y in ys[:-1]]
+    slabs += [np.stack([rho * math.cos(f), y_half + rho * math.sin(f), z], axis=-1) for f in phis]
+    grid = np.stack(slabs, axis=2)  # (2m+1, 2k+1, 2K+1, 3)
+    axis_fix = (rho, 2 * n_y)
+    return _grid_mesh(grid, axis_fix, tol)
+
+
+def _grid_mesh(grid, axis_fix=None, tol=1e-7):
+    """P2 tetrahedra of a fine point grid (2a+1, 2b+1, 2c+1, 3): nodes, tets and the fine index
+    along the second axis (through the thickness) of each node."""
+    m2, k2, c2, _ = grid.shape
+    layer = np.broadcast_to(np.arange(k2)[None, :, None], (m2, k2, c2)).ravel()
+    tets = _kuhn_p2(((m2 - 1) // 2, (k2 - 1) // 2, (c2 - 1) // 2))
+    if axis_fix is not None:
+        # An edge from the revolution axis takes the angle of its other end: the index
+        # midpoint would put its node off the meridian plane the edge lies in.
+        rho, k_rev = axis_fix
+        I, J, K = np.unravel_index(tets, grid.shape[:3])
+        on_axis = rho[I, J] < tol
+        revolved = K >= k_rev
+        for e, (a, b) in enumerate(TET_EDGES):
+            for s, o in ((a, b), (b, a)):
+                fix = on_axis[:, s] & ~on_axis[:, o] & revolved[:, s] & revolved[:, o]
+                K[fix, 4 + e] = K[fix, o]
+        tets = np.ravel_multi_index((I, J, K), grid.shape[:3])
+    pts = grid.reshape(-1, 3)
+    pts = np.where(np.abs(pts) < tol, 0.0, pts)
+    keep, tets = _merge(pts, tets, tol)
+    nodes = pts[keep]
+    tets, vol = _orient(nodes, tets)
+    if np.any(vol <= 1e-12 * np.max(vol)):
+        raise ValueError("degenerate tetrahedra in the structured mesh")
+    return nodes, tets, layer[keep]
+
+
+def _tag(nodes, tets, layer, tol, planes=("base", "sym_x", "sym_y")):
+    facets = boundary_facets(tets)
+    v = nodes[facets[:, :3]]
+    lay = layer[facets[:, :3]]
+    tests = {"base": np.all(np.abs(v[..., 2]) < tol, axis=1),
+             "sym_x": np.all(np.abs(v[..., 0]) < tol, axis=1),
+             "sym_y": np.all(np.abs(v[..., 1]) < tol, axis=1)}
+    out, taken = {}, np.zeros(len(facets), bool)
+    for name in planes:
+        out[name] = facets[tests[name] & ~taken]
+        taken |= tests[name]
+    for name, sel in (("cavity", np.all(lay == 0, axis=1)),
+                      ("outer", np.all(lay == layer.max(), axis=1))):
+        out[name] = facets[sel & ~taken]
+        taken |= sel
+    if not np.all(taken):
+        raise ValueError(f"{int(np.sum(~taken))} boundary facets without a tag")
+    return out
+
+
+# -- the parametric chamber ---------------------------------------------------------------------
+def _wall_section(g: SPSCGeometry, n_profile: int, layers: int) -> np.ndarray:
+    """Fine section grid (2n+1, 2·layers+1, 2) of (x, z): cavity profile to the outer wall,
+    straight lines through the thickness, ending exactly on the axis and on z = 0."""
+    inner, _ = g.profile_points(2 * n_profile + 1)
+    outer = g.outer_profile_points(4001)
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(outer, axis=0).T))])
+    t = np.linspace(0.0, 1.0, 2 * n_profile + 1) * s[-1]
+    outer = np.column_stack([np.interp(t, s, outer[:, 0]), np.interp(t, s, outer[:, 1])])
+    outer[0, 0], outer[-1, 1], inner[0, 0], inner[-1, 1] = 0.0, 0.0, 0.0, 0.0
+    f = np.linspace(0.0, 1.0, 2 * layers + 1)[None, :, None]
+    return inner[:, None, :] + f * (outer - inner)[:, None, :]
+
+
+def spsc_wall(g: SPSCGeometry, size: float = 1.0, *, layers: int | None = None,
+              full: bool = False) -> TetMesh:
+    """Structured P2 mesh of the chamber wall, clamped-base model (DESIGN.md).
+
+    ``size`` (mm) is the target element edge along the surfaces; ``layers`` the number of
+    elements through the thickness (default: t0/size rounded, at least 1). Quarter model on
+    x ≥ 0, y ≥ 0 (``symmetry = 4``) unless ``full``.
+    """
+    size = require("size", size, gt=0, unit="mm")
+    if layers is None:
+        layers = max(1, round(g.t0 / size))
+    layers = int(require("layers", layers, ge=1))
+    outer = g.outer_profile_points(2001)
+    length = float(np.sum(np.hypot(*np.diff(outer, axis=0).T)))
+    n_profile = max(2, math.ceil(length / size))
+    n_phi = max(2, math.ceil(math.pi / 2 * (g.w + g.t0) / size))
+    n_y = math.ceil(g.l / 2 / size) if g.l > 0 else 0
+    nodes, tets, layer = _swept(_wall_section(g, n_profile, layers), g.l / 2, n_y, n_phi)
+    tol = 1e-7 * max(g.w, g.h)
+    if full:
+        nodes, tets, layer = _mirror(nodes, tets, layer, tol)
+        return TetMesh(nodes, tets, _tag(nodes, tets, layer, tol, ("base",)), 1)
+    return TetMesh(nodes, tets, _tag(nodes, tets, layer, tol), 4)
+
+
+def _mirror(nodes, tets, layer, tol):
+    for axis in (0, 1):
+        m = nodes.copy()
+        m[:, axis] *= -1
+        pts = np.vstack([nodes, m])
+        lay = np.concatenate([layer, layer])
+        keep, tt = _merge(pts, np.vstack([tets, tets + len(nodes)]), tol)
+        nodes, layer = pts[keep], lay[keep]
+        tets, _ = _orient(nodes, tt)
+    return nodes, tets, layer
+
+
+def sphere_shell(inner: float, outer: float, *, n_theta: int = 6, layers: int = 3) -> TetMesh:
+    """Octant (x, y, z ≥ 0) of a thick spherical shell, radii ``inner`` < ``outer`` (mm):
+    ``cavity`` r = inner, ``outer`` r = outer, symmetry planes tagged ``sym_x``, ``sym_y`` and
+    ``base`` (z = 0). ``symmetry = 8``."""
+    require("inner", inner, gt=0, unit="mm")
+    require("outer", outer, gt=inner, unit="mm")
+    th = np.linspace(0.0, math.pi / 2, 2 * n_theta + 1)[:, None]
+    r = np.linspace(inner, outer, 2 * layers + 1)[None, :]
+    section = np.stack([r * np.sin(th), r * np.cos(th) + 0 * r], axis=-1)
+    nodes, tets, layer = _swept(section, 0.0, 0, n_theta)
+    return TetMesh(nodes, tets, _tag(nodes, tets, layer, 1e-7 * outer), 8)
+
+
+def block(lengths=(1.0, 1.0, 1.0), cells=(2, 2, 2)) -> TetMesh:
+    """Box [0, a] × [0, b] × [0, c] (mm) of P2 tetrahedra, facets tagged ``x0, x1, y0, y1,
+    z0, z1`` (for patch tests and locking studies)."""
+    axes = [np.linspace(0.0, L, 2 * n + 1) for L, n in zip(lengths, cells)]
+    grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)
+    nodes, tets, _ = _grid_mesh(grid)
+    facets = boundary_facets(tets)
+    v = nodes[facets[:, :3]]
+    tags = {}
+    for c, name in enumerate("xyz"):
+        tags[f"{name}0"] = facets[np.all(np.abs(v[..., c]) < 1e-9, axis=1)]
+        tags[f"{name}1"] = facets[np.all(np.abs(v[..., c] - lengths[c]) < 1e-9, axis=1)]
+    return TetMesh(nodes, tets, tags, 1)
+
+
+# -- pytetwild ----------------------------------------------------------------------------------
+def p1_to_p2(nodes, tets4):
+    """Add straight edge nodes to 4-node tetrahedra: (nodes, (nel, 10) tets)."""
+    edges = np.stack([np.sort(tets4[:, [i, j]], axis=1) for i, j in TET_EDGES], axis=1)
+    uniq, inv = np.unique(edges.reshape(-1, 2), axis=0, return_inverse=True)
+    mid = 0.5 * (nodes[uniq[:, 0]] + nodes[uniq[:, 1]])
+    tets = np.hstack([tets4, len(nodes) + inv.reshape(-1, 6)])
+    return np.vstack([nodes, mid]), tets
+
+
+def tetwild_mesh(vertices, faces, size: float, classify, *, symmetry: int = 1,
+                 planes=None, epsilon: float = 1e-3, threads: int = 1) -> TetMesh:
+    """pytetwild tetrahedra of the closed triangle surface (vertices (n, 3), faces (m, 3)),
+    target edge length ``size`` (mm), promoted to P2 (straight edges).
+
+    ``classify(centroids (k, 3)) -> array of tags`` names each boundary facet; ``planes`` maps a
+    tag to (axis, value): the nodes of those facets are snapped onto that plane (TetWild keeps
+    the surface only within its envelope ``epsilon`` × the bounding-box diagonal).
+    """
+    import contextlib
+    import tempfile
+
+    import pytetwild
+
+    v = np.asarray(vertices, float)
+    # fTetWild writes __tracked_surface.stl into the working directory: keep it out of ours
+    with tempfile.TemporaryDirectory() as tmp, contextlib.chdir(tmp):
+        nodes, tets4 = pytetwild.tetrahedralize(v, np.asarray(faces, np.int32),
+                                                edge_length_abs=float(size), epsilon=epsilon,
+                                                optimize=True, num_threads=threads, quiet=True)
+    nodes = np.asarray(nodes, float)
+    tets4 = np.asarray(tets4, np.int64)
+    used, tets4 = np.unique(tets4, return_inverse=True)
+    nodes, tets4 = nodes[used], tets4.reshape(-1, 4)
+    face_nodes = boundary_facets(np.hstack([tets4, np.zeros((len(tets4), 6), np.int64)]))[:, :3]
+    tags = np.asarray(classify(nodes[face_nodes].mean(axis=1)))
+    for tag, (axis, value) in (planes or {}).items():
+        nodes[np.unique(face_nodes[tags == tag]), axis] = value
+    nodes, tets = p1_to_p2(nodes, tets4)
+    tets, vol = _orient(nodes, tets)
+    facets = boundary_facets(tets)
+    tags = np.asarray(classify(nodes[facets[:, :3]].mean(axis=1)))
+    return TetMesh(nodes, tets, {str(t): facets[tags == t] for t in np.unique(tags)}, symmetry)
+
+
+def spsc_wall_tetwild(g: SPSCGeometry, size: float = 1.0, *, epsilon: float = 2e-4) -> TetMesh:
+    """Quarter wall of a parametric chamber meshed by pytetwild (unstructured, straight P2),
+    from the boundary of a fine structured mesh; facets tagged like :func:`spsc_wall`."""
+    from scipy.spatial import cKDTree
+
+    ref = spsc_wall(g, size / 3, layers=1)
+    f = boundary_facets(ref.tets)[:, :3]
+    tags_ref = {}
+    for tag, fac in ref.facets.items():
+        for row in np.sort(fac[:, :3], axis=1):
+            tags_ref[tuple(row)] = tag
+    ref_tags = np.array([tags_ref[tuple(r)] for r in np.sort(f, axis=1)])
+    used, faces = np.unique(f, return_inverse=True)
+    faces = faces.reshape(-1, 3)
+    tree = cKDTree(ref.nodes[f].mean(axis=1))
+    tol = 1e-6 * max(g.w, g.h)
+
+    def classify(c):
+        out = ref_tags[tree.query(c)[1]].astype(object)
+        out[np.abs(c[:, 0]) < tol] = "sym_x"
+        out[np.abs(c[:, 1]) < tol] = "sym_y"
+        out[np.abs(c[:, 2]) < tol] = "base"
+        return out
+
+    planes = {"base": (2, 0.0), "sym_x": (0, 0.0), "sym_y": (1, 0.0)}
+    return tetwild_mesh(ref.nodes[used], faces, size, classify, symmetry=4, planes=planes,
+                        epsilon=epsilon)
+
+
+# -- cache --------------------------------------------------------------------------------------
+def cached_mesh(builder, *, cache_dir=None, **params) -> TetMesh:
+    """``builder(**params)`` cached under ``cache_dir`` by a hash of its name and parameters
+    (dataclass parameters by their fields)."""
+    def plain(v):
+        if hasattr(v, "as_dict"):
+            return v.as_dict()
+        return v
+    key = json.dumps({"builder": builder.__name__, "version": MESH_VERSION,
+                      **{k: plain(v) for k, v in params.items()}}, sort_keys=True, default=str)
+    digest = hashlib.sha256(key.encode()).hexdigest()[:16]
+    path = Path(cache_dir or CACHE_DIR) / f"{builder.__name__}-{digest}.npz"
+    if path.exists():
+        return TetMesh.load(path)
+    mesh = builder(**params)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    mesh.save(path)
+    return mesh

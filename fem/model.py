@@ -1,0 +1,117 @@
+"""The discrete model (mesh, law, supports, cavity) and its residual and tangent for one load.
+
+A load is a cavity pressure (prescribed, or a :class:`~spsc.fem.gas.GasCavity` law of the
+cavity volume) plus an optional rigid plate; the residual is
+
+    r(x) = r_int(x) − p g(u),   K = K_int − p H − (dp/dV_full · symmetry) g gᵀ,
+
+with g = ∂V_part/∂u (:mod:`spsc.fem.pressure`). The rank-one gas term is returned separately
+(coefficient c ≥ 0 and vector g) so the linear solve can use Sherman–Morrison.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from spsc.membrane.materials import Material
+
+from .assembly import Discretisation, assemble, discretise
+from .gas import GasCavity
+from .material import NearlyIncompressible
+from .mesh import TetMesh
+from .pressure import CavitySurface
+
+__all__ = ["FEMModel", "Load", "CLAMPED_QUARTER", "Evaluation"]
+
+#: Supports of the chamber wall, quarter model: clamped base, symmetry planes.
+CLAMPED_QUARTER = {"base": (0, 1, 2), "sym_x": (0,), "sym_y": (1,)}
+
+
+@dataclass(frozen=True)
+class Load:
+    """Cavity gauge pressure ``pressure`` (MPa) unless ``gas`` is given; rigid plate at height
+    ``plate`` (mm, None: no plate)."""
+
+    pressure: float = 0.0
+    gas: GasCavity | None = None
+    plate: float | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class Evaluation:
+    r: np.ndarray
+    K: object
+    g: np.ndarray  # ∂V_part/∂u, flattened u dofs (mm²)
+    c: float  # rank-one gas coefficient −dp/dV × symmetry (MPa/mm³), 0 without gas
+    pressure: float  # gauge pressure (MPa)
+    volume: float  # full cavity volume (mm³)
+
+
+@dataclass(frozen=True, eq=False)
+class FEMModel:
+    """Mesh + nearly incompressible law + supports, with everything precomputed."""
+
+    mesh: TetMesh
+    law: NearlyIncompressible
+    disc: Discretisation = field(repr=False)
+    cavity: CavitySurface = field(repr=False)
+    fixed: np.ndarray = field(repr=False)  # bool over all unknowns
+    contact_nodes: np.ndarray = field(repr=False)  # outer-surface nodes the plate may touch
+    cavity_slots: np.ndarray = field(repr=False)
+
+    @classmethod
+    def build(cls, mesh: TetMesh, material: Material, *, bulk_ratio: float = 2000.0,
+              supports: dict | None = None, order: int = 2) -> "FEMModel":
+        """``supports``: facet tag -> fixed displacement components (default: clamped base and
+        the two symmetry planes of the quarter model)."""
+        supports = CLAMPED_QUARTER if supports is None else supports
+        law = NearlyIncompressible(material, bulk_ratio)
+        disc = discretise(mesh.nodes, mesh.tets, order=order)
+        fixed = np.zeros(disc.n, bool)
+        for tag, comps in supports.items():
+            if tag in mesh.facets and len(mesh.facets[tag]):
+                nodes = mesh.nodes_on(tag)
+                for c in comps:
+                    fixed[3 * nodes + c] = True
+        cavity = CavitySurface(mesh.facets.get("cavity", np.zeros((0, 6), np.int64)),
+                               mesh.symmetry)
+        contact = mesh.nodes_on("outer") if "outer" in mesh.facets else np.zeros(0, int)
+        contact = contact[~fixed[3 * contact + 2]]
+        slots = disc.pattern.slots_of(cavity.dofs)
+        return cls(mesh, law, disc, cavity, fixed, contact, slots)
+
+    @property
+    def symmetry(self) -> int:
+        return self.mesh.symmetry
+
+    def zero_state(self) -> np.ndarray:
+        return np.zeros(self.disc.n)
+
+    def displacement(self, x) -> np.ndarray:
+        return x[: self.disc.n_u].reshape(-1, 3)
+
+    def volume(self, x) -> float:
+        """Full cavity volume (mm³) in state x."""
+        return self.cavity.volume(self.disc.X, self.displacement(x))
+
+    def evaluate(self, x, load: Load, *, tangent: bool = True) -> Evaluation:
+        d = self.disc
+        u = self.displacement(x)
+        volume = self.cavity.volume(d.X, u)
+        if load.gas is not None:
+            p = load.gas.pressure(volume)
+            c = -load.gas.dpressure(volume) * self.symmetry
+        else:
+            p, c = float(load.pressure), 0.0
+        if tangent:
+            gn, H = self.cavity.gradient(d.X, u)
+            extra = [(-p * H, self.cavity_slots)] if p != 0.0 else []
+            r, K = assemble(d, self.law, x, extra=extra)
+        else:
+            gn = self.cavity.gradient(d.X, u, tangent=False)
+            r, K = assemble(d, self.law, x, tangent=False), None
+        g = gn.ravel()
+        r[: d.n_u] -= p * g
+        return Evaluation(r, K, g, c, p, volume)

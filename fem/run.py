@@ -1,0 +1,141 @@
+"""A chamber run as the user asks for it: inflate, close the valve, press — as a :class:`Curve`.
+
+``run_chamber`` builds the quarter (or full) wall mesh of a parametric chamber, walks the steps
+and returns the same :class:`~spsc.membrane.curve.Curve` (and JSON) as the membrane model, plus
+the raw :class:`~spsc.fem.solver.Result`. ``pressure = 0`` is the open chamber (no gas, valve
+open), whose force is the structural F_el(y).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from spsc.cad.errors import require
+from spsc.cad.geometry import SPSCGeometry
+from spsc.membrane.curve import Curve
+from spsc.membrane.materials import Material
+
+from .element import TET_EDGES
+from .mesh import cached_mesh, spsc_wall
+from .model import FEMModel
+from .solver import CloseValve, Inflate, Press, Result, Settings, solve
+
+__all__ = ["ChamberRun", "run_chamber", "to_curve", "write_vtu"]
+
+
+@dataclass(frozen=True)
+class ChamberRun:
+    """Inputs of a chamber run (mm, kPa, mm³). ``points``: plate positions of the curve,
+    y = 0 (first contact) to the stroke, as in ``spsc membrane``; points − 1 increments."""
+
+    geometry: SPSCGeometry
+    material: Material
+    pressure_kPa: float = 40.0
+    reservoir_mm3: float = 0.0
+    stroke_mm: float = 4.0
+    points: int = 11
+    size_mm: float = 1.0
+    layers: int = 2
+    polytropic_index: float = 1.0
+    inflate_increments: int = 4
+    full: bool = False
+    bulk_ratio: float = 2000.0
+
+    def __post_init__(self):
+        require("pressure", self.pressure_kPa, ge=0, unit="kPa")
+        require("reservoir", self.reservoir_mm3, ge=0, unit="mm³")
+        require("stroke", self.stroke_mm, gt=0, unit="mm")
+        require("points", self.points, ge=2)
+        require("mesh size", self.size_mm, gt=0, unit="mm")
+        require("layers", self.layers, ge=1)
+
+    def steps(self) -> list:
+        out = []
+        if self.pressure_kPa > 0:
+            out += [Inflate(self.pressure_kPa * 1e-3, self.inflate_increments),
+                    CloseValve(self.reservoir_mm3, self.polytropic_index)]
+        return out + [Press(self.stroke_mm, int(self.points) - 1)]
+
+
+def build_model(run: ChamberRun, *, cache_dir=None) -> FEMModel:
+    mesh = cached_mesh(spsc_wall, cache_dir=cache_dir, g=run.geometry, size=run.size_mm,
+                       layers=run.layers, full=run.full)
+    return FEMModel.build(mesh, run.material, bulk_ratio=run.bulk_ratio)
+
+
+def run_chamber(run: ChamberRun, *, settings: Settings | None = None, progress=None,
+                cache_dir=None):
+    """Solve ``run``; returns (Curve, Result, FEMModel). ``progress(done, total)`` is called per
+    converged load point."""
+    model = build_model(run, cache_dir=cache_dir)
+    result = solve(model, run.steps(), settings=settings, progress=progress)
+    return to_curve(run, model, result), result, model
+
+
+def _apex_height(model: FEMModel, x) -> float:
+    X = model.disc.X
+    cav = model.mesh.nodes_on("cavity")
+    on_axis = cav[(np.abs(X[cav, 0]) < 1e-9) & (np.abs(X[cav, 1]) < 1e-9)]
+    return float(np.max(X[on_axis, 2] + model.displacement(x)[on_axis, 2]))
+
+
+def to_curve(run: ChamberRun, model: FEMModel, result: Result) -> Curve:
+    """The Curve of a run: y = 0 at first contact with the inflated chamber, then one point per
+    press increment; points not reached hold NaN with the reason."""
+    start = result.records[0]
+    inflated = result.of("inflate")[-1] if result.of("inflate") else start
+    presses = result.of("press")
+    n = int(run.points)
+    y = np.linspace(0.0, run.stroke_mm, n)
+    F, P, A, dV = (np.full(n, np.nan) for _ in range(4))
+    conv = np.zeros(n, bool)
+    msg = [""] * n
+    if run.pressure_kPa == 0 or len(result.of("inflate")) == run.inflate_increments:
+        F[0], P[0], A[0], dV[0], conv[0] = 0.0, inflated.pressure * 1e3, 0.0, 0.0, True
+    for k, rec in enumerate(presses, start=1):
+        F[k], P[k], A[k] = rec.force, rec.pressure * 1e3, rec.contact_area
+        dV[k] = inflated.volume - rec.volume
+        conv[k] = True
+    for k in range(len(presses) + 1, n):
+        msg[k] = result.message
+    if not conv[0]:
+        msg[0] = result.message
+    setup = {"p_i_kPa": run.pressure_kPa, "reservoir_mm3": run.reservoir_mm3,
+             "polytropic_n": run.polytropic_index, "mesh_size_mm": run.size_mm,
+             "layers": run.layers, "dofs": model.disc.n,
+             "model_part": "full" if run.full else "quarter"}
+    if result.instability:
+        setup["instability"] = result.instability
+    return Curve(y, F, P, A, dV, model="fem", geometry=run.geometry.as_dict(),
+                 material=run.material.name, setup=setup,
+                 nominal_volume_mm3=start.volume, inflated_volume_mm3=inflated.volume,
+                 inflated_height_mm=_apex_height(model, inflated.x), converged=conv,
+                 message=tuple(msg))
+
+
+def write_vtu(model: FEMModel, result: Result, directory) -> list[Path]:
+    """One VTU per converged record (quadratic tetrahedra, displacement and pressure fields,
+    warp by ``displacement`` in ParaView); returns the paths."""
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    paths = []
+    pdof = model.disc.pressure_dof
+    for i, rec in enumerate(result.records):
+        grid = model.mesh.to_pyvista(model.displacement(rec.x))
+        p = np.full(model.disc.n_nodes, np.nan)
+        corner = pdof >= 0
+        p[corner] = rec.x[model.disc.n_u:][pdof[corner]]
+        # edge nodes: the mean of their two vertices (P1 field)
+        for e, (a, b) in enumerate(TET_EDGES):
+            mid = model.mesh.tets[:, 4 + e]
+            p[mid] = 0.5 * (p[model.mesh.tets[:, a]] + p[model.mesh.tets[:, b]])
+        grid.point_data["hydrostatic_pressure_MPa"] = p
+        grid.field_data["cavity_pressure_kPa"] = np.array([rec.pressure * 1e3])
+        grid.field_data["plate_force_N"] = np.array([rec.force])
+        path = directory / f"step-{i:03d}-{rec.kind}.vtu"
+        grid.save(path)
+        paths.append(path)
+    return paths

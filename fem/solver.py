@@ -1,0 +1,341 @@
+"""One solver entry point, :func:`solve`, walking a load path given as data.
+
+Steps: :class:`Inflate` (prescribed cavity pressure ramp), :class:`CloseValve` (from here on the
+cavity is a closed gas volume with a reservoir, P·(V + V_r)ⁿ = const) and :class:`Press` (a
+rigid frictionless plate, displacement controlled, from first contact with the chamber down by
+the stroke). Each increment is solved by Newton's method with a backtracking line search;
+frictionless contact is a primal–dual active set on the outer-surface nodes (an active node's
+height is prescribed at the plate, and it is released when its reaction pulls); a failed
+increment is cut in half until ``min_fraction``. A failure returns everything converged so far
+with the reason.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from .assembly import InvertedElement
+from .contact import contact_area, plate_force, update_active_set
+from .gas import GasCavity, solve_rank_one
+from .linsolve import factorize
+from .model import FEMModel, Load
+
+__all__ = ["Inflate", "CloseValve", "Press", "Settings", "Record", "Result", "solve", "newton"]
+
+
+@dataclass(frozen=True)
+class Inflate:
+    """Ramp the cavity gauge pressure to ``pressure`` (MPa) in ``increments``."""
+
+    pressure: float
+    increments: int = 4
+
+
+@dataclass(frozen=True)
+class CloseValve:
+    """Close the valve: the cavity plus ``reservoir`` (mm³) holds its gas, P·Vⁿ = const."""
+
+    reservoir: float = 0.0
+    polytropic_index: float = 1.0
+
+
+@dataclass(frozen=True)
+class Press:
+    """Lower the plate from first contact by ``stroke`` (mm) in ``increments`` recorded points."""
+
+    stroke: float
+    increments: int = 10
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Newton and step control. ``rtol``: residual reduction against the load's force scale;
+    ``solver``: sparse solver name (:func:`spsc.fem.linsolve.factorize`)."""
+
+    rtol: float = 1e-8
+    max_iterations: int = 25
+    min_fraction: float = 1.0 / 64
+    line_search: bool = True
+    solver: str = "auto"
+    contact_tolerance: float = 1e-6  # mm: penetration that activates a node
+    #: the active set is updated once the residual is below this fraction of the force scale
+    #: (1e-1 took fewer iterations than 1e-3 on Type B; earlier updates chatter)
+    active_set_update: float = 1e-1
+    #: a plate-force drop between recorded points larger than this fraction is reported as
+    #: negative stiffness (smaller dips are contact discretisation wiggles)
+    softening: float = 1e-2
+
+
+@dataclass(frozen=True, eq=False)
+class Record:
+    """One converged load point: which step, its load, and the measured quantities (mm, N,
+    MPa, mm³, mm²; force and area of the full part)."""
+
+    step: int
+    kind: str
+    x: np.ndarray = field(repr=False)
+    pressure: float
+    volume: float
+    plate: float | None
+    force: float
+    contact_area: float
+    iterations: int
+    unstable_modes: int | None = None  # negative pivots beyond the pressure block (None: n/a)
+
+
+@dataclass(frozen=True, eq=False)
+class Result:
+    """All converged records, and why and where the run stopped (``ok`` if it did not)."""
+
+    records: list
+    ok: bool
+    message: str
+    instability: str = ""
+
+    def of(self, kind: str) -> list:
+        return [r for r in self.records if r.kind == kind]
+
+
+_log = logging.getLogger(__name__)
+
+
+class _Reduction:
+    """Upper triangle of K restricted to the free unknowns, read straight from the data array
+    of the full fixed-pattern CSR (no sparse slicing per iteration); rebuilt when the free set
+    changes (supports, contact active set)."""
+
+    def __init__(self, K, free):
+        rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
+        cols = K.indices
+        keep = free[rows] & free[cols] & (cols >= rows)
+        new = np.cumsum(free) - 1
+        self.sel = np.nonzero(keep)[0]
+        r, c = new[rows[keep]], new[cols[keep]]
+        n = int(free.sum())
+        self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n))])
+        self.indices = c.astype(np.int32)
+        self.n = n
+        self.key = free.tobytes()
+
+    def upper(self, K):
+        return sp.csr_matrix((K.data[self.sel], self.indices, self.indptr), shape=(self.n,) * 2)
+
+
+class NewtonFailure(RuntimeError):
+    pass
+
+
+def newton(model: FEMModel, x0, load: Load, settings: Settings, active=None):
+    """Solve r(x) = 0 from x0 for one load.
+
+    Returns (x, active nodes, iterations, evaluation, negative pivots of the last tangent or
+    None). Raises :class:`NewtonFailure` with the reason when it does not converge.
+    """
+    x = x0.copy()
+    X = model.disc.X
+    active = np.zeros(0, int) if active is None or load.plate is None else np.asarray(active)
+    n_u = model.disc.n_u
+    fscale, negative, changes, reduction, factored = None, None, 0, None, None
+    carried = None  # the full step's evaluation, tangent included, from the line search
+    for it in range(1, settings.max_iterations + 1):
+        # active nodes are prescribed at the plate; a pending jump to it enters the linear
+        # solve (K_ff Δx_f = −r_f − K_fc δ_c) instead of moving those nodes alone, which
+        # would invert the elements under them
+        presc = 3 * active + 2
+        jump = (load.plate - X[active, 2] - x[presc]) if load.plate is not None else np.zeros(0)
+        free = ~model.fixed
+        free[presc] = False
+        ev = carried if carried is not None else model.evaluate(x, load)
+        carried = None
+        r = ev.r
+        if not np.all(np.isfinite(r)):
+            raise NewtonFailure("non-finite residual")
+        if fscale is None:
+            fscale = max(np.linalg.norm(ev.pressure * ev.g),
+                         np.linalg.norm(r[:n_u][model.fixed[:n_u]]),
+                         np.linalg.norm(r[:n_u][free[:n_u]]),
+                         1e-6 * model.law.mu)
+        res = np.linalg.norm(r[:n_u][free[:n_u]])
+        settled = jump.size == 0 or np.max(np.abs(jump)) <= 1e-12
+        _log.debug("it %d res %.3e jump %.2e active %d", it, res,
+                   np.max(np.abs(jump), initial=0.0), active.size)
+        converged = res <= settings.rtol * fscale and it > 1 and settled
+        near = converged or res <= settings.active_set_update * fscale
+        if load.plate is not None and settled and it > 1 and near:
+            new_active = update_active_set(model, x, r, load.plate, active,
+                                           settings.rtol * fscale, settings.contact_tolerance)
+            if new_active is not None:
+                changes += 1
+                if changes > 30:
+                    raise NewtonFailure("contact active set does not settle")
+                active = new_active
+                carried = ev  # x is unchanged: its evaluation stands
+                continue
+        if converged:
+            # the inertia belongs to the last factorised tangent: unknown if the active set
+            # has changed since
+            same = negative is not None and factored == free.tobytes()
+            return x, active, it, ev, negative if same else None
+        if reduction is None or reduction.key != free.tobytes():
+            reduction = _Reduction(ev.K, free)
+        factor = factorize(reduction.upper(ev.K), settings.solver, upper=True)
+        negative, factored = factor.negative, reduction.key
+        rhs = -r[free]
+        if jump.size:
+            jump_full = np.zeros(model.disc.n)
+            jump_full[presc] = jump
+            rhs -= (ev.K @ jump_full)[free]
+        if ev.c > 0.0:
+            gf = np.zeros(model.disc.n)
+            gf[:n_u] = ev.g
+            if jump.size:
+                rhs -= ev.c * gf[free] * (gf[presc] @ jump)
+            dx = solve_rank_one(factor, ev.c, gf[free], rhs)
+        else:
+            dx = factor(rhs)
+        step = np.zeros(model.disc.n)
+        step[free] = dx
+        step[presc] = jump
+        # with a pending jump the residual of the unconstrained state is no merit to descend
+        # on: take the largest admissible step (no inverted element) instead
+        base = np.linalg.norm(r[free]) if settled else np.inf
+        if settings.line_search:
+            alpha, carried = _line_search(model, x, step, free, load, base)
+        else:
+            alpha = 1.0
+        x += alpha * step
+    raise NewtonFailure(f"no convergence in {settings.max_iterations} iterations "
+                        f"(residual {res:.3g} N against {settings.rtol * fscale:.3g} N)")
+
+
+def _line_search(model, x, step, free, load, base, trials=5):
+    """Backtracking on the residual norm: the first α = 1, ½, … that reduces it (Armijo-like),
+    else the α with the smallest residual among admissible trials (1 if none is).
+
+    The full step is evaluated with its tangent: it is accepted nearly always, and then that
+    evaluation is the next Newton iteration's (returned with α, else None).
+    """
+    best, best_alpha, alpha = np.inf, 1.0, 1.0
+    for _ in range(trials):
+        xt = x + alpha * step
+        try:
+            ev = model.evaluate(xt, load, tangent=alpha == 1.0)
+            rt = np.linalg.norm(ev.r[free])
+        except (np.linalg.LinAlgError, InvertedElement):
+            ev, rt = None, np.inf
+        if rt <= base * (1 - 1e-4 * alpha) or (np.isinf(base) and np.isfinite(rt)):
+            return alpha, ev if alpha == 1.0 else None
+        if rt < best:
+            best, best_alpha = rt, alpha
+        alpha *= 0.5
+    return best_alpha, None
+
+
+def _unstable_modes(model, negative, load) -> int | None:
+    """Negative eigenvalues of the displacement problem: the LDLᵀ inertia minus the pressure
+    unknowns (the mixed form's pressure block is negative definite). With a closed gas volume
+    the factorised matrix lacks the positive rank-one gas term, which can remove one."""
+    if negative is None:
+        return None
+    extra = negative - model.disc.n_p - (1 if load.gas is not None else 0)
+    return max(extra, 0)
+
+
+def _record(model, step, kind, x, ev, load, active, it, settings, negative=None) -> Record:
+    force, area = 0.0, 0.0
+    if load.plate is not None and active.size:
+        force = plate_force(model, ev.r, active)
+        area = contact_area(model, x, load.plate)
+    return Record(step, kind, x.copy(), ev.pressure, ev.volume, load.plate, force, area, it,
+                  _unstable_modes(model, negative, load))
+
+
+def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=None) -> Result:
+    """Walk ``steps`` (Inflate / CloseValve / Press) from the undeformed state.
+
+    ``progress(done, total)`` is called after each recorded point. Returns a :class:`Result`
+    whose ``records`` hold every converged point (the undeformed state first).
+    """
+    settings = settings or Settings()
+    x = model.zero_state()
+    ev = model.evaluate(x, Load(), tangent=False)
+    records = [Record(-1, "start", x.copy(), 0.0, ev.volume, None, 0.0, 0.0, 0)]
+    load = Load()
+    active = np.zeros(0, int)
+    total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
+    done = 0
+    last_force = 0.0
+    instability = ""
+    for k, step in enumerate(steps):
+        if isinstance(step, CloseValve):
+            gas = GasCavity(load.pressure, model.volume(x), step.reservoir,
+                            step.polytropic_index)
+            load = Load(gas=gas, plate=load.plate)
+            continue
+        if isinstance(step, Inflate):
+            start, end = load.pressure, float(step.pressure)
+
+            def load_at(t, start=start, end=end, plate=load.plate):
+                return Load(pressure=start + t * (end - start), plate=plate)
+            kind = "inflate"
+        elif isinstance(step, Press):
+            pos = model.disc.X + model.displacement(x)
+            z0 = float(pos[model.contact_nodes, 2].max()) if load.plate is None else load.plate
+            base = load
+
+            def load_at(t, z0=z0, base=base, stroke=float(step.stroke)):
+                return Load(base.pressure, base.gas, z0 - t * stroke)
+            kind = "press"
+        else:
+            raise TypeError(f"unknown step {step!r}")
+        nominal = 1.0 / step.increments
+        t, dt = 0.0, nominal
+        targets = [(i + 1) * nominal for i in range(step.increments)]
+        ti = 0
+        while ti < len(targets):
+            t_new = min(t + dt, targets[ti])
+            trial = load_at(t_new)
+            try:
+                x_new, act_new, it, ev, negative = newton(model, x, trial, settings, active)
+            except (NewtonFailure, np.linalg.LinAlgError, ValueError) as exc:
+                _log.debug("cut %s t=%.4g dt=%.3g: %s", kind, t_new, dt, exc)
+                dt *= 0.5
+                if dt < settings.min_fraction * nominal:
+                    where = (f"press at y = {t_new * step.stroke:.4g} mm" if kind == "press"
+                             else f"inflate at p = {trial.pressure * 1e3:.4g} kPa")
+                    msg = f"step {k} ({kind}) failed at {where}: {exc}"
+                    if kind == "press":
+                        instability = instability or (
+                            "Newton stalls under step cuts: possible snap-through or buckling "
+                            f"at y ≈ {t_new * step.stroke:.3g} mm")
+                    return Result(records, False, msg, instability)
+                continue
+            x, active, t, load = x_new, act_new, t_new, trial
+            dt = min(nominal, 2 * dt)
+            if math.isclose(t, targets[ti], rel_tol=1e-12, abs_tol=1e-14):
+                rec = _record(model, k, kind, x, ev, load, active, it, settings, negative)
+                if rec.unstable_modes:
+                    # an unstable equilibrium is not a result: stop before it (DESIGN.md)
+                    where = (f"y = {t * step.stroke:.3g} mm" if kind == "press"
+                             else f"p = {load.pressure * 1e3:.3g} kPa")
+                    instability = (f"the tangent has {rec.unstable_modes} negative eigenvalue(s) "
+                                   f"at {where}: unstable equilibrium (buckling or snap-through)")
+                    return Result(records, False, f"step {k} ({kind}) stopped: {instability}",
+                                  instability)
+                if kind == "press" and rec.force < (1 - settings.softening) * last_force:
+                    instability = instability or (
+                        f"plate force falls from {last_force:.4g} N to {rec.force:.4g} N near "
+                        f"y = {t * step.stroke:.3g} mm: negative stiffness (the wall buckles "
+                        "or snaps; the points stay valid under displacement control)")
+                last_force = rec.force if kind == "press" else last_force
+                records.append(rec)
+                ti += 1
+                done += 1
+                if progress is not None:
+                    progress(done, total)
+    return Result(records, True, "converged", instability)

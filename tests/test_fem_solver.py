@@ -1,0 +1,183 @@
+"""Chamber runs on a coarse Type B quarter wall: gas law along the stroke, force balance,
+consistent gas tangent, failures that keep what converged, Curve output."""
+
+import math
+
+import numpy as np
+import pytest
+
+from spsc.cad.geometry import preset
+from spsc.fem.gas import GasCavity
+from spsc.fem.mesh import spsc_wall
+from spsc.fem.model import FEMModel, Load
+from spsc.fem.run import ChamberRun, run_chamber, write_vtu
+from spsc.fem.solver import Inflate, Press, Settings, solve
+from spsc.membrane.curve import Curve
+from spsc.membrane.materials import material
+
+G = preset("B")
+MAT = material("tpu60a")
+
+
+def _run(tmp_path, **kw):
+    args = dict(pressure_kPa=40.0, stroke_mm=2.0, points=5, size_mm=3.0, layers=1)
+    args.update(kw)
+    return run_chamber(ChamberRun(G, MAT, **args), cache_dir=tmp_path)
+
+
+@pytest.mark.parametrize("reservoir", [0.0, 40000.0])
+def test_gas_law_held_along_the_stroke(tmp_path, reservoir):
+    curve, result, model = _run(tmp_path, reservoir_mm3=reservoir)
+    assert result.ok, result.message
+    assert curve.all_converged
+    p_i, v_i = curve.pressure_kPa[0], curve.inflated_volume_mm3
+    np.testing.assert_allclose(p_i, 40.0, rtol=1e-12)
+    gas = GasCavity(p_i * 1e-3, v_i, reservoir)
+    for rec in result.of("press"):
+        v = model.volume(rec.x)  # recomputed from the displacement field
+        # P (V + V_r) is the same at every converged point, to the Newton tolerance
+        np.testing.assert_allclose(gas.invariant(rec.pressure, v), gas.invariant(p_i * 1e-3, v_i),
+                                   rtol=1e-12)
+    assert np.all(np.diff(curve.pressure_kPa) > 0) and np.all(np.diff(curve.volume_change_mm3) > 0)
+    # the isothermal lumped law: ΔP/P_i ≈ ΔV/(V − ΔV + V_r)
+    dP = curve.pressure_kPa[-1] - p_i
+    dV = curve.volume_change_mm3[-1]
+    np.testing.assert_allclose(dP, (p_i + 101.325) * dV / (v_i - dV + reservoir), rtol=1e-9)
+
+
+def test_plate_force_balances_base_reactions_and_gas(tmp_path):
+    """Whole-wall equilibrium: plate force = base reactions + p × cavity footprint; the plate
+    force is the sum of the nodal contact forces (the integrated contact pressure)."""
+    curve, result, model = _run(tmp_path)
+    base = model.mesh.nodes_on("base")
+    # the footprint of the discrete cavity: ∫ n_z da over the cavity surface (its projection)
+    footprint = 4 * model.cavity.gradient(model.disc.X, 0 * model.disc.X, tangent=False)[:, 2].sum()
+    # ... is the analytic π w² + 2 w l up to the P2 interpolation of the base circle
+    np.testing.assert_allclose(footprint, math.pi * G.w**2 + 2 * G.w * G.l, rtol=1e-3)
+    for rec in result.of("press"):
+        ev = model.evaluate(rec.x, Load(gas=GasCavity(0.04, curve.inflated_volume_mm3)))
+        reaction = 4 * ev.r[3 * base + 2].sum()
+        # the identity holds to the Newton tolerance (1e-8 of the force scale)
+        np.testing.assert_allclose(rec.force, reaction + rec.pressure * footprint, rtol=1e-7)
+    assert np.all(np.diff(curve.force_N) > 0) and np.all(curve.contact_area_mm2[1:] > 0)
+
+
+def test_gas_tangent_by_differences():
+    m = spsc_wall(G, 3.0, layers=1)
+    model = FEMModel.build(m, MAT)
+    rng = np.random.default_rng(2)
+    x = model.zero_state()
+    free_u = ~model.fixed[: model.disc.n_u]
+    x[: model.disc.n_u][free_u] = 0.02 * rng.standard_normal(free_u.sum())
+    gas = GasCavity(0.04, model.volume(model.zero_state()), reservoir=1000.0)
+    load = Load(gas=gas)
+    ev = model.evaluate(x, load)
+    gv = np.zeros(model.disc.n)
+    gv[: model.disc.n_u] = ev.g
+    # a direction that changes the volume (along g) plus noise in every free unknown
+    v = np.where(model.fixed, 0.0, gv / np.abs(gv).max())
+    v[~model.fixed] += 0.1 * rng.standard_normal((~model.fixed).sum())
+    Kv = ev.K @ v + ev.c * gv * (gv @ v)
+    h = 1e-6
+    fd = (model.evaluate(x + h * v, load, tangent=False).r
+          - model.evaluate(x - h * v, load, tangent=False).r) / (2 * h)
+    free = ~model.fixed
+    # central differences: 1e-6 of the largest entry bounds truncation and round-off
+    np.testing.assert_allclose(Kv[free], fd[free], rtol=0, atol=1e-6 * np.abs(Kv).max())
+    # the rank-one gas term is > 1000× that tolerance, so an error in it (a missing symmetry
+    # factor, a wrong dp/dV) cannot hide
+    assert np.abs(ev.c * gv * (gv @ v)).max() > 1e-3 * np.abs(Kv).max()
+
+
+def test_reduced_tangent_is_symmetric():
+    """The follower-pressure stiffness is the Hessian of the enclosed volume on admissible
+    displacements, so the reduced tangent is symmetric (the LDLᵀ solver relies on it)."""
+    m = spsc_wall(G, 3.0, layers=1)
+    model = FEMModel.build(m, MAT)
+    rng = np.random.default_rng(5)
+    x = model.zero_state()
+    x[~model.fixed] = 0.02 * rng.standard_normal((~model.fixed).sum())
+    K = model.evaluate(x, Load(pressure=0.04)).K
+    free = ~model.fixed
+    Kf = K[free][:, free]
+    np.testing.assert_allclose((Kf - Kf.T).toarray(), 0.0, rtol=0, atol=1e-12 * abs(Kf).max())
+
+
+def test_open_chamber_and_curve_json(tmp_path):
+    curve, result, model = _run(tmp_path, pressure_kPa=0.0, stroke_mm=1.0, points=3)
+    assert result.ok, result.message
+    assert curve.model == "fem" and curve.setup["p_i_kPa"] == 0.0
+    np.testing.assert_array_equal(curve.pressure_kPa, 0.0)
+    np.testing.assert_array_equal(curve.volume_change_mm3 > 0, [False, True, True])
+    assert curve.force_N[-1] > curve.force_N[1] > 0
+    back = Curve.from_json(curve.to_json())
+    np.testing.assert_allclose(back.force_N, curve.force_N, rtol=1e-15)
+    np.testing.assert_allclose(curve.nominal_volume_mm3, G.cavity_volume(), rtol=1e-3)
+    paths = write_vtu(model, result, tmp_path / "vtu")
+    assert len(paths) == len(result.records) and all(p.stat().st_size > 0 for p in paths)
+
+
+def test_failure_keeps_converged_points_and_says_why(tmp_path):
+    m = spsc_wall(G, 3.0, layers=1)
+    model = FEMModel.build(m, MAT)
+    res = solve(model, [Inflate(0.04, 2), Press(2.0, 2)],
+                settings=Settings(max_iterations=6, min_fraction=0.25))
+    assert not res.ok
+    assert "step 1 (press)" in res.message and "no convergence" in res.message
+    assert [r.kind for r in res.records] == ["start", "inflate", "inflate"]
+
+
+def test_solvers_agree_and_stable_inertia():
+    """PARDISO LDLᵀ and SuperLU give the same states; at these stable states the LDLᵀ inertia
+    has exactly one negative pivot per pressure unknown (no unstable displacement mode)."""
+    m = spsc_wall(G, 3.0, layers=1)
+    model = FEMModel.build(m, MAT)
+    steps = [Inflate(0.04, 2), Press(0.5, 1)]
+    a = solve(model, steps, settings=Settings(solver="pardiso"))
+    b = solve(model, steps, settings=Settings(solver="superlu"))
+    assert a.ok and b.ok
+    for ra, rb in zip(a.records[1:], b.records[1:]):
+        # both converge to rtol 1e-8 of the force scale; states agree far below the mesh error
+        np.testing.assert_allclose(ra.x[: model.disc.n_u], rb.x[: model.disc.n_u], rtol=0,
+                                   atol=1e-8)
+        assert ra.unstable_modes == 0 and rb.unstable_modes is None
+
+
+def test_full_model_inflates_like_the_quarter():
+    """The full mesh is the quarter mirrored twice, so with the symmetry planes free it must
+    reproduce the quarter's solution: a check of the symmetry supports and the ×4 volume."""
+    volumes = []
+    for full in (False, True):
+        m = spsc_wall(G, 3.0, layers=1, full=full)
+        model = FEMModel.build(m, MAT, supports={"base": (0, 1, 2), "sym_x": (0,),
+                                                 "sym_y": (1,)})
+        res = solve(model, [Inflate(0.04, 2)])
+        assert res.ok, res.message
+        volumes.append(res.records[-1].volume)
+    # same discrete problem, both converged to rtol 1e-8
+    np.testing.assert_allclose(volumes[1], volumes[0], rtol=1e-9)
+
+
+def test_unstable_equilibrium_stops_the_run():
+    """A square column (1 × 1 × 10 mm) clamped at the base, pressed by the frictionless plate
+    (top guided: free to slide, not to rotate). Newton follows the straight branch; past
+    Euler's strain ε = π² a² / (12 L²) = 0.82 % it is unstable, the LDLᵀ inertia shows the two
+    bending modes of the square section, and the run stops there instead of reporting it."""
+    from spsc.fem.mesh import TetMesh, block
+
+    a, length = 1.0, 10.0
+    b = block((a, a, length), (1, 1, 10))
+    f = b.facets
+    mesh = TetMesh(b.nodes, b.tets, {"base": f["z0"], "outer": f["z1"],
+                                     "sides": np.vstack([f[k] for k in ("x0", "x1", "y0", "y1")])})
+    model = FEMModel.build(mesh, MAT, supports={"base": (0, 1, 2)})
+    res = solve(model, [Press(0.1, 4)])  # strain steps of 0.25 %
+    eps_cr = math.pi**2 * a**2 / (12 * length**2)
+    assert not res.ok and "negative eigenvalue" in res.instability
+    assert "2 negative eigenvalue(s)" in res.instability
+    stable = [length - r.plate for r in res.of("press")]
+    assert stable[-1] / length < eps_cr < (stable[-1] + 0.025) / length
+    # the stable points carry F ≈ E ε A (measured +1.6 %: the clamped base stops the lateral
+    # expansion of the nearly incompressible column next to it)
+    rec = res.of("press")[0]
+    np.testing.assert_allclose(rec.force, 3 * MAT.shear_modulus * 0.0025 * a * a, rtol=3e-2)
