@@ -33,10 +33,22 @@ def _section_wire(pts: np.ndarray, mirrored: bool, straight_tail: bool) -> cq.Wo
     wp = cq.Workplane("XZ").moveTo(-base[0] if mirrored else 0.0, 0.0).lineTo(*base)
     if straight_tail:
         wp = wp.lineTo(*curve[0])
-    wp = wp.spline(curve[1:], includeCurrent=True)
+    for a, b in _smooth_runs(np.asarray(curve)):
+        wp = wp.spline(curve[a + 1:b + 1], includeCurrent=True)
     if mirrored and straight_tail:
         wp = wp.lineTo(-base[0], 0.0)
     return wp.close()
+
+
+def _smooth_runs(pts: np.ndarray, corner_deg: float = 15.0) -> list[tuple[int, int]]:
+    """Index ranges [a, b] of ``pts`` between corners (where consecutive segments turn by more
+    than ``corner_deg``): one spline per run, since an interpolating spline rings through a
+    corner (n2 = 1 with c_y > 0 has one at the widest point: 0.7 % volume error)."""
+    d = np.diff(pts, axis=0)
+    ang = np.arctan2(d[:, 1], d[:, 0])
+    turn = np.abs((np.diff(ang) + np.pi) % (2 * np.pi) - np.pi)
+    cuts = [0] + [int(i) + 1 for i in np.nonzero(turn > np.radians(corner_deg))[0]] + [len(pts) - 1]
+    return [(a, b) for a, b in zip(cuts[:-1], cuts[1:]) if b > a]
 
 
 def profile_body(pts: np.ndarray, l: float, *, straight_tail: bool = False) -> cq.Solid:

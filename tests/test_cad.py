@@ -149,6 +149,7 @@ FAST = dict(deadline=None, phases=[Phase.explicit, Phase.reuse, Phase.generate],
 @example(dict(w=5.0, h=2.5, l=0.0, t0=0.1, n1=2.0, n2=1.0, cy=0.0))  # once an invalid solid
 @example(dict(w=11.1, h=19.4, l=2.5e-308, t0=2.0, n1=3.33, n2=4.14, cy=0.159))  # OCCT failed
 @example(dict(w=12.05, h=6.03, l=0.0, t0=0.241, n1=2.0, n2=1.0, cy=0.0))  # coincident STL verts
+@example(dict(w=11.91, h=14.89, l=11.93, t0=1.048, n1=4.956, n2=1.0, cy=0.9))  # spline corner
 def test_design_space_builds_or_rejects(params):
     _property(params)
 

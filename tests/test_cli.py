@@ -31,6 +31,6 @@ def test_bad_input_is_one_line_exit_2(argv, name, capsys):
 
 def test_console_script_help():
     out = subprocess.run([sys.executable, "-m", "spsc.pipeline.cli", "--help"],
-                         capture_output=True, text=True, check=True).stdout
+                         capture_output=True, encoding="utf-8", check=True).stdout
     for verb in ("bladder", "fingertip", "check", "membrane", "identify"):
         assert verb in out
