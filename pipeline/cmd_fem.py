@@ -19,21 +19,15 @@ import time
 from pathlib import Path
 
 from spsc.cad.errors import require
-from spsc.pipeline.options import add_geometry_options, geometry_from_args
+from spsc.pipeline.options import (add_geometry_options, add_setup_options,
+                                   geometry_from_args)
 
 
 def register(subparsers) -> None:
     p = subparsers.add_parser("fem", help="3D hyperelastic FEM: inflation and plate contact",
                               description=__doc__.split("\n\n")[0])
     add_geometry_options(p)
-    p.add_argument("--material", default="tpu60a", help="catalogue material (default tpu60a)")
-    p.add_argument("--pressure", type=float, default=40.0, help="setup pressure, kPa gauge")
-    p.add_argument("--reservoir", type=float, default=0.0,
-                   help="reservoir volume, mm³ (0: high stiffness; 40000: the paper's low mode)")
-    p.add_argument("--stroke", type=float, default=4.0, help="plate travel from first contact, mm")
-    p.add_argument("--points", type=int, default=11,
-                   help="plate positions from first contact to the stroke (default 11)")
-    p.add_argument("--polytropic-n", type=float, default=1.0, help="polytropic index n (eq. 2)")
+    add_setup_options(p, stroke=4.0, points=11)
     p.add_argument("--mesh-size", type=float, default=1.0,
                    help="element edge along the wall surfaces, mm (default 1.0)")
     p.add_argument("--layers", type=int, default=2,

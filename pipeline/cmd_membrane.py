@@ -15,20 +15,14 @@ from pathlib import Path
 
 import numpy as np
 
-from .options import add_geometry_options, geometry_from_args
+from .options import add_geometry_options, add_setup_options, geometry_from_args
 
 
 def register(subparsers) -> None:
     p = subparsers.add_parser("membrane", help="membrane model: inflation and plate contact",
                               description=__doc__.split("\n\n")[0])
     add_geometry_options(p)
-    p.add_argument("--material", default="tpu60a", help="catalogue material (default tpu60a)")
-    p.add_argument("--pressure", type=float, default=40.0, help="setup pressure, kPa gauge")
-    p.add_argument("--reservoir", type=float, default=0.0,
-                   help="reservoir volume, mm³ (0: high stiffness; 40000: the paper's low mode)")
-    p.add_argument("--stroke", type=float, default=6.0, help="plate travel from first contact, mm")
-    p.add_argument("--points", type=int, default=41, help="plate positions (default 41)")
-    p.add_argument("--polytropic-n", type=float, default=1.0, help="polytropic index n (eq. 2)")
+    add_setup_options(p, stroke=6.0, points=41)
     p.add_argument("--model", choices=("membrane", "simplified"), default="membrane",
                    help="membrane (default) or the simplified intersection model")
     p.add_argument("--json", help="write the result JSON here")

@@ -8,7 +8,8 @@ import argparse
 from spsc.cad.errors import ParameterError
 from spsc.cad.geometry import SPSCGeometry, preset
 
-__all__ = ["PARAMS", "add_geometry_options", "geometry_from_args", "geometry_given"]
+__all__ = ["PARAMS", "add_geometry_options", "add_setup_options", "geometry_from_args",
+           "geometry_given"]
 
 PARAMS = ("w", "h", "l", "t0", "n1", "n2", "cy")
 _HELP = {"w": "cavity semi-width at the base, mm", "h": "cavity height, mm",
@@ -43,3 +44,21 @@ def geometry_from_args(args: argparse.Namespace) -> SPSCGeometry:
         raise ParameterError("geometry", "incomplete", "--type A-D, or all seven parameters "
                              "(missing: --" + ", --".join(missing) + ")")
     return SPSCGeometry(**given)
+
+
+def add_setup_options(parser: argparse.ArgumentParser, *, stroke: float, points: int) -> None:
+    """The setup shared by the models: material, setup pressure, reservoir (mode), stroke,
+    plate positions and polytropic index (same names and units in every verb)."""
+    parser.add_argument("--material", default="tpu60a",
+                        help="catalogue material (default tpu60a)")
+    parser.add_argument("--pressure", type=float, default=40.0,
+                        help="setup pressure, kPa gauge")
+    parser.add_argument("--reservoir", type=float, default=0.0,
+                        help="reservoir volume, mm³ (0: high stiffness; 40000: the paper's low "
+                        "mode)")
+    parser.add_argument("--stroke", type=float, default=stroke,
+                        help=f"plate travel from first contact, mm (default {stroke:g})")
+    parser.add_argument("--points", type=int, default=points,
+                        help=f"plate positions including y = 0 (default {points})")
+    parser.add_argument("--polytropic-n", type=float, default=1.0,
+                        help="polytropic index n (eq. 2; 1: isothermal)")
