@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import time
 
 import numpy as np
@@ -43,6 +44,8 @@ def bench_run(args):
         change = None if previous is None else abs(force / previous - 1)
         row = {"size_mm": size, "layers": layers, "tets": model.mesh.n_tets,
                "unknowns": model.disc.n, "seconds": round(seconds, 1), "ok": result.ok,
+               "threads": os.environ.get("OMP_NUM_THREADS", "unset"),
+               "steps": args.points - 1,
                "newton_iterations": sum(r.iterations for r in result.records),
                "force_N": force, "pressure_kPa": float(curve.pressure_kPa[-1]),
                "contact_area_mm2": float(curve.contact_area_mm2[-1]),
