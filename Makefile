@@ -46,5 +46,10 @@ test-slow: $(STAMP)
 bench: $(STAMP)
 	@set -e; for f in bench/bench_*.py; do echo "== $$f"; $(BIN)/python $$f; done
 
+# validation report: reports/validation/index.html; QUICK=1 -> build/report-quick/ (CI)
+.PHONY: report
+report: $(STAMP)
+	$(BIN)/spsc report $(if $(QUICK),--quick)
+
 clean:
 	rm -rf build .pytest_cache .hypothesis

@@ -20,6 +20,7 @@ COMMANDS = {
     "membrane": "cmd_membrane",
     "identify": "cmd_identify",
     "fem": "cmd_fem",
+    "report": "cmd_report",
 }
 
 

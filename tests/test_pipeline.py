@@ -1,0 +1,123 @@
+"""The study runner: runs as data, cache keys (inputs and code version), cache hits on a re-run,
+failure isolation, progress."""
+
+import io
+import json
+import time
+
+import pytest
+
+from spsc.cad.errors import ParameterError
+from spsc.pipeline.cache import Cache
+from spsc.pipeline.runner import run_all
+from spsc.pipeline.study import Run, Study, code_version, full_study, quick_study, source_closure
+
+SMALL = Study(name="small", types=("B",), pressures_kPa=(40.0,), fem_points=4, fem=False)
+
+
+def test_studies_expand_into_unique_runs_cheap_first():
+    for study in (full_study(), quick_study()):
+        runs = study.runs()
+        labels = [r.label for r in runs]
+        assert len(set(labels)) == len(labels)
+        assert len({r.key() for r in runs}) == len(runs)
+        models = [r.model for r in runs]
+        assert models.index("fem") > max(i for i, m in enumerate(models) if m != "fem")
+        fem = [r for r in runs if r.model == "fem"]
+        # per type: high, low and the open chamber, plus the convergence meshes
+        assert {r.mode for r in fem} == {"high", "low", "open"}
+        assert all(r.pressure_kPa == 0 for r in fem if r.mode == "open")
+    q = quick_study()
+    assert q.membrane_points == 2 * (q.fem_points - 1) + 1
+    assert {r.mesh_mm for r in q.runs() if r.model == "fem"} == {2.0, 3.0}
+
+
+def test_run_rejects_bad_inputs_naming_them():
+    with pytest.raises(ParameterError, match="model"):
+        Run("bench", "B", "tpu60a", 40, 0, 6, 5)
+    with pytest.raises(ParameterError, match="mesh size"):
+        Run("fem", "B", "tpu60a", 40, 0, 6, 5)
+    with pytest.raises(ParameterError, match="mesh_mm"):
+        Run("membrane", "B", "tpu60a", 40, 0, 6, 5, mesh_mm=1.0, layers=1)
+    with pytest.raises(ParameterError, match="type"):
+        Study(types=("E",))
+
+
+def test_key_follows_inputs_and_the_code_the_model_imports():
+    a = SMALL.membrane("membrane", "B", "tpu60a", 40, "high")
+    assert a.key() == SMALL.membrane("membrane", "B", "tpu60a", 40.0, "high").key()
+    assert a.key() != SMALL.membrane("membrane", "B", "tpu60a", 30, "high").key()
+    assert a.key() != SMALL.membrane("simplified", "B", "tpu60a", 40, "high").key()
+    assert a.key() != SMALL.membrane("membrane", "D", "tpu60a", 40, "high").key()
+    names = {p.relative_to(p.parents[1]).as_posix() for p in source_closure("spsc.fem.run")}
+    assert {"fem/run.py", "fem/solver.py", "fem/mesh.py", "membrane/materials.py",
+            "cad/geometry.py"} <= names
+    assert not any(n.startswith(("pipeline/", "membrane/solver")) for n in names)
+    mem = {p.relative_to(p.parents[1]).as_posix() for p in source_closure("spsc.membrane.solver")}
+    assert {"membrane/solver.py", "membrane/bvp.py", "membrane/stroke.py"} <= mem
+    assert not any(n.startswith("fem/") for n in mem)
+    assert len({code_version(m) for m in ("membrane", "simplified", "fem")}) == 3
+
+
+def test_rerun_with_nothing_changed_is_read_from_the_cache(tmp_path):
+    runs = SMALL.runs()
+    assert len(runs) == 4  # membrane and simplified, high and low
+    t0 = time.perf_counter()
+    first = run_all(runs, Cache(tmp_path), progress=False)
+    t1 = time.perf_counter()
+    second = run_all(runs, Cache(tmp_path), progress=False)
+    t2 = time.perf_counter()
+    assert all(o.ok and not o.cached for o in first.values())
+    assert all(o.ok and o.cached for o in second.values())
+    assert t2 - t1 < 0.5 * (t1 - t0) and t2 - t1 < 2.0
+    for r in runs:
+        assert second[r].payload["curve"] == first[r].payload["curve"]
+        assert second[r].seconds == first[r].seconds  # the compute time is kept
+    entries = sorted(p.name for p in (tmp_path / "runs").iterdir())
+    assert len(entries) == 4 and not any(e.startswith(".") for e in entries)
+    m = second[runs[0]]
+    assert m.curve.all_converged and m.payload["meridians"]["pressed"] is not None
+
+
+def test_a_failed_run_is_isolated_reported_and_retried(tmp_path):
+    good = SMALL.membrane("simplified", "B", "tpu60a", 40, "high")
+    bad_input = Run("simplified", "B", "no-such-material", 40, 0, 6, 7)  # fails at its key
+    boom = SMALL.membrane("simplified", "C", "tpu60a", 40, "high")
+    calls = []
+
+    def compute(run, directory, progress):
+        calls.append(run.label)
+        if run == boom:
+            raise RuntimeError("deliberate failure")
+        from spsc.pipeline.runner import compute as real
+        return real(run, directory, progress)
+
+    stream = io.StringIO()
+    out = run_all([bad_input, boom, good], Cache(tmp_path), compute=compute, stream=stream)
+    assert out[good].ok and not out[good].cached
+    assert not out[bad_input].ok and "material" in out[bad_input].error
+    assert not out[boom].ok and "RuntimeError: deliberate failure" in out[boom].error
+    assert "failed" in stream.getvalue() and boom.label in stream.getvalue()
+    assert not any(p.name.startswith(".") for p in (tmp_path / "runs").iterdir())  # no debris
+    again = run_all([boom, good], Cache(tmp_path), compute=compute, progress=False)
+    assert again[good].cached and not again[boom].ok
+    assert calls.count(boom.label) == 2  # failures are not cached
+
+
+def test_progress_bar_names_the_runs(tmp_path):
+    runs = SMALL.runs()[:2]
+    stream = io.StringIO()
+    run_all(runs, Cache(tmp_path), stream=stream)
+    text = stream.getvalue()
+    assert "spsc report" in text and "2/2" in text and runs[-1].label in text
+
+
+def test_cache_ignores_a_corrupt_entry(tmp_path):
+    run = SMALL.runs()[1]
+    cache = Cache(tmp_path)
+    run_all([run], cache, progress=False)
+    (cache.entry(run) / "result.json").write_text("{not json")
+    assert cache.get(run) is None
+    out = run_all([run], cache, progress=False)
+    assert out[run].ok and not out[run].cached
+    assert json.loads((cache.entry(run) / "result.json").read_text())["key"] == run.key()
