@@ -11,12 +11,12 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder fingertip gate test test-slow bench clean
+.PHONY: help venv bladder fingertip gate test test-slow bench bench-compare clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
 	@echo "make fingertip                                                   -> build/fingertip/"
-	@echo "make test | make test-slow | make gate | make bench"
+	@echo "make test | make test-slow | make gate | make bench | make report [QUICK=1]"
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -43,8 +43,13 @@ test: $(STAMP)
 test-slow: $(STAMP)
 	$(BIN)/python -m pytest -q -m ""
 
+# quick benchmarks (minutes); bench-compare runs the FEM-vs-models tables (about 30 min)
 bench: $(STAMP)
-	@set -e; for f in bench/bench_*.py; do echo "== $$f"; $(BIN)/python $$f; done
+	@set -e; for f in bench_cad bench_membrane bench_fem bench_gate_broken; do \
+	  echo "== bench/$$f.py"; $(BIN)/python bench/$$f.py; done
+
+bench-compare: $(STAMP)
+	$(BIN)/python bench/bench_fem_compare.py
 
 # validation report: reports/validation/index.html; QUICK=1 -> build/report-quick/ (CI)
 .PHONY: report
