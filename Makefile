@@ -4,6 +4,9 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
 
+# our files hold Δ, ³, –: never let a POSIX locale make Python's default encoding ASCII
+export PYTHONUTF8 := 1
+
 TYPE     ?= D
 MATERIAL ?= tpu60a
 QUICK    ?=

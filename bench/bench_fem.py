@@ -104,7 +104,7 @@ def main(argv=None):
     args = p.parse_args(argv)
     rows = bench_solvers(args) if args.solvers else bench_run(args)
     if args.json:
-        with open(args.json, "w") as fh:
+        with open(args.json, "w", encoding="utf-8") as fh:
             json.dump(rows, fh, indent=1)
 
 

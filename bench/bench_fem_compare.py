@@ -296,7 +296,7 @@ def main(argv=None):
             rows.append(row)
             _print_compare([row])
     if args.json:
-        with open(args.json, "w") as fh:
+        with open(args.json, "w", encoding="utf-8") as fh:
             json.dump(rows, fh, indent=1)
     return rows
 

@@ -131,7 +131,7 @@ class CheckReport:
                        "failed": list(self.failed), "checks": [c.as_dict() for c in self.checks]})
 
     def to_json(self, path: str | os.PathLike) -> None:
-        Path(path).write_text(json.dumps(self.to_dict(), indent=2) + "\n")
+        Path(path).write_text(json.dumps(self.to_dict(), indent=2) + "\n", encoding="utf-8")
 
     def summary(self) -> str:
         """A few lines: size, parts and genus, cavity volume, min wall, overhang, verdict."""

@@ -29,7 +29,7 @@ def load_design(path: str | os.PathLike) -> dict:
     if not p.is_file():
         raise FileNotFoundError(2, "no such file", str(p))
     try:
-        data = json.loads(p.read_text())
+        data = json.loads(p.read_text(encoding="utf-8"))
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise ParameterError("design", str(p),
                              f"a JSON object ({exc.__class__.__name__})") from None

@@ -137,5 +137,5 @@ def export_part(solid: cq.Shape, design: dict, outdir: Path, name: str,
     out["3mf"] = write_3mf(mesh, outdir / f"{name}.3mf", name=name)
     times["mesh_files_s"] = time.perf_counter() - t
     out["design"] = outdir / f"{name}.design.json"
-    out["design"].write_text(json.dumps(design, indent=1))
+    out["design"].write_text(json.dumps(design, indent=1), encoding="utf-8")
     return {"paths": out, "triangles": int(len(mesh.faces)), "times": times}

@@ -140,7 +140,7 @@ class Curve:
     def to_json(self, path: str | Path | None = None, **kwargs) -> str:
         text = json.dumps(self.to_dict(), **({"indent": 1} | kwargs))
         if path is not None:
-            Path(path).write_text(text + "\n")
+            Path(path).write_text(text + "\n", encoding="utf-8")
         return text
 
     @classmethod
@@ -161,7 +161,7 @@ class Curve:
         """From a JSON string or a path to a JSON file."""
         text = str(source)
         if not text.lstrip().startswith("{"):
-            text = Path(source).read_text()
+            text = Path(source).read_text(encoding="utf-8")
         return cls.from_dict(json.loads(text))
 
     # -- CSV ---------------------------------------------------------------------------------
@@ -176,7 +176,7 @@ class Curve:
             buf.write(",".join(vals + [str(int(self.converged[i]))]) + "\n")
         text = buf.getvalue()
         if path is not None:
-            Path(path).write_text(text)
+            Path(path).write_text(text, encoding="utf-8")
         return text
 
     @classmethod
@@ -184,7 +184,7 @@ class Curve:
         """From a CSV string (containing a newline) or a path written by :meth:`to_csv`."""
         text = str(source)
         if "\n" not in text:
-            text = Path(source).read_text()
+            text = Path(source).read_text(encoding="utf-8")
         meta, rows, header = {}, [], None
         for line in text.splitlines():
             if line.startswith("#"):

@@ -76,7 +76,7 @@ def read_bench(source: str | Path) -> BenchData:
     name = "<text>"
     if "\n" not in text:
         name = str(source)
-        text = Path(source).read_text()
+        text = Path(source).read_text(encoding="utf-8")
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
     if not lines:
         raise ParameterError("bench file", name, "a CSV with a header line and data rows")

@@ -42,7 +42,7 @@ class Cache:
         if not f.is_file():
             return None
         try:
-            payload = json.loads(f.read_text())
+            payload = json.loads(f.read_text(encoding="utf-8"))
         except (OSError, json.JSONDecodeError):
             return None
         if payload.get("key") != run.key():
@@ -59,7 +59,7 @@ class Cache:
         try:
             payload = dict(compute(tmp))
             payload.update(key=run.key(), inputs=run.inputs(), label=run.label)
-            (tmp / "result.json").write_text(json.dumps(payload, indent=1, default=_plain) + "\n")
+            (tmp / "result.json").write_text(json.dumps(payload, indent=1, default=_plain) + "\n", encoding="utf-8")
             if final.exists():
                 shutil.rmtree(final)
             os.replace(tmp, final)

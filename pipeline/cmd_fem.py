@@ -74,7 +74,7 @@ def run(args) -> int:
                       "tetrahedra": model.mesh.n_tets, "seconds": round(seconds, 2),
                       "newton_iterations": sum(r.iterations for r in result.records)}
     if args.json:
-        Path(args.json).write_text(json.dumps(data, indent=1) + "\n")
+        Path(args.json).write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
     if args.csv:
         curve.to_csv(args.csv)
     if args.vtu:

@@ -66,7 +66,7 @@ def run(args) -> int:
     if args.json:
         data = ident.to_dict()  # the Curve JSON of DESIGN.md, plus the predictions
         data["predictions"] = [c.to_dict() for c in preds]
-        Path(args.json).write_text(json.dumps(data, indent=1) + "\n")
+        Path(args.json).write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
     if args.csv:
         ident.to_csv(args.csv)
     print(f"identified from {args.bench}: p_i = {args.pressure:g} kPa, V_b,i = {vb:.1f} mm³, "

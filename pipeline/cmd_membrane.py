@@ -65,7 +65,7 @@ def run(args) -> int:
         data["meridians_mm"] = [None if sh is None else dict(zip(("x", "rho", "eta"), (
             [round(float(v), 6) for v in a] for a in sh.meridian()))) for sh in result.shapes]
     if args.json:
-        Path(args.json).write_text(json.dumps(data, indent=1) + "\n")
+        Path(args.json).write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
     if args.csv:
         curve.to_csv(args.csv)
     if args.png:

@@ -110,7 +110,7 @@ def versions() -> dict:
     if pyproject.is_file():  # the source's list (the installed metadata may be older)
         import tomllib
 
-        proj = tomllib.loads(pyproject.read_text()).get("project", {})
+        proj = tomllib.loads(pyproject.read_text(encoding="utf-8")).get("project", {})
         reqs = list(proj.get("dependencies", [])) + [
             r for extra in proj.get("optional-dependencies", {}).values() for r in extra] + reqs
     names = ["spsc"] + [re.split(r"[\s;\[<>=!~,]", r, maxsplit=1)[0] for r in reqs]
@@ -432,9 +432,9 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
     page = ("<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>SPSC validation "
             f"report</title><style>{_CSS}</style></head><body>\n" + "\n".join(S)
             + "\n</body></html>\n")
-    (out / "summary.json").write_text(json.dumps(_clean(summary), indent=1, default=str) + "\n")
+    (out / "summary.json").write_text(json.dumps(_clean(summary), indent=1, default=str) + "\n", encoding="utf-8")
     path = out / "index.html"
-    path.write_text(page)
+    path.write_text(page, encoding="utf-8")
     return path
 
 

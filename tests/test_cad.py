@@ -223,7 +223,7 @@ def test_gate_passes_preset_and_fails_thin_wall(tmp_path, capsys):
     from spsc.pipeline.cli import main
 
     assert main(["bladder", "--type", "B", "--out", str(tmp_path / "b")]) == 0
-    report = json.loads((tmp_path / "b" / "check.json").read_text())
+    report = json.loads((tmp_path / "b" / "check.json").read_text(encoding="utf-8"))
     assert report["passed"] and {c["name"] for c in report["checks"]} >= {
         "watertight", "manifold", "self_intersections", "one_part", "genus", "cavity_count",
         "min_wall", "cavity_volume", "overhang"}
@@ -233,7 +233,7 @@ def test_gate_passes_preset_and_fails_thin_wall(tmp_path, capsys):
     assert main(["bladder", "--type", "B", "--t0", "0.5", "--out", str(tmp_path / "t")]) == 1
     out = capsys.readouterr().out
     assert "FAILED: min_wall" in out
-    wall = [c for c in json.loads((tmp_path / "t" / "check.json").read_text())["checks"]
+    wall = [c for c in json.loads((tmp_path / "t" / "check.json").read_text(encoding="utf-8"))["checks"]
             if c["name"] == "min_wall"][0]
     np.testing.assert_allclose(wall["value"], 0.5, atol=0.01)
     # ... and passes for SLA (Elastic 50A), whose minimum is 0.5 mm

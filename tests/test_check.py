@@ -348,11 +348,11 @@ def test_3mf_rejected_by_lib3mf_is_read_from_its_xml(tmp_path):
 
 def test_cli_passes_with_sidecar_and_writes_check_json(tmp_path, capsys):
     stl = write_stl(tmp_path / "part.stl", bladder())
-    design_path_for(stl).write_text(json.dumps(port_design(genus=0)))
+    design_path_for(stl).write_text(json.dumps(port_design(genus=0)), encoding="utf-8")
     assert main(["check", str(stl)]) == 0
     out = capsys.readouterr().out
     assert "min wall" in out and "PASSED" in out
-    data = json.loads((tmp_path / "check.json").read_text())
+    data = json.loads((tmp_path / "check.json").read_text(encoding="utf-8"))
     checks = {c["name"]: c for c in data["checks"]}
     assert data["passed"] and checks["genus"]["passed"] is True  # the sidecar's genus was used
     assert checks["min_wall"]["passed"] is True  # and its port capped the bore
@@ -365,7 +365,7 @@ def test_cli_fails_with_one_line_naming_the_checks(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert err == ["spsc check: FAILED: watertight"]
     stl = write_stl(tmp_path / "thin2.stl", (v, f))
-    (tmp_path / "d.json").write_text(json.dumps(port_design(r_out=11.5)))
+    (tmp_path / "d.json").write_text(json.dumps(port_design(r_out=11.5)), encoding="utf-8")
     assert main(["check", str(stl), "--design", str(tmp_path / "d.json")]) == 1
     assert capsys.readouterr().err.strip() == "spsc check: FAILED: min_wall"
     args = ["check", str(stl), "--design", str(tmp_path / "d.json"), "--min-wall", "0.4"]
@@ -382,7 +382,7 @@ def test_cli_fails_with_one_line_naming_the_checks(tmp_path, capsys):
 ])
 def test_cli_bad_input_is_one_line_and_exit_2(tmp_path, capsys, argv_tail, needle):
     (tmp_path / "garbage.stl").write_bytes(b"\x00\x01 not a mesh")
-    (tmp_path / "bad.json").write_text("{not json")
+    (tmp_path / "bad.json").write_text("{not json", encoding="utf-8")
     write_stl(tmp_path / "good.stl", M.cube((1.0, 1.0, 1.0)))
     rest = [str(tmp_path / a[1:]) if a.startswith("@") else a for a in argv_tail[1:]]
     argv = ["check", str(tmp_path / argv_tail[0]), *rest]

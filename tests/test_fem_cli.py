@@ -14,7 +14,7 @@ def test_spsc_fem_writes_the_curve_json(tmp_path, capsys, monkeypatch):
                  "--json", str(out), "--csv", str(tmp_path / "fem.csv"),
                  "--vtu", str(tmp_path / "vtu"), "--quiet"])
     assert code == 0
-    data = json.loads(out.read_text())
+    data = json.loads(out.read_text(encoding="utf-8"))
     assert data["model"] == "fem" and data["setup"]["reservoir_mm3"] == 40000.0
     assert data["solver"]["converged"] and data["solver"]["dofs"] > 0
     curve = Curve.from_json(out)
@@ -42,7 +42,7 @@ def test_bench_script_runs_small(tmp_path, capsys):
     out = tmp_path / "rows.json"
     bench.main(["--sizes", "3.0:1", "--stroke", "0.5", "--points", "2", "--cache",
                 str(tmp_path), "--json", str(out)])
-    rows = json.loads(out.read_text())
+    rows = json.loads(out.read_text(encoding="utf-8"))
     assert rows[0]["ok"] and rows[0]["force_N"] > 0
     bench.main(["--solvers", "3.0:1", "--solver-list", "pardiso", "superlu"])
     lines = [json.loads(s) for s in capsys.readouterr().out.splitlines() if s.startswith("{")]

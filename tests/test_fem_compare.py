@@ -27,7 +27,7 @@ def test_compare_bench_runs_small(tmp_path, capsys):
     out = tmp_path / "rows.json"
     rows = bench.main(["--types", "B", "--size", "3", "--layers", "1", "--stroke", "1",
                        "--points", "3", "--cache", str(tmp_path), "--json", str(out)])
-    row = json.loads(out.read_text())[0]
+    row = json.loads(out.read_text(encoding="utf-8"))[0]
     assert row["fem_converged_to_stroke"] and row["fel_converged_to_stroke"]
     (pt,) = row["points"]
     assert pt["y_mm"] == 1.0 and pt["fem_F_N"] > 0 and pt["fem_Fel_N"] > 0

@@ -26,7 +26,7 @@ def _write(path, y, f, p, fel=None, header=None):
     for i in range(len(y)):
         vals = [y[i], f[i], p[i]] + ([fel[i]] if fel is not None else [])
         rows.append(",".join(repr(float(v)) for v in vals))
-    path.write_text("# synthetic bench file\n" + "\n".join(rows) + "\n")
+    path.write_text("# synthetic bench file\n" + "\n".join(rows) + "\n", encoding="utf-8")
     return path
 
 
@@ -69,7 +69,7 @@ def test_cli_identify_writes_predictions(tmp_path, capsys):
                "--predict-pressures", "10,40", "--json", str(out)])
     assert rc == 0
     import json
-    d = json.loads(out.read_text())
+    d = json.loads(out.read_text(encoding="utf-8"))
     assert len(d["predictions"]) == 4  # 2 pressures × 2 reservoirs
     ident = Curve.from_json(out)  # the file is a Curve JSON (DESIGN.md) plus predictions
     assert ident.model == "identified"
@@ -100,13 +100,14 @@ def test_malformed_bench_files_are_one_line_errors(tmp_path, capsys, header, row
     path = tmp_path / "bad.csv"
     if header is not None:
         n = len(header)
-        path.write_text(",".join(header) + "\n" + "\n".join(
-            ",".join(str(v) for v in (yy[i], f[i], p[i])[:n]) for i in range(len(y))) + "\n")
+        body = "\n".join(",".join(str(v) for v in (yy[i], f[i], p[i])[:n]) for i in range(len(y)))
+        path.write_text(",".join(header) + "\n" + body + "\n", encoding="utf-8")
     else:
         _write(path, yy, f, p)
         if rows == "text":
-            path.write_text(path.read_text().replace(repr(float(f[3])), "12,5x", 1)
-                            .replace("12,5x", "12.5x"))
+            text = path.read_text(encoding="utf-8")
+            path.write_text(text.replace(repr(float(f[3])), "12,5x", 1).replace("12,5x", "12.5x"),
+                            encoding="utf-8")
     with pytest.raises(ParameterError) as e:
         identify(read_bench(path), pressure_kPa=40.0, bladder_volume_mm3=VB)
     assert needle in str(e.value) and "\n" not in str(e.value)
@@ -119,6 +120,6 @@ def test_missing_file_and_missing_volume(tmp_path, capsys):
     assert main(["identify", str(tmp_path / "none.csv"), "--pressure", "40", "--type", "B"]) == 2
     assert "no such file" in capsys.readouterr().err
     f = tmp_path / "x.csv"
-    f.write_text("y_mm,force_N,pressure_kPa\n0,0,40\n1,1,41\n2,2,42\n")
+    f.write_text("y_mm,force_N,pressure_kPa\n0,0,40\n1,1,41\n2,2,42\n", encoding="utf-8")
     assert main(["identify", str(f), "--pressure", "40"]) == 2
     assert "bladder volume" in capsys.readouterr().err

@@ -15,7 +15,7 @@ def test_membrane_writes_json_csv_png(tmp_path, capsys):
                "--points", "11", "--json", str(j), "--csv", str(c), "--png", str(png),
                "--meridians"])
     assert rc == 0
-    d = json.loads(j.read_text())
+    d = json.loads(j.read_text(encoding="utf-8"))
     for key in ("model", "geometry", "material", "setup", "nominal_volume_mm3",
                 "inflated_volume_mm3", "inflated_height_mm", "curve"):
         assert key in d
@@ -38,7 +38,7 @@ def test_seven_parameters_and_a_pure_dome(tmp_path):
     rc = main(["membrane", "--w", "10", "--h", "10", "--l", "0", "--t0", "1", "--n1", "2",
                "--n2", "2", "--cy", "0", "--pressure", "20", "--points", "7", "--stroke", "3",
                "--json", str(j)])
-    d = json.loads(j.read_text())
+    d = json.loads(j.read_text(encoding="utf-8"))
     assert rc == 0 and d["geometry"]["l"] == 0.0
     f, p, a = (np.array(d["curve"][k]) for k in ("force_N", "pressure_kPa", "contact_area_mm2"))
     np.testing.assert_allclose(f, 1e-3 * p * a, rtol=1e-12)
@@ -47,7 +47,7 @@ def test_seven_parameters_and_a_pure_dome(tmp_path):
 def test_simplified_model_option(tmp_path):
     j = tmp_path / "s.json"
     assert main(["membrane", "--type", "B", "--model", "simplified", "--json", str(j)]) == 0
-    assert json.loads(j.read_text())["model"] == "simplified"
+    assert json.loads(j.read_text(encoding="utf-8"))["model"] == "simplified"
 
 
 @pytest.mark.parametrize("argv, needle", [

@@ -116,8 +116,8 @@ def test_cache_ignores_a_corrupt_entry(tmp_path):
     run = SMALL.runs()[1]
     cache = Cache(tmp_path)
     run_all([run], cache, progress=False)
-    (cache.entry(run) / "result.json").write_text("{not json")
+    (cache.entry(run) / "result.json").write_text("{not json", encoding="utf-8")
     assert cache.get(run) is None
     out = run_all([run], cache, progress=False)
     assert out[run].ok and not out[run].cached
-    assert json.loads((cache.entry(run) / "result.json").read_text())["key"] == run.key()
+    assert json.loads((cache.entry(run) / "result.json").read_text(encoding="utf-8"))["key"] == run.key()

@@ -59,7 +59,7 @@ def test_report_is_offline_html_with_local_figures_and_lists_failures(tmp_path):
     outcomes = run_all(SMALL.runs() + [bad], Cache(tmp_path / "cache"), progress=False)
     out = tmp_path / "report"
     path = build_report(SMALL, outcomes, out, command="spsc report --test")
-    page = path.read_text()
+    page = path.read_text(encoding="utf-8")
     srcs = re.findall(r'src="([^"]+)"', page)
     assert srcs and all((out / s).is_file() for s in srcs)
     assert "http://" not in page and "https://" not in page  # no CDN, opens offline
@@ -67,7 +67,7 @@ def test_report_is_offline_html_with_local_figures_and_lists_failures(tmp_path):
     assert "spsc report --test" in page and "numpy" in page and "scipy" in page
     for word in ("Headline", "JND", "paper, bench"):
         assert word in page
-    summary = json.loads((out / "summary.json").read_text())  # strict JSON (no NaN)
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))  # strict JSON (no NaN)
     assert summary["failed"][0]["label"] == bad.label
     h = summary["headline"]["tpu60a"]
     assert h["high"]["membrane+F_el"]["stiffness"] > h["low"]["membrane+F_el"]["stiffness"] > 0
@@ -122,13 +122,13 @@ def test_report_with_fem_renders_compares_and_reuses_its_figures(tiny, tmp_path,
     cache, out = tiny
     figs = tmp_path / "figcache"
     path = build_report(TINY, out, tmp_path / "a", fig_cache=figs)
-    page = path.read_text()
+    page = path.read_text(encoding="utf-8")
     for word in ("Membrane vs FEM", "mesh convergence", "shapes-B-tpu60a-high.png",
                  "curves-B-tpu60a-high.png"):
         assert word in page
     srcs = re.findall(r'src="([^"]+)"', page)
     assert all((path.parent / s).is_file() for s in srcs)
-    e = json.loads((path.parent / "summary.json").read_text())["comparison"]["B-tpu60a-high"]
+    e = json.loads((path.parent / "summary.json").read_text(encoding="utf-8"))["comparison"]["B-tpu60a-high"]
     assert e["force_N"]["n"] == 3 and e["pressure_kPa"]["rms"] >= 0
     assert len(list(figs.iterdir())) == 3  # curves, shapes, convergence
 
@@ -142,7 +142,7 @@ def test_report_with_fem_renders_compares_and_reuses_its_figures(tiny, tmp_path,
     again = build_report(TINY, out, tmp_path / "b", fig_cache=figs)
     assert sorted(p.name for p in (tmp_path / "b" / "figures").iterdir()) == \
         sorted(p.name for p in (tmp_path / "a" / "figures").iterdir())
-    assert again.read_text().count("<img") == page.count("<img")
+    assert again.read_text(encoding="utf-8").count("<img") == page.count("<img")
 
 
 @pytest.mark.slow
@@ -152,7 +152,7 @@ def test_quick_report_end_to_end(tmp_path, capsys):
     args = ["report", "--quick", "--out", str(tmp_path / "r"), "--cache", str(tmp_path / "c"),
             "--quiet"]
     assert main(args) == 0
-    page = (tmp_path / "r" / "index.html").read_text()
+    page = (tmp_path / "r" / "index.html").read_text(encoding="utf-8")
     for word in ("Headline", "JND depth", "Membrane vs FEM", "mesh convergence", "Versions",
                  "shapes-D-tpu60a-low.png", "curves-A-tpu60a-high.png"):
         assert word in page
