@@ -17,7 +17,7 @@ import cadquery as cq
 import numpy as np
 
 from .chamber import PROFILE_POINTS, cavity_solid, outer_solid
-from .errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 from .geometry import SPSCGeometry
 
 __all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "Bladder", "build_bladder", "nipple"]

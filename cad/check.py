@@ -73,7 +73,7 @@ from scipy.spatial import cKDTree
 
 from . import meshtopo as mt
 from .checkdesign import design_path_for, load_design, parse_design
-from .errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 from .meshload import load_mesh, weld
 from .process import Process, process as get_process
 

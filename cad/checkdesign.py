@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 
 __all__ = ["design_path_for", "load_design", "parse_design"]
 

@@ -23,7 +23,7 @@ import numpy as np
 
 from .bladder import PortSpec, nipple
 from .chamber import PROFILE_POINTS, profile_body
-from .errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 from .geometry import SPSCGeometry
 
 __all__ = ["PocketSpec", "MountSpec", "FingertipSpec", "Fingertip", "build_fingertip",

@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy import integrate
 
-from .errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 
 __all__ = [
     "SPSCGeometry",

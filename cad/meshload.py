@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import ParameterError
+from spsc.core.errors import ParameterError
 
 __all__ = ["load_mesh", "MESH_SUFFIXES"]
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .errors import ParameterError
+from spsc.core.errors import ParameterError
 
 __all__ = ["Process", "PROCESSES", "process"]
 

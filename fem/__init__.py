@@ -1,7 +1,7 @@
 """3D hyperelastic FEM check of an SPSC: P2/P1 mixed tetrahedra of the wall, follower cavity
 pressure, closed gas cavity with reservoir, frictionless rigid plate (DESIGN.md, issue 4)."""
 
-from .gas import P_AMB, GasCavity
+from spsc.core.gaslaw import GasLaw
 from .material import NearlyIncompressible
 from .mesh import TetMesh, block, cached_mesh, sphere_shell, spsc_wall, spsc_wall_tetwild
 from .model import FEMModel, Load
@@ -14,11 +14,10 @@ __all__ = [
     "ChamberRun",
     "CloseValve",
     "FEMModel",
-    "GasCavity",
+    "GasLaw",
     "Inflate",
     "Load",
     "NearlyIncompressible",
-    "P_AMB",
     "Press",
     "Result",
     "Settings",

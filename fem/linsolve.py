@@ -29,7 +29,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-__all__ = ["Factor", "factorize", "available_solvers"]
+__all__ = ["solve_rank_one", "Factor", "factorize", "available_solvers"]
 
 
 def available_solvers() -> list[str]:
@@ -116,3 +116,11 @@ def factorize(A: sp.spmatrix, solver: str = "auto", *, upper: bool = False) -> F
         lu = spla.splu(sp.csc_matrix(A), permc_spec=spec)
         return Factor(lambda b: lu.solve(np.asarray(b, dtype=float)), None)
     raise ValueError(f"unknown sparse solver {solver!r}: one of {available_solvers()}")
+
+
+def solve_rank_one(factor_solve, c: float, g: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """Solve (K + c g gᵀ) x = r given ``factor_solve`` = K⁻¹ applied to an (n, k) array
+    (Sherman–Morrison, one factorisation, two right-hand sides)."""
+    sol = factor_solve(np.column_stack([r, g]))
+    y, z = sol[:, 0], sol[:, 1]
+    return y - z * (c * (g @ y) / (1.0 + c * (g @ z)))

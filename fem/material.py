@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from spsc.cad.errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 from spsc.membrane.materials import Material
 
 __all__ = ["NearlyIncompressible", "invariants"]

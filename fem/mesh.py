@@ -28,12 +28,12 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.cad.errors import require
+from spsc.core.errors import require
 from spsc.cad.geometry import SPSCGeometry
 
 from .element import TET_EDGES, TET_FACES
 
-__all__ = ["TetMesh", "spsc_wall", "sphere_shell", "block", "tetwild_mesh", "spsc_wall_tetwild",
+__all__ = ["TetMesh", "spsc_wall", "wall_section", "sphere_shell", "block", "tetwild_mesh", "spsc_wall_tetwild",
            "boundary_facets", "p1_to_p2", "cached_mesh", "CACHE_DIR"]
 
 CACHE_DIR = Path("build/cache/fem")
@@ -199,7 +199,7 @@ def _tag(nodes, tets, layer, tol, planes=("base", "sym_x", "sym_y")):
 
 
 # -- the parametric chamber ---------------------------------------------------------------------
-def _wall_section(g: SPSCGeometry, n_profile: int, layers: int) -> np.ndarray:
+def wall_section(g: SPSCGeometry, n_profile: int, layers: int) -> np.ndarray:
     """Fine section grid (2n+1, 2·layers+1, 2) of (x, z): cavity profile to the outer wall,
     straight lines through the thickness, ending exactly on the axis and on z = 0."""
     inner, _ = g.profile_points(2 * n_profile + 1)
@@ -229,7 +229,7 @@ def spsc_wall(g: SPSCGeometry, size: float = 1.0, *, layers: int | None = None,
     n_profile = max(2, math.ceil(length / size))
     n_phi = max(2, math.ceil(math.pi / 2 * (g.w + g.t0) / size))
     n_y = math.ceil(g.l / 2 / size) if g.l > 0 else 0
-    nodes, tets, layer = _swept(_wall_section(g, n_profile, layers), g.l / 2, n_y, n_phi)
+    nodes, tets, layer = _swept(wall_section(g, n_profile, layers), g.l / 2, n_y, n_phi)
     tol = 1e-7 * max(g.w, g.h)
     if full:
         nodes, tets, layer = _mirror(nodes, tets, layer, tol)

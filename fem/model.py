@@ -1,6 +1,6 @@
 """The discrete model (mesh, law, supports, cavity) and its residual and tangent for one load.
 
-A load is a cavity pressure (prescribed, or a :class:`~spsc.fem.gas.GasCavity` law of the
+A load is a cavity pressure (prescribed, or a :class:`~spsc.core.gaslaw.GasLaw` law of the
 cavity volume) plus an optional rigid plate; the residual is
 
     r(x) = r_int(x) − p g(u),   K = K_int − p H − (dp/dV_full · symmetry) g gᵀ,
@@ -18,7 +18,7 @@ import numpy as np
 from spsc.membrane.materials import Material
 
 from .assembly import Discretisation, assemble, discretise
-from .gas import GasCavity
+from spsc.core.gaslaw import GasLaw
 from .material import NearlyIncompressible
 from .mesh import TetMesh
 from .pressure import CavitySurface
@@ -35,7 +35,7 @@ class Load:
     ``plate`` (mm, None: no plate)."""
 
     pressure: float = 0.0
-    gas: GasCavity | None = None
+    gas: GasLaw | None = None
     plate: float | None = None
 
 

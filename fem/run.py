@@ -1,7 +1,7 @@
 """A chamber run as the user asks for it: inflate, close the valve, press — as a :class:`Curve`.
 
 ``run_chamber`` builds the quarter (or full) wall mesh of a parametric chamber, walks the steps
-and returns the same :class:`~spsc.membrane.curve.Curve` (and JSON) as the membrane model, plus
+and returns the same :class:`~spsc.core.curve.Curve` (and JSON) as the membrane model, plus
 the raw :class:`~spsc.fem.solver.Result`. ``pressure = 0`` is the open chamber (no gas, valve
 open), whose force is the structural F_el(y).
 """
@@ -13,9 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.cad.errors import require
+from spsc.core.errors import require
 from spsc.cad.geometry import SPSCGeometry
-from spsc.membrane.curve import Curve
+from spsc.core.curve import Curve
 from spsc.membrane.materials import Material
 
 from .element import TET_EDGES

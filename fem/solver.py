@@ -21,8 +21,8 @@ import scipy.sparse as sp
 
 from .assembly import InvertedElement
 from .contact import contact_area, plate_force, update_active_set
-from .gas import GasCavity, solve_rank_one
-from .linsolve import factorize
+from spsc.core.gaslaw import GasLaw
+from .linsolve import factorize, solve_rank_one
 from .model import FEMModel, Load
 
 __all__ = ["Inflate", "CloseValve", "Press", "Settings", "Record", "Result", "solve", "newton"]
@@ -273,7 +273,7 @@ def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=
     instability = ""
     for k, step in enumerate(steps):
         if isinstance(step, CloseValve):
-            gas = GasCavity(load.pressure, model.volume(x), step.reservoir,
+            gas = GasLaw(load.pressure, model.volume(x), step.reservoir,
                             step.polytropic_index)
             load = Load(gas=gas, plate=load.plate)
             continue

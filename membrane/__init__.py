@@ -2,12 +2,12 @@
 simplified intersection model, the Yang–Feng membrane problem solved by a global Newton on a
 box-scheme discretisation (eqs. 15–38), and identification from bench data (eqs. 39–40).
 
-Every model returns a :class:`Curve` (``spsc.membrane.curve``).
+Every model returns a :class:`Curve` (``spsc.core.curve``).
 """
 
-from .curve import CURVE_COLUMNS, Curve
+from spsc.core.curve import CURVE_COLUMNS, Curve
 from .identify import BenchData, identify, predict, read_bench
-from .lumped import (LOW_STIFFNESS_RESERVOIR_MM3, P_AMB_KPA, Setup, jnd_depth, lumped_curve,
+from .lumped import (LOW_STIFFNESS_RESERVOIR_MM3, Setup, jnd_depth, lumped_curve,
                      mean_sensitivity, mean_stiffness)
 from .materials import CATALOGUE, Material, material
 from .simplified import simplified_curve
@@ -22,7 +22,6 @@ __all__ = [
     "LOW_STIFFNESS_RESERVOIR_MM3",
     "Material",
     "MembraneResult",
-    "P_AMB_KPA",
     "Setup",
     "Shape",
     "SolverSettings",

@@ -48,10 +48,9 @@ from .materials import Material
 from .meridian import Meridian
 from .tension import relaxed_tensions, tensions
 
-__all__ = ["BoxScheme", "NewtonResult", "P_AMB_MPA"]
+__all__ = ["BoxScheme", "NewtonResult"]
 
 #: Ambient pressure in MPa.
-P_AMB_MPA = 0.101325
 
 
 @dataclass
@@ -75,7 +74,7 @@ class BoxScheme:
     """
 
     def __init__(self, meridian: Meridian, material: Material, nc: int, nf: int, *,
-                 reservoir_mm3: float = 0.0, polytropic_n: float = 1.0, edge: str = "clamped",
+                 edge: str = "clamped",
                  slack: bool = False):
         self.mer, self.mat = meridian, material
         g = meridian.geometry
@@ -85,7 +84,6 @@ class BoxScheme:
         self.contact = self.nc > 0
         self.slack = bool(slack) and self.contact
         self.edge = edge
-        self.vr, self.npoly = float(reservoir_mm3), float(polytropic_n)
         self.tau_c = np.linspace(0.0, 1.0, self.nc + 1)
         self.tau_f = np.linspace(0.0, 1.0, self.nf + 1)
         self.scale_T = material.shear_modulus * self.t0  # N/mm
@@ -177,7 +175,7 @@ class BoxScheme:
 
     def residual(self, v, *, p=None, H=None, gas=None):
         """Full scaled residual. Inflation: gauge pressure ``p`` (MPa) given. Contact: plate
-        height ``H`` (mm) and ``gas = (P_i abs MPa, V_i mm³)`` given."""
+        height ``H`` (mm) and the closed ``gas`` (:class:`~spsc.core.gaslaw.GasLaw`) given."""
         Z, sg, pc, s0 = self.split(v)
         if self.contact:
             p = pc
@@ -199,9 +197,8 @@ class BoxScheme:
         return np.array([r0, Z[0, 2], (Z[-1, 0] - self.w) / self.w, Z[-1, 1] / self.w])
 
     def _gas(self, Z, p, gas):
-        P_i, V_i = gas
-        V = self.volume(Z)
-        return (p + P_AMB_MPA) / P_i - ((V_i + self.vr) / (V + self.vr)) ** self.npoly
+        # (p − p_gas(V)) / P_i: the gas law scaled by the absolute closing pressure
+        return (p - gas.pressure(self.volume(Z))) / (gas.p_closed + gas.p_amb)
 
     # -- Jacobian -----------------------------------------------------------------------------
     def _pattern(self):
@@ -240,9 +237,8 @@ class BoxScheme:
             rows.append(np.array([r0 + 4]))  # η(0) = H
             cols.append(np.array([1]))
             vals.append(np.array([1 / self.w]))
-            P_i, V_i = gas  # gas law: analytic row in the nodal unknowns
-            V = self.volume(Z)
-            dRdV = self.npoly * (V_i + self.vr) ** self.npoly / (V + self.vr) ** (self.npoly + 1)
+            # gas law: analytic row in the nodal unknowns
+            dRdV = -gas.dpressure(self.volume(Z)) / (gas.p_closed + gas.p_amb)
             dr, de = self.volume_gradient(Z)
             idx = np.arange(N + 1)
             rows.append(np.full(2 * (N + 1), r0 + 5))

@@ -16,10 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.cad.errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 
-from .curve import Curve
-from .lumped import P_AMB_KPA, Setup, lumped_curve
+from spsc.core.constants import KPA_PER_MPA
+from spsc.core.curve import Curve
+from .lumped import Setup, lumped_curve
 
 __all__ = ["BenchData", "read_bench", "identify", "predict", "REQUIRED", "OPTIONAL"]
 
@@ -116,8 +117,8 @@ def identify(bench: BenchData, *, pressure_kPa: float, bladder_volume_mm3: float
         raise ParameterError(f"pressure_kPa (row {k + 2})", float(p[k]), "> 0 kPa gauge")
     f_el = np.zeros_like(p) if bench.elastic_force_N is None else bench.elastic_force_N
     area = 1e3 * (bench.force_N - f_el) / p  # N / kPa = 1e3 mm²
-    P_abs, P_i = p + P_AMB_KPA, setup.p_i_kPa + P_AMB_KPA
-    dv = setup.xi * setup.bladder_volume_mm3 * (1.0 - (P_i / P_abs) ** (1.0 / setup.polytropic_n))
+    # eq. 40: ΔV = ξ V_b,i (1 − (P_i/P)^(1/n)), the gas law solved for the volume
+    dv = setup.bladder_volume_mm3 - setup.gas().volume(p / KPA_PER_MPA)
     return Curve(bench.y_mm, bench.force_N, p, area, dv, model="identified",
                  geometry=geometry or {}, material=material, setup=setup.as_dict(),
                  nominal_volume_mm3=bladder_volume_mm3, inflated_volume_mm3=bladder_volume_mm3)

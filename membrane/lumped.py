@@ -11,12 +11,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from spsc.cad.errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 
-from .curve import Curve
+from spsc.core.constants import KPA_PER_MPA, P_AMB
+from spsc.core.curve import Curve
+from spsc.core.gaslaw import GasLaw
 
 __all__ = [
-    "P_AMB_KPA",
     "LOW_STIFFNESS_RESERVOIR_MM3",
     "Setup",
     "xi_from_reservoir",
@@ -29,8 +30,6 @@ __all__ = [
     "mean_sensitivity",
 ]
 
-#: Ambient pressure, kPa.
-P_AMB_KPA = 101.325
 #: Reservoir of the paper's bench (low-stiffness mode), sec. 3.1: 40 cm³.
 LOW_STIFFNESS_RESERVOIR_MM3 = 40_000.0
 
@@ -77,6 +76,11 @@ class Setup:
         """ξ = V_i / V_b,i (eq. 4), >= 1."""
         return xi_from_reservoir(self.bladder_volume_mm3, self.reservoir_mm3)
 
+    def gas(self) -> GasLaw:
+        """The closed gas of this setup (eqs. 2, 6): p_i at V_b,i, reservoir V_r."""
+        return GasLaw(self.p_i_kPa / KPA_PER_MPA, self.bladder_volume_mm3, self.reservoir_mm3,
+                      self.polytropic_n)
+
     def as_dict(self) -> dict:
         return {"p_i_kPa": self.p_i_kPa, "reservoir_mm3": self.reservoir_mm3,
                 "polytropic_n": self.polytropic_n}
@@ -93,7 +97,8 @@ def pressure_abs(volume_change_mm3, setup: Setup):
     vi = setup.xi * setup.bladder_volume_mm3
     if np.any(dv >= vi):
         raise ParameterError("volume_change", float(np.max(dv)), f"< ξV_b,i = {vi:.6g} mm³")
-    return (setup.p_i_kPa + P_AMB_KPA) * (vi / (vi - dv)) ** setup.polytropic_n
+    gauge_mpa = setup.gas().pressure(setup.bladder_volume_mm3 - dv)
+    return (gauge_mpa + P_AMB) * KPA_PER_MPA
 
 
 def sensitivity_eq8(y_mm, area_mm2, volume_change_mm3, setup: Setup) -> np.ndarray:
@@ -111,7 +116,7 @@ def sensitivity_eq8(y_mm, area_mm2, volume_change_mm3, setup: Setup) -> np.ndarr
 def stiffness_eq9(y_mm, area_mm2, volume_change_mm3, setup: Setup, elastic_force_N=None):
     """dF/dy in N/mm, eq. 9: k_el + (P − P_amb) dA/dy + (dP/dy) A (kPa → MPa at this edge)."""
     y, a = np.asarray(y_mm, float), np.asarray(area_mm2, float)
-    p_gauge = pressure_abs(volume_change_mm3, setup) - P_AMB_KPA
+    p_gauge = pressure_abs(volume_change_mm3, setup) - P_AMB * KPA_PER_MPA
     k_el = 0.0 if elastic_force_N is None else _grad(np.asarray(elastic_force_N, float), y)
     dpdy = sensitivity_eq8(y, a, volume_change_mm3, setup)
     return k_el + 1e-3 * (p_gauge * _grad(a, y) + dpdy * a)
@@ -133,7 +138,7 @@ def lumped_curve(y_mm, area_mm2, volume_change_mm3, setup: Setup, *, elastic_for
         raise ParameterError("shapes of y, A, ΔV", (y.shape, a.shape, dv.shape), "equal")
     if np.any(a < 0):
         raise ParameterError("contact_area", float(a.min()), ">= 0 (mm²)")
-    p_gauge = pressure_abs(dv, setup) - P_AMB_KPA
+    p_gauge = pressure_abs(dv, setup) - P_AMB * KPA_PER_MPA
     f_el = np.zeros_like(y) if elastic_force_N is None else np.asarray(elastic_force_N, float)
     force = f_el + 1e-3 * p_gauge * a  # kPa · mm² = 1e-3 N
     return Curve(y, force, p_gauge, a, dv, model=model, geometry=geometry or {},

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from spsc.cad.errors import ParameterError
+from spsc.core.errors import ParameterError
 
 __all__ = ["Material", "neo_hookean", "mooney_rivlin", "yeoh", "CATALOGUE", "material"]
 

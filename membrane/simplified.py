@@ -14,10 +14,10 @@ import math
 import numpy as np
 from scipy import integrate
 
-from spsc.cad.errors import require
+from spsc.core.errors import require
 from spsc.cad.geometry import SPSCGeometry
 
-from .curve import Curve
+from spsc.core.curve import Curve
 from .lumped import Setup, lumped_curve
 
 __all__ = ["cut_area", "cut_volume", "simplified_curve"]

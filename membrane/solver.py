@@ -15,11 +15,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from spsc.cad.errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 from spsc.cad.geometry import SPSCGeometry
 
 from .bvp import BoxScheme
-from .curve import Curve
+from spsc.core.curve import Curve
 from .materials import Material, material as catalogue_material
 from .meridian import Meridian
 from .shape import Shape, make_shape

@@ -10,7 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .bvp import P_AMB_MPA, BoxScheme
+from spsc.core.constants import P_AMB
+from spsc.core.gaslaw import GasLaw
+
+from .bvp import BoxScheme
 from .meridian import Meridian
 from .shape import Shape, make_shape
 
@@ -26,13 +29,12 @@ class Press:
     def __init__(self, geometry, mat, infl: Shape, settings, p_i, v_r, n_poly):
         self.g, self.infl, self.st = geometry, infl, settings
         mer = Meridian(geometry)
-        kw = dict(reservoir_mm3=v_r, polytropic_n=n_poly)
         self.schemes = {
-            False: BoxScheme(mer, mat, settings.contact_intervals, settings.free_intervals, **kw),
+            False: BoxScheme(mer, mat, settings.contact_intervals, settings.free_intervals),
             True: BoxScheme(mer, mat, settings.contact_intervals, settings.free_intervals,
-                            slack=True, **kw)}
+                            slack=True)}
         self.slack = False
-        self.gas = (p_i + P_AMB_MPA, infl.volume_mm3)
+        self.gas = GasLaw(p_i, infl.volume_mm3, v_r, n_poly)
         self.apex = float(infl.eta[0])
         self.hist: list[tuple[float, np.ndarray]] = []  # accepted (y, v) in the current mode
         self.y = 0.0
@@ -82,7 +84,7 @@ class Press:
             return None, r.v, "the free membrane would cross the plate"
         if np.min(sh.T1[nc:]) <= 0.0:
             return None, r.v, "the free membrane loses its meridional tension (T1 <= 0)"
-        if p <= -P_AMB_MPA:
+        if p <= -P_AMB:
             return None, r.v, "absolute pressure not positive"
         return sh, r.v, ""
 

@@ -10,7 +10,7 @@ import argparse
 import importlib
 import sys
 
-from spsc.cad.errors import ParameterError
+from spsc.core.errors import ParameterError
 
 #: verb -> module in spsc.pipeline providing ``register(subparsers)``; the parser's ``func`` runs it.
 COMMANDS = {

@@ -12,7 +12,7 @@ import sys
 from pathlib import Path
 
 from spsc.cad.check import check_mesh, design_path_for, load_design
-from spsc.cad.errors import require
+from spsc.core.errors import require
 from spsc.cad.process import PROCESSES
 
 __all__ = ["register", "run"]

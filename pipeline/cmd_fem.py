@@ -18,7 +18,7 @@ import sys
 import time
 from pathlib import Path
 
-from spsc.cad.errors import require
+from spsc.core.errors import require
 from spsc.pipeline.options import (add_geometry_options, add_setup_options,
                                    geometry_from_args)
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from spsc.cad.errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 
 from .options import add_geometry_options, geometry_from_args, geometry_given
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from spsc.cad.errors import ParameterError
+from spsc.core.errors import ParameterError
 from spsc.cad.geometry import SPSCGeometry, preset
 
 __all__ = ["PARAMS", "add_geometry_options", "add_setup_options", "geometry_from_args",

@@ -38,7 +38,7 @@ class Outcome:
 
     @property
     def curve(self):
-        from spsc.membrane.curve import Curve
+        from spsc.core.curve import Curve
 
         return Curve.from_dict(self.payload["curve"]) if self.ok else None
 

@@ -17,7 +17,7 @@ import json
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
-from spsc.cad.errors import ParameterError, require
+from spsc.core.errors import ParameterError, require
 from spsc.cad.geometry import TYPES, SPSCGeometry, preset
 
 __all__ = ["MODELS", "Run", "Study", "code_version", "source_closure", "quick_study",

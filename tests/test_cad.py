@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from spsc.cad.bladder import BladderSpec, FlangeSpec, PortSpec, build_bladder
 from spsc.cad.chamber import cavity_solid, wall_solid
-from spsc.cad.errors import ParameterError
+from spsc.core.errors import ParameterError
 from spsc.cad.export import read_3mf, tessellate, write_3mf, write_step, write_stl
 from spsc.cad.geometry import SPSCGeometry, preset
 from spsc.cad.meshbuild import bladder_mesh, chamber_manifold

@@ -12,7 +12,7 @@ import trimesh
 
 from spsc.cad import meshtopo
 from spsc.cad.check import check_mesh, design_path_for, parse_design
-from spsc.cad.errors import ParameterError
+from spsc.core.errors import ParameterError
 from spsc.cad.process import PROCESSES, process
 from spsc.pipeline.cli import main
 

@@ -5,8 +5,8 @@ import json
 import numpy as np
 import pytest
 
-from spsc.cad.errors import ParameterError
-from spsc.membrane.curve import CURVE_COLUMNS, Curve
+from spsc.core.errors import ParameterError
+from spsc.core.curve import CURVE_COLUMNS, SCHEMA, SCHEMA_VERSION, Curve, SolveInfo
 
 
 def _curve(**kw):
@@ -23,9 +23,11 @@ def _curve(**kw):
 def test_json_round_trip_keeps_everything(tmp_path):
     c = _curve()
     d = json.loads(c.to_json())
-    assert list(d) == ["model", "geometry", "material", "setup", "nominal_volume_mm3",
-                       "inflated_volume_mm3", "inflated_height_mm", "curve"]
-    assert list(d["curve"]) == list(CURVE_COLUMNS)
+    assert list(d) == ["schema", "schema_version", "model", "geometry", "material", "setup",
+                       "nominal_volume_mm3", "inflated_volume_mm3", "inflated_height_mm", "curve",
+                       "solver", "metrics", "provenance"]
+    assert (d["schema"], d["schema_version"]) == (SCHEMA, SCHEMA_VERSION)
+    assert list(d["curve"]) == list(CURVE_COLUMNS) + ["converged", "message"]
     c2 = Curve.from_json(c.to_json(tmp_path / "c.json"))
     c3 = Curve.from_json(tmp_path / "c.json")
     for cc in (c2, c3):
@@ -76,3 +78,39 @@ def test_invalid_curves_are_one_line_errors(change, name):
     with pytest.raises(ParameterError) as e:
         _curve(**change)
     assert name in str(e.value) and "\n" not in str(e.value)
+
+
+def test_solver_info_round_trips_and_is_derived_when_absent():
+    info = SolveInfo(converged=False, message="press at y = 3 mm: no convergence",
+                     y_reached_mm=2.5, instability="limit point near y = 2.7 mm", seconds=0.25,
+                     iterations=42, notes=("slack core at y = 1 mm",), details={"dofs": 812})
+    c = _curve(solver=info)
+    c2 = Curve.from_json(c.to_json())
+    assert c2.solver == info
+    f = _curve().force_N.copy()
+    f[5:] = np.nan
+    derived = _curve(force_N=f, converged=np.isfinite(f),
+                     message=tuple("" if np.isfinite(v) else "stalled" for v in f)).solver
+    assert not derived.converged and derived.message == "stalled"
+    assert derived.y_reached_mm == pytest.approx(2.0, abs=0)
+
+
+def test_version_1_files_load_and_future_versions_fail_in_one_line():
+    d = _curve().to_dict()
+    v1 = {k: v for k, v in d.items() if k not in ("schema", "schema_version", "solver",
+                                                  "metrics", "provenance")}
+    c = Curve.from_dict(v1)
+    assert c.all_converged and c.solver.converged
+    with pytest.raises(ParameterError) as e:
+        Curve.from_dict(d | {"schema_version": SCHEMA_VERSION + 1})
+    assert "upgrade spsc" in str(e.value) and "\n" not in str(e.value)
+
+
+def test_metrics_in_json_are_the_mean_slopes_and_null_when_not_converged():
+    d = _curve().to_dict()
+    # dF/dy = 4y + 1 on [0, 6]: mean over the 13 evenly spaced points is 4·3 + 1 = 13
+    assert d["metrics"]["mean_stiffness_N_per_mm"] == pytest.approx(13.0, rel=1e-12)
+    f = _curve().force_N.copy()
+    f[-1] = np.nan
+    d = _curve(force_N=f, converged=np.isfinite(f)).to_dict()
+    assert d["metrics"]["mean_stiffness_N_per_mm"] is None

@@ -2,7 +2,7 @@
 
 import json
 
-from spsc.membrane.curve import Curve
+from spsc.core.curve import Curve
 from spsc.pipeline.cli import main
 
 

@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 
 from spsc.cad.geometry import preset
-from spsc.fem.gas import GasCavity
+from spsc.core.gaslaw import GasLaw
 from spsc.fem.mesh import spsc_wall
 from spsc.fem.model import FEMModel, Load
 from spsc.fem.run import ChamberRun, run_chamber, write_vtu
 from spsc.fem.solver import Inflate, Press, Settings, solve
-from spsc.membrane.curve import Curve
+from spsc.core.curve import Curve
 from spsc.membrane.materials import material
 
 G = preset("B")
@@ -32,7 +32,7 @@ def test_gas_law_held_along_the_stroke(tmp_path, reservoir):
     assert curve.all_converged
     p_i, v_i = curve.pressure_kPa[0], curve.inflated_volume_mm3
     np.testing.assert_allclose(p_i, 40.0, rtol=1e-12)
-    gas = GasCavity(p_i * 1e-3, v_i, reservoir)
+    gas = GasLaw(p_i * 1e-3, v_i, reservoir)
     for rec in result.of("press"):
         v = model.volume(rec.x)  # recomputed from the displacement field
         # P (V + V_r) is the same at every converged point, to the Newton tolerance
@@ -55,7 +55,7 @@ def test_plate_force_balances_base_reactions_and_gas(tmp_path):
     # ... is the analytic π w² + 2 w l up to the P2 interpolation of the base circle
     np.testing.assert_allclose(footprint, math.pi * G.w**2 + 2 * G.w * G.l, rtol=1e-3)
     for rec in result.of("press"):
-        ev = model.evaluate(rec.x, Load(gas=GasCavity(0.04, curve.inflated_volume_mm3)))
+        ev = model.evaluate(rec.x, Load(gas=GasLaw(0.04, curve.inflated_volume_mm3)))
         reaction = 4 * ev.r[3 * base + 2].sum()
         # the identity holds to the Newton tolerance (1e-8 of the force scale)
         np.testing.assert_allclose(rec.force, reaction + rec.pressure * footprint, rtol=1e-7)
@@ -69,7 +69,7 @@ def test_gas_tangent_by_differences():
     x = model.zero_state()
     free_u = ~model.fixed[: model.disc.n_u]
     x[: model.disc.n_u][free_u] = 0.02 * rng.standard_normal(free_u.sum())
-    gas = GasCavity(0.04, model.volume(model.zero_state()), reservoir=1000.0)
+    gas = GasLaw(0.04, model.volume(model.zero_state()), reservoir=1000.0)
     load = Load(gas=gas)
     ev = model.evaluate(x, load)
     gv = np.zeros(model.disc.n)

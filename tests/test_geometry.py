@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from spsc.cad.errors import ParameterError
+from spsc.core.errors import ParameterError
 from spsc.cad.geometry import TABLE1_VOLUME_CM3, SPSCGeometry, preset
 
 

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from spsc.cad.errors import ParameterError
+from spsc.core.errors import ParameterError
 from spsc.cad.geometry import preset
-from spsc.membrane.curve import Curve
+from spsc.core.curve import Curve
 from spsc.membrane.identify import identify, predict, read_bench
 from spsc.membrane.lumped import Setup, lumped_curve
 from spsc.membrane.materials import material

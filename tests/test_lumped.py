@@ -5,10 +5,11 @@ import math
 import numpy as np
 import pytest
 
-from spsc.cad.errors import ParameterError
+from spsc.core.errors import ParameterError
 from spsc.cad.geometry import preset
-from spsc.membrane.curve import Curve
-from spsc.membrane.lumped import (P_AMB_KPA, Setup, jnd_depth, lumped_curve, mean_sensitivity,
+from spsc.core.curve import Curve
+from spsc.core.constants import P_AMB
+from spsc.membrane.lumped import (Setup, jnd_depth, lumped_curve, mean_sensitivity,
                                   mean_stiffness, pressure_abs, sensitivity_eq8, stiffness_eq9)
 from spsc.membrane.simplified import cut_area, cut_volume, simplified_curve
 
@@ -25,9 +26,9 @@ def test_pressure_follows_the_polytropic_law(vr, n):
     a, dv = _geom_curves(y)
     s = Setup(30.0, VB, vr, n)
     c = lumped_curve(y, a, dv, s)
-    P = c.pressure_kPa + P_AMB_KPA
+    P = c.pressure_kPa + (1e3 * P_AMB)
     # P V^n constant over bladder + reservoir (eq. 2, 5): exact up to round-off
-    np.testing.assert_allclose(P * (VB + vr - dv) ** n, (30 + P_AMB_KPA) * (VB + vr) ** n, rtol=1e-13)
+    np.testing.assert_allclose(P * (VB + vr - dv) ** n, (30 + (1e3 * P_AMB)) * (VB + vr) ** n, rtol=1e-13)
     np.testing.assert_allclose(c.force_N, 1e-3 * c.pressure_kPa * a, rtol=1e-13)
     assert c.pressure_kPa[0] == pytest.approx(30.0, abs=1e-12)
 
@@ -43,7 +44,7 @@ def test_eq8_and_eq9_match_the_derivative_of_eqs6_7(n):
     # h = 3e-3 mm: the cubic term of ΔV leaves 1.5 h² ≈ 1.4e-5 mm³/mm, i.e. < 1e-6 in dP/dy and
     # dF/dy near y = 0; 1e-5 relative + 2e-6 absolute is met, a wrong formula misses by > 1 %
     dvdy = 40.0 * y + 4.5 * y**2
-    dpdy = n * (20.0 + P_AMB_KPA) * VB**n / (VB - dv) ** (n + 1) * dvdy
+    dpdy = n * (20.0 + (1e3 * P_AMB)) * VB**n / (VB - dv) ** (n + 1) * dvdy
     np.testing.assert_allclose(sensitivity_eq8(y, a, dv, s), dpdy, rtol=1e-5, atol=2e-6)
     dfdy = y + 1e-3 * ((c.pressure_kPa) * (40.0 + 16.0 * y) + dpdy * a)
     np.testing.assert_allclose(stiffness_eq9(y, a, dv, s, f_el), dfdy, rtol=1e-5, atol=2e-6)

@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-from spsc.membrane.curve import CURVE_COLUMNS, Curve
+from spsc.core.curve import CURVE_COLUMNS, Curve
 from spsc.pipeline.cli import main
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from spsc.cad.errors import ParameterError
+from spsc.core.errors import ParameterError
 from spsc.cad.geometry import SPSCGeometry, preset
 from spsc.membrane.materials import material
 from spsc.membrane.meridian import Meridian

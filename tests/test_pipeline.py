@@ -7,7 +7,7 @@ import time
 
 import pytest
 
-from spsc.cad.errors import ParameterError
+from spsc.core.errors import ParameterError
 from spsc.pipeline.cache import Cache
 from spsc.pipeline.runner import run_all
 from spsc.pipeline.study import Run, Study, code_version, full_study, quick_study, source_closure

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from spsc.membrane.curve import Curve
+from spsc.core.curve import Curve
 from spsc.pipeline.cache import Cache
 from spsc.pipeline.cli import main
 from spsc.pipeline.report import PAPER, build_report, errors, headline, with_f_el

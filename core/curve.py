@@ -1,9 +1,15 @@
-"""The one result type: a static curve F(y), P(y), A(y), ΔV(y) plus what produced it.
+"""The one result type: a static curve F(y), P(y), A(y), ΔV(y), what produced it and how the
+solve went.
 
-Every model (membrane, simplified, lumped, FEM) and the bench produce a :class:`Curve`.
+Every model (membrane, simplified, wall, FEM, lumped) and the bench produce a :class:`Curve`.
 Units are those of the edge (DESIGN.md): y in mm from first contact with the inflated chamber
 (the paper's contact depth y_s), force in N, gauge pressure in kPa, contact area in mm², volume
-change in mm³ (cavity volume lost since first contact). JSON and CSV round-trip it.
+change in mm³ (cavity volume lost since first contact).
+
+The result protocol is :class:`SolveInfo` (converged, message, how far it got, instability,
+timing, iterations, model details), carried by the curve. JSON (schema ``spsc.curve``, version
+:data:`SCHEMA_VERSION`) and CSV round-trip both; version-1 files (no ``schema_version``) load,
+newer versions fail with a one-line error.
 """
 
 from __future__ import annotations
@@ -11,19 +17,75 @@ from __future__ import annotations
 import io
 import json
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 import numpy as np
 
-from spsc.cad.errors import ParameterError
+from .errors import ParameterError
+from .jsonio import read_json, to_jsonable, write_json
 
-__all__ = ["Curve", "CURVE_COLUMNS"]
+__all__ = ["Curve", "CURVE_COLUMNS", "SolveInfo", "SCHEMA", "SCHEMA_VERSION"]
+
+#: Name and version of the JSON layout written by :meth:`Curve.to_dict`.
+SCHEMA = "spsc.curve"
+SCHEMA_VERSION = 2
 
 #: Column names of the curve arrays, in JSON (``"curve"`` object) and CSV header order.
 CURVE_COLUMNS = ("y_mm", "force_N", "pressure_kPa", "contact_area_mm2", "volume_change_mm3")
 _META = ("model", "geometry", "material", "setup", "nominal_volume_mm3",
          "inflated_volume_mm3", "inflated_height_mm")
+
+
+@dataclass(frozen=True)
+class SolveInfo:
+    """How a model's solve went: the one result protocol of every model.
+
+    Parameters
+    ----------
+    converged : bool
+        Every requested point converged.
+    message : str
+        Why and where it stopped (``"converged"`` when it did not stop early).
+    y_reached_mm : float
+        Last plate position that converged (mm; NaN if none).
+    instability : str
+        A detected limit point, buckling or snap-through ("" if none).
+    seconds : float
+        Wall-clock time of the solve (s).
+    iterations : int
+        Newton iterations over the whole load path.
+    notes : tuple of str
+        What the solver did that a user should know (continuation, mode switches).
+    details : dict
+        Model-specific facts (unknowns, elements, mesh size ...), JSON-able.
+    """
+
+    converged: bool = True
+    message: str = "converged"
+    y_reached_mm: float = float("nan")
+    instability: str = ""
+    seconds: float = float("nan")
+    iterations: int = 0
+    notes: tuple = ()
+    details: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        object.__setattr__(self, "converged", bool(self.converged))
+        object.__setattr__(self, "notes", tuple(str(n) for n in self.notes))
+        object.__setattr__(self, "details", dict(self.details))
+        v = self.y_reached_mm
+        object.__setattr__(self, "y_reached_mm", float("nan") if v is None else float(v))
+        v = self.seconds
+        object.__setattr__(self, "seconds", float("nan") if v is None else float(v))
+
+    def to_dict(self) -> dict:
+        return to_jsonable({f.name: getattr(self, f.name) for f in fields(self)})
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "SolveInfo":
+        known = {f.name for f in fields(cls)}
+        return cls(**{k: v for k, v in data.items() if k in known})
 
 
 def _array(name: str, value) -> np.ndarray:
@@ -58,6 +120,8 @@ class Curve:
         Per-point status (default: all True).
     message : tuple of str, optional
         Per-point reason ("" where converged).
+    solver : SolveInfo, optional
+        How the solve went (default: derived from the per-point status).
     """
 
     y_mm: np.ndarray
@@ -74,6 +138,7 @@ class Curve:
     inflated_height_mm: float = float("nan")
     converged: np.ndarray | None = None
     message: tuple[str, ...] | None = None
+    solver: SolveInfo | None = None
 
     def __post_init__(self):
         n = None
@@ -106,6 +171,13 @@ class Curve:
         for name in ("nominal_volume_mm3", "inflated_volume_mm3", "inflated_height_mm"):
             v = getattr(self, name)
             object.__setattr__(self, name, float("nan") if v is None else float(v))
+        if self.solver is None:
+            first = next((m for m, c in zip(msg, conv) if not c), "")
+            info = SolveInfo(converged=bool(conv.all()), message=first or "converged",
+                             y_reached_mm=self.y_mm[conv][-1] if conv.any() else float("nan"))
+            object.__setattr__(self, "solver", info)
+        elif isinstance(self.solver, dict):
+            object.__setattr__(self, "solver", SolveInfo.from_dict(self.solver))
 
     # -- derived quantities ------------------------------------------------------------------
     def __len__(self) -> int:
@@ -123,45 +195,71 @@ class Curve:
         """dP/dy in kPa/mm (second-order finite differences)."""
         return _gradient(self.pressure_kPa, self.y_mm)
 
+    def mean_stiffness(self) -> float:
+        """Mean of dF/dy over the curve (N/mm); NaN unless every point converged."""
+        return float(np.mean(self.stiffness())) if self.all_converged else float("nan")
+
+    def mean_sensitivity(self) -> float:
+        """Mean of dP/dy over the curve (kPa/mm); NaN unless every point converged."""
+        return float(np.mean(self.sensitivity())) if self.all_converged else float("nan")
+
     def replace(self, **changes) -> "Curve":
         return replace(self, **changes)
 
     # -- JSON --------------------------------------------------------------------------------
-    def to_dict(self) -> dict:
-        """The DESIGN.md JSON object (NaN written as null)."""
-        out = {k: _clean(getattr(self, k)) for k in _META}
-        curve = {k: _clean(getattr(self, k)) for k in CURVE_COLUMNS}
-        if not self.all_converged or any(self.message):
-            curve["converged"] = [bool(c) for c in self.converged]
-            curve["message"] = list(self.message)
-        out["curve"] = curve
-        return out
+    def to_dict(self, extra: dict | None = None) -> dict:
+        """The DESIGN.md JSON object, schema ``spsc.curve`` v2 (NaN written as null).
 
-    def to_json(self, path: str | Path | None = None, **kwargs) -> str:
-        text = json.dumps(self.to_dict(), **({"indent": 1} | kwargs))
+        ``extra``: model-specific additions (meridians, VTU files ...) under the key ``extra``.
+        """
+        out = {"schema": SCHEMA, "schema_version": SCHEMA_VERSION}
+        out |= {k: getattr(self, k) for k in _META}
+        curve = {k: getattr(self, k) for k in CURVE_COLUMNS}
+        curve["converged"] = self.converged
+        curve["message"] = list(self.message)
+        out["curve"] = curve
+        out["solver"] = self.solver.to_dict()
+        out["metrics"] = {"mean_stiffness_N_per_mm": self.mean_stiffness(),
+                          "mean_sensitivity_kPa_per_mm": self.mean_sensitivity()}
+        out["provenance"] = {"spsc_version": _version()}
+        if extra:
+            out["extra"] = extra
+        return to_jsonable(out)
+
+    def to_json(self, path: str | Path | None = None, *, extra: dict | None = None) -> str:
+        """JSON text; written (UTF-8, atomically) to ``path`` if given."""
+        data = self.to_dict(extra)
         if path is not None:
-            Path(path).write_text(text + "\n", encoding="utf-8")
-        return text
+            write_json(path, data)
+        return json.dumps(data, indent=1, allow_nan=False, ensure_ascii=False)
 
     @classmethod
     def from_dict(cls, data: dict) -> "Curve":
-        if "curve" not in data:
+        """From a ``spsc.curve`` JSON object of version 1 (no ``schema_version``) or 2."""
+        if not isinstance(data, dict) or "curve" not in data:
             raise ParameterError("JSON key", "curve", "an object with " + ", ".join(CURVE_COLUMNS))
+        version = data.get("schema_version", 1)
+        if data.get("schema", SCHEMA) != SCHEMA or version not in (1, SCHEMA_VERSION):
+            raise ParameterError("schema", f"{data.get('schema', SCHEMA)} v{version}",
+                                 f"{SCHEMA} v1 or v{SCHEMA_VERSION} (a newer spsc wrote this "
+                                 "file: upgrade spsc)")
         c = data["curve"]
         missing = [k for k in CURVE_COLUMNS if k not in c]
         if missing:
             raise ParameterError("curve key", missing[0], "present: " + ", ".join(CURVE_COLUMNS))
         arrays = {k: [np.nan if v is None else v for v in c[k]] for k in CURVE_COLUMNS}
         meta = {k: data[k] for k in _META if k in data}
+        solver = data.get("solver") if version >= 2 else None
         return cls(**arrays, **meta, converged=c.get("converged"),
-                   message=tuple(c["message"]) if "message" in c else None)
+                   message=tuple(c["message"]) if "message" in c else None,
+                   solver=SolveInfo.from_dict(solver) if solver else None)
 
     @classmethod
     def from_json(cls, source: str | Path) -> "Curve":
         """From a JSON string or a path to a JSON file."""
         text = str(source)
         if not text.lstrip().startswith("{"):
-            text = Path(source).read_text(encoding="utf-8")
+            return cls.from_dict(read_json(source))
         return cls.from_dict(json.loads(text))
 
     # -- CSV ---------------------------------------------------------------------------------
@@ -169,7 +267,7 @@ class Curve:
         """CSV with the five columns (plus ``converged``); metadata in ``# key: json`` lines."""
         buf = io.StringIO()
         for k in _META:
-            buf.write(f"# {k}: {json.dumps(_clean(getattr(self, k)))}\n")
+            buf.write(f"# {k}: {json.dumps(to_jsonable(getattr(self, k)))}\n")
         buf.write(",".join(CURVE_COLUMNS + ("converged",)) + "\n")
         for i in range(len(self)):
             vals = [_fmt(getattr(self, k)[i]) for k in CURVE_COLUMNS]
@@ -184,7 +282,7 @@ class Curve:
         """From a CSV string (containing a newline) or a path written by :meth:`to_csv`."""
         text = str(source)
         if "\n" not in text:
-            text = Path(source).read_text(encoding="utf-8")
+            text = Path(source).read_text(encoding="utf-8-sig")
         meta, rows, header = {}, [], None
         for line in text.splitlines():
             if line.startswith("#"):
@@ -214,17 +312,14 @@ def _gradient(f: np.ndarray, y: np.ndarray) -> np.ndarray:
     return np.gradient(f, y, edge_order=2 if y.size > 2 else 1)
 
 
-def _clean(v):
-    if isinstance(v, np.ndarray):
-        return [None if not math.isfinite(x) else float(x) for x in v.tolist()]
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    if isinstance(v, dict):
-        return {k: _clean(x) for k, x in v.items()}
-    if isinstance(v, (np.floating, np.integer)):
-        return v.item()
-    return v
-
-
 def _fmt(x: float) -> str:
     return "nan" if not math.isfinite(x) else repr(float(x))
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("spsc")
+    except PackageNotFoundError:
+        return "unknown"
