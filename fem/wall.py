@@ -1,0 +1,481 @@
+"""The ``wall`` model: the chamber wall as a thick, nearly incompressible hyperelastic solid,
+coupled in one Newton solve to the cavity pressure, the trapped gas and a rigid plate.
+
+The chamber is the axisymmetric **dome** (the body of revolution of the wall section: the two
+half-domes of the stadium together) plus, when l > 0, the straight **middle** of length l in
+plane strain (:mod:`spsc.fem.section`). Both sections share one cavity pressure and one plate:
+
+* cavity volume V = V_dome(u₁) + V_middle(u₂) (the middle: l × cross-section area, eq. 37's
+  2l∫ρ dη term), follower pressure p ∂V/∂u with its consistent stiffness p ∂²V/∂u²;
+* after inflation the valve closes: p = p(V) of :class:`~spsc.core.gaslaw.GasLaw`
+  (P (V + V_r)ⁿ = const, eqs. 2, 6–7), adding the rank-one stiffness −(dp/dV) g gᵀ, solved by
+  Sherman–Morrison;
+* the plate is a frictionless rigid plane z = z_p lowered from first contact: exact
+  enforcement on the outer-surface nodes by a primal–dual active set (an active node's height is
+  prescribed at the plate and released when its reaction pulls), so the answer does not depend
+  on a penalty factor and contact can open and close anywhere along the outer surface (the
+  vented flat-topped chambers invert: the apex lifts off and the contact becomes a ring);
+* plate force F = Σ reactions of the active nodes (the section measures make them whole-ring
+  and whole-length forces, N), pressure and wall together; contact area as the 3D model
+  measures it (outer surface on the plate).
+
+``pressure_kPa = 0`` is the vented chamber: gauge pressure held at zero, no gas; its force is
+the structural F_el(y) of the paper's open-chamber bench test (Fig. 5b).
+
+Stability: every recorded point's tangent (with the active constraints and the gas) is
+factorised with its inertia; a negative eigenvalue is an unstable equilibrium (limit point,
+snap-through or buckling of the wall). It is reported, and the solve stops there: no point past
+it is reported as converged (DESIGN.md).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from spsc.cad.geometry import SPSCGeometry
+from spsc.core.constants import KPA_PER_MPA
+from spsc.core.curve import Curve, SolveInfo
+from spsc.core.errors import require
+from spsc.core.gaslaw import GasLaw
+from spsc.membrane.materials import Material
+
+from .linsolve import solve_rank_one
+from .material import NearlyIncompressible
+from .section import DOME, MIDDLE, section_mesh
+from .section_solid import InvertedSection, SectionSolid
+
+__all__ = ["WallSettings", "WallModel", "WallState", "wall_curve", "inflate", "WallFailure"]
+
+
+@dataclass(frozen=True)
+class WallSettings:
+    """Discretisation and solver controls of the wall model.
+
+    mesh_size_mm : element length along the profile (mm); layers : quadratic elements through
+    the wall; bulk_ratio : κ/μ0; rtol : residual against the load's force scale;
+    max_iterations : Newton iterations per increment; min_fraction : smallest increment as a
+    fraction of the nominal one; contact_tolerance : penetration that activates a node (mm);
+    inflate_increments : pressure increments of the inflation.
+    """
+
+    mesh_size_mm: float = 0.5
+    layers: int = 2
+    bulk_ratio: float = 2000.0
+    rtol: float = 1e-9
+    max_iterations: int = 25
+    min_fraction: float = 1.0 / 64
+    contact_tolerance: float = 1e-7
+    inflate_increments: int = 2
+
+    def __post_init__(self):
+        require("mesh_size", self.mesh_size_mm, gt=0, le=5, unit="mm")
+        require("layers", self.layers, ge=1, le=16)
+        require("bulk_ratio", self.bulk_ratio, ge=10)
+        require("rtol", self.rtol, gt=0, lt=1)
+        require("max_iterations", self.max_iterations, ge=2)
+        require("min_fraction", self.min_fraction, gt=0, le=1)
+        require("inflate_increments", self.inflate_increments, ge=1)
+
+
+class WallFailure(RuntimeError):
+    """Newton did not converge for one increment (the reason is the message)."""
+
+
+@dataclass(frozen=True, eq=False)
+class WallState:
+    """A converged state: unknowns, gauge pressure (MPa), cavity volume (mm³), plate height
+    (mm or None), plate force (N), contact area (mm²), active contact unknowns, iterations,
+    negative eigenvalues of the constrained tangent (None: not computed)."""
+
+    x: np.ndarray = field(repr=False)
+    pressure: float
+    volume: float
+    plate: float | None
+    force: float
+    area: float
+    active: np.ndarray = field(repr=False)
+    iterations: int = 0
+    negative: int | None = None
+
+
+class WallModel:
+    """The sections of one chamber (dome, and middle when l > 0) and their shared loads.
+    ``base``: ``"clamped"`` (the chamber) or ``"sliding"`` (u_z = 0 only, for the exact
+    thick-sphere check)."""
+
+    def __init__(self, geometry: SPSCGeometry, material: Material,
+                 settings: WallSettings | None = None, *, base: str = "clamped"):
+        self.geometry, self.material = geometry, material
+        self.settings = settings = settings or WallSettings()
+        law = NearlyIncompressible(material, settings.bulk_ratio)
+        kinds = [DOME] + ([MIDDLE] if geometry.l > 0 else [])
+        self.solids = [SectionSolid(section_mesh(geometry, k, size=settings.mesh_size_mm,
+                                                 layers=settings.layers, base=base), law)
+                       for k in kinds]
+        sizes = [s.section.n_dofs for s in self.solids]
+        self.offsets = np.concatenate([[0], np.cumsum(sizes)])
+        self.n_u = int(self.offsets[-1])
+        psizes = [3 * len(s.section.elements) for s in self.solids]
+        self.p_offsets = self.n_u + np.concatenate([[0], np.cumsum(psizes)])
+        self.n = int(self.p_offsets[-1])
+        self.fixed = np.concatenate([s.section.fixed for s in self.solids])
+        zdofs = [off + 2 * s.section.outer + 1 for off, s in zip(self.offsets, self.solids)]
+        zdofs = np.concatenate(zdofs)
+        self.contact_dofs = zdofs[~self.fixed[zdofs]]
+        self.reference = np.concatenate([s.section.nodes.ravel() for s in self.solids])
+        self.mu = law.mu
+
+    def parts(self, x):
+        """Displacements (2n_s,) of each section."""
+        return [x[a:b] for a, b in zip(self.offsets[:-1], self.offsets[1:])]
+
+    def pressures(self, x):
+        """Hydrostatic pressure coefficients (ne_s, 3) of each section (MPa)."""
+        return [x[a:b].reshape(-1, 3) for a, b in zip(self.p_offsets[:-1], self.p_offsets[1:])]
+
+    def zero_state(self) -> np.ndarray:
+        return np.zeros(self.n)
+
+    def volume(self, x) -> float:
+        """Cavity volume (mm³)."""
+        return sum(s.section.volume(u) for s, u in zip(self.solids, self.parts(x)))
+
+    def contact_area(self, x, plate: float) -> float:
+        """Outer surface on the plate (mm²)."""
+        return sum(s.section.contact_area(u, plate) for s, u in zip(self.solids, self.parts(x)))
+
+    def apex(self, x) -> float:
+        """Height of the cavity apex (mm)."""
+        dome = self.solids[0].section
+        return float(dome.positions(self.parts(x)[0])[dome.cavity[0], 1])
+
+    def top(self, x) -> float:
+        """Highest point of the outer surface (mm): where the plate first touches."""
+        return float(np.max(self.reference[self.contact_dofs] + x[self.contact_dofs]))
+
+    def evaluate(self, x, pressure: float, *, tangent: bool = True) -> "_Evaluation":
+        """Residuals at gauge cavity ``pressure`` (MPa): r_u = r_int − p g (N), the pressure
+        residuals, and with ``tangent`` the condensed K_int − p H (N/mm) and the blocks G;
+        g = ∂V/∂u (mm²)."""
+        rs, rps, Ks, Gs, gs = [], [], [], [], []
+        for s, u, pc in zip(self.solids, self.parts(x), self.pressures(x)):
+            if tangent:
+                r, rp, K, G = s.residual_tangent(u, pc)
+                g, H = s.section.volume_gradient(u)
+                if pressure != 0.0:
+                    d = s.section.cavity_edge_dofs
+                    rows = np.repeat(d, 6, axis=1).ravel()
+                    cols = np.tile(d, (1, 6)).ravel()
+                    K = K - pressure * sp.csr_matrix((H.ravel(), (rows, cols)), shape=K.shape)
+                Ks.append(K)
+                Gs.append(G)
+            else:
+                r, rp = s.residual(u, pc)
+                g = s.section.volume_gradient(u, hessian=False)
+            rs.append(r - pressure * g)
+            rps.append(rp)
+            gs.append(g)
+        K = sp.block_diag(Ks, format="csr") if tangent else None
+        return _Evaluation(np.concatenate(rs), rps, K, Gs, np.concatenate(gs))
+
+    def pressure_error(self, ev: "_Evaluation") -> float:
+        return max(s.pressure_error(rp) for s, rp in zip(self.solids, ev.rp))
+
+    def condensed(self, ev: "_Evaluation") -> np.ndarray:
+        """r_u + κ Gᵀ M⁻¹ r_p: the right-hand side of the condensed Newton system (N)."""
+        return ev.r + np.concatenate([s.condensed_rhs(G, rp)
+                                      for s, G, rp in zip(self.solids, ev.G, ev.rp)])
+
+    def recover(self, ev: "_Evaluation", du) -> np.ndarray:
+        """Δp of every section (flattened, MPa) from the displacement step ``du``."""
+        return np.concatenate([s.recover(G, rp, d).ravel() for s, G, rp, d in
+                               zip(self.solids, ev.G, ev.rp, self.parts(du))])
+
+
+@dataclass(frozen=True, eq=False)
+class _Evaluation:
+    r: np.ndarray
+    rp: list
+    K: object
+    G: list
+    g: np.ndarray
+
+
+def _factor(A):
+    """LDLᵀ-like LU without off-diagonal pivoting (symmetric mode): its U diagonal carries the
+    inertia (Sylvester). Falls back to pivoted LU (inertia unknown) if a pivot vanishes."""
+    A = A.tocsc()
+    try:
+        lu = spla.splu(A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                       options={"SymmetricMode": True})
+        d = lu.U.diagonal()
+        if np.all(np.isfinite(d)) and np.min(np.abs(d)) > 1e-13 * np.max(np.abs(d)):
+            return lu.solve, int(np.sum(d < 0))
+    except RuntimeError:
+        pass
+    return spla.splu(A).solve, None
+
+
+def _inertia(Kff, c, gf) -> int | None:
+    """Negative eigenvalues of Kff + c g gᵀ (None if the factorisation cannot tell)."""
+    solve, negative = _factor(Kff)
+    if negative is not None and c > 0.0:
+        negative -= int(1.0 + c * float(gf @ solve(gf)) < 0.0)
+    return negative
+
+
+def _newton(model: WallModel, x0, *, pressure=0.0, gas: GasLaw | None = None, plate=None,
+            active=None, settings: WallSettings):
+    """Solve one load (prescribed gauge ``pressure`` MPa, or the closed ``gas``; plate height
+    ``plate`` mm or None) from ``x0``. Returns a :class:`WallState`."""
+    x = x0.copy()
+    n_u = model.n_u
+    active = np.zeros(0, int) if active is None or plate is None else np.asarray(active, int)
+    if plate is not None:  # start from every node the plate has passed
+        z = model.reference[model.contact_dofs] + x[model.contact_dofs]
+        active = np.union1d(active, model.contact_dofs[z > plate + settings.contact_tolerance])
+    scale, changes, negative, factored, res = None, 0, None, None, np.inf
+    for it in range(1, settings.max_iterations + 1):
+        V = model.volume(x)
+        p = float(gas.pressure(V)) if gas is not None else float(pressure)
+        c = -float(gas.dpressure(V)) if gas is not None else 0.0
+        ev = model.evaluate(x, p)
+        r = ev.r
+        if not np.all(np.isfinite(r)):
+            raise WallFailure("non-finite residual")
+        jump = (plate - model.reference[active] - x[active]) if plate is not None \
+            else np.zeros(0)
+        free = ~model.fixed
+        free[active] = False
+        res = float(np.linalg.norm(r[free]))
+        # the load's force scale: pressure load, support and plate reactions (displacement
+        # control of a vented chamber has no other)
+        scale = max(scale or 0.0, np.linalg.norm(p * ev.g), np.linalg.norm(r[model.fixed]),
+                    np.linalg.norm(r[active]), 1e-9 * model.mu * model.geometry.t0 ** 2)
+        settled = jump.size == 0 or float(np.max(np.abs(jump))) <= 1e-12
+        small = settled and it > 1 and model.pressure_error(ev) <= 1e-3 * settings.rtol
+        if plate is not None and settled and it > 1 and res <= 1e-2 * scale:
+            new = _update_active(model, x, r, plate, active, settings.rtol * scale,
+                                 settings.contact_tolerance)
+            if new is not None:
+                changes += 1
+                if changes > 40:
+                    raise WallFailure("the contact active set does not settle")
+                active = new
+                continue
+        if small and res <= settings.rtol * scale:
+            if factored != free.tobytes():  # the inertia must be that of this free set
+                negative = _inertia(ev.K[free][:, free], c, ev.g[free])
+            force = float(-np.sum(r[active])) if plate is not None else 0.0
+            area = model.contact_area(x, plate) if plate is not None and active.size else 0.0
+            return WallState(x, p, V, plate, force, area, active, it, negative)
+        K = ev.K
+        solve, negative = _factor(K[free][:, free])
+        factored = free.tobytes()
+        rhs = -model.condensed(ev)[free]
+        g = ev.g
+        if jump.size:
+            dj = np.zeros(n_u)
+            dj[active] = jump
+            rhs -= (K @ dj)[free]
+            if c > 0.0:
+                rhs -= c * g[free] * (g[active] @ jump)
+        if c > 0.0:
+            du_f = solve_rank_one(solve, c, g[free], rhs)
+            if negative is not None:
+                # K + c g gᵀ loses one negative eigenvalue iff 1 + c gᵀK⁻¹g < 0
+                negative -= int(1.0 + c * float(g[free] @ solve(g[free])) < 0.0)
+        else:
+            du_f = solve(rhs)
+        du = np.zeros(n_u)
+        du[free] = du_f
+        if jump.size:
+            du[active] = jump
+        step = np.concatenate([du, model.recover(ev, du)])
+        x = _admissible(model, x, step)
+    raise WallFailure(f"no convergence in {settings.max_iterations} iterations (residual "
+                      f"{res:.3g} N against {settings.rtol * scale:.3g} N)")
+
+
+def _update_active(model, x, r, plate, active, force_tol, gap_tol):
+    """The new active set (contact z-unknowns) or None if unchanged (the PDAS fixed point)."""
+    keep = -r[active] >= -force_tol
+    inactive = np.setdiff1d(model.contact_dofs, active)
+    z = model.reference[inactive] + x[inactive]
+    new = inactive[z > plate + gap_tol]
+    if new.size == 0 and np.all(keep):
+        return None
+    return np.union1d(active[keep], new)
+
+
+def _admissible(model, x, step, trials=8):
+    """x + α step with the largest α = 1, ½, … that inverts no element (full Newton steps
+    otherwise: the mixed form's residual is no merit function to descend on)."""
+    alpha = 1.0
+    for _ in range(trials):
+        xt = x + alpha * step
+        F_ok = all(np.all(np.linalg.det(s.deformation(u)) > 0)
+                   for s, u in zip(model.solids, model.parts(xt)))
+        if F_ok:
+            return xt
+        alpha *= 0.5
+    raise WallFailure("every trial step inverts an element")
+
+
+@dataclass
+class _Path:
+    """The load path walked so far (converged states) and what stopped it."""
+
+    states: list = field(default_factory=list)
+    message: str = "converged"
+    instability: str = ""
+    iterations: int = 0
+    converged: bool = True
+
+
+def _ramp(model, path, x, settings, load_at, targets, label, progress=None):
+    """Walk a load parameter t through ``targets`` with step halving; ``load_at(t)`` gives the
+    keyword load. Appends one state per target; returns the last x or None on failure."""
+    state = path.states[-1] if path.states else None
+    t, dt = 0.0, targets[0]
+    nominal = targets[0]
+    hist = []  # (t, x) for the secant predictor
+    k = 0
+    while k < len(targets):
+        t_new = min(t + dt, targets[k])
+        guess = x
+        if len(hist) >= 2:
+            (t0, x0), (t1, x1) = hist[-2], hist[-1]
+            guess = x1 + (x1 - x0) * (t_new - t1) / (t1 - t0)
+        try:
+            try:
+                st = _newton(model, guess, active=state.active if state else None,
+                             settings=settings, **load_at(t_new))
+            except (WallFailure, InvertedSection, RuntimeError, np.linalg.LinAlgError):
+                if guess is x:
+                    raise
+                st = _newton(model, x, active=state.active if state else None,
+                             settings=settings, **load_at(t_new))
+        except (WallFailure, InvertedSection, RuntimeError, np.linalg.LinAlgError) as exc:
+            dt *= 0.5
+            if dt < settings.min_fraction * nominal:
+                path.converged = False
+                path.message = f"{label(t_new)}: {exc}"
+                return None
+            continue
+        path.iterations += st.iterations
+        x, t, state = st.x, t_new, st
+        hist.append((t, x))
+        dt = min(nominal, 2.0 * dt)
+        if math.isclose(t, targets[k], rel_tol=1e-12, abs_tol=1e-15):
+            path.states.append(st)
+            k += 1
+            if progress is not None:
+                progress()
+            if st.negative:
+                path.instability = (f"the tangent has {st.negative} negative eigenvalue(s) at "
+                                    f"{label(t)}: unstable equilibrium (limit point, buckling "
+                                    "or snap-through of the wall)")
+                path.converged = False
+                path.message = f"stopped: {path.instability}"
+                return None
+    return x
+
+
+def inflate(model: WallModel, pressure_kPa: float, increments: int = 4) -> WallState:
+    """Inflate ``model`` to gauge ``pressure_kPa`` (kPa) in ``increments``; the last state.
+    Raises :class:`WallFailure` with the reason if it does not converge."""
+    path = _Path()
+    p = pressure_kPa / KPA_PER_MPA
+    x = _ramp(model, path, model.zero_state(), model.settings, lambda t: {"pressure": p * t},
+              [(k + 1) / increments for k in range(increments)],
+              lambda t: f"inflation at p = {pressure_kPa * t:.4g} kPa")
+    if x is None:
+        raise WallFailure(path.message)
+    return path.states[-1]
+
+
+def wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
+               reservoir_mm3: float = 0.0, stroke_mm: float = 6.0, points: int = 25,
+               polytropic_n: float = 1.0, settings: WallSettings | None = None,
+               model: WallModel | None = None, progress=None) -> Curve:
+    """Inflate to ``pressure_kPa`` (kPa gauge), close the valve (gas with ``reservoir_mm3``,
+    polytropic index ``polytropic_n``), lower the plate from first contact by ``stroke_mm`` in
+    ``points`` − 1 equal increments. ``pressure_kPa = 0``: vented chamber (F_el). Returns the
+    :class:`Curve` (model ``wall``); points not reached hold NaN and the reason."""
+    t_start = time.perf_counter()
+    require("pressure", pressure_kPa, ge=0, le=1000, unit="kPa gauge")
+    require("reservoir", reservoir_mm3, ge=0, unit="mm³")
+    require("stroke", stroke_mm, gt=0, unit="mm")
+    points = int(require("points", points, ge=2, le=10001))
+    settings = settings or (model.settings if model is not None else WallSettings())
+    model = model or WallModel(geometry, material, settings)
+    if stroke_mm >= geometry.h + geometry.t0:
+        require("stroke", stroke_mm, lt=geometry.h + geometry.t0, unit="mm: less than the "
+                "chamber's height h + t0, the plate would reach the base")
+    p_i = pressure_kPa / KPA_PER_MPA
+    path = _Path()
+    x = model.zero_state()
+    v_nominal = model.volume(x)
+    tick = (lambda: progress()) if progress is not None else None
+    if p_i > 0:
+        n_inf = settings.inflate_increments
+        x = _ramp(model, path, x, settings, lambda t: {"pressure": p_i * t},
+                  [(k + 1) / n_inf for k in range(n_inf)],
+                  lambda t: f"inflation at p = {pressure_kPa * t:.4g} kPa", tick)
+    inflated = path.states[-1] if path.states else None
+    gas = None
+    if x is not None and p_i > 0:
+        gas = GasLaw(p_i, inflated.volume, reservoir_mm3, polytropic_n)
+    y = np.linspace(0.0, stroke_mm, points)
+    if x is not None:
+        z0 = model.top(x)
+        n_press = len(path.states)
+        load = (lambda t: {"gas": gas, "plate": z0 - t}) if gas is not None else \
+            (lambda t: {"pressure": 0.0, "plate": z0 - t})
+        _ramp(model, path, x, settings, load, list(y[1:]),
+              lambda t: f"press at y = {t:.4g} mm", tick)
+        pressed = path.states[n_press:]
+    else:
+        pressed = []
+    return _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa,
+                     reservoir_mm3, polytropic_n, time.perf_counter() - t_start)
+
+
+def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reservoir,
+              n_poly, seconds) -> Curve:
+    n = y.size
+    F, P, A, dV = (np.full(n, np.nan) for _ in range(4))
+    conv = np.zeros(n, bool)
+    msg = [""] * n
+    ok_start = inflated is not None or pressure_kPa == 0
+    v_inf = inflated.volume if inflated is not None else v_nominal
+    x_inf = inflated.x if inflated is not None else model.zero_state()
+    if ok_start:
+        F[0], P[0], A[0], dV[0], conv[0] = 0.0, pressure_kPa, 0.0, 0.0, True
+    for k, st in enumerate(pressed, start=1):
+        F[k], P[k], A[k] = st.force, st.pressure * KPA_PER_MPA, st.area
+        dV[k], conv[k] = v_inf - st.volume, True
+    for k in range(len(pressed) + 1 if ok_start else 0, n):
+        msg[k] = path.message
+    s = model.settings
+    info = SolveInfo(converged=path.converged, message=path.message,
+                     y_reached_mm=y[conv][-1] if conv.any() else float("nan"),
+                     instability=path.instability, seconds=seconds,
+                     iterations=path.iterations,
+                     details={"unknowns": model.n, "displacement_unknowns": model.n_u, "sections": [sl.section.kind
+                                                                for sl in model.solids],
+                              "elements": sum(len(sl.section.elements) for sl in model.solids),
+                              "mesh_size_mm": s.mesh_size_mm, "layers": s.layers,
+                              "bulk_ratio": s.bulk_ratio})
+    setup = {"p_i_kPa": pressure_kPa, "reservoir_mm3": reservoir, "polytropic_n": n_poly}
+    return Curve(y, F, P, A, dV, model="wall", geometry=model.geometry.as_dict(),
+                 material=model.material.name, setup=setup, nominal_volume_mm3=v_nominal,
+                 inflated_volume_mm3=v_inf, inflated_height_mm=model.apex(x_inf),
+                 converged=conv, message=tuple(msg), solver=info)

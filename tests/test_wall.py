@@ -1,0 +1,138 @@
+"""The wall model: section geometry, consistent tangents, the exact thick sphere (no locking),
+equilibrium identities, and the load path with gas and plate."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from spsc.cad.geometry import SPSCGeometry, preset
+from spsc.core.errors import ParameterError
+from spsc.fem.material import NearlyIncompressible
+from spsc.fem.section import DOME, MIDDLE, section_mesh
+from spsc.fem.section_solid import SectionSolid
+from spsc.fem.wall import WallModel, WallSettings, inflate, wall_curve
+from spsc.membrane.materials import material, neo_hookean
+
+
+@pytest.mark.parametrize("t", "ABCD")
+def test_section_encloses_the_analytic_cavity(t):
+    g = preset(t)
+    dome = section_mesh(g, DOME)
+    middle = section_mesh(g, MIDDLE)
+    u = np.zeros(dome.n_dofs)
+    v = dome.volume(u) + middle.volume(np.zeros(middle.n_dofs))
+    # quadratic isoparametric edges on the exact profile points: O(h⁴) volume error, ~1e-7 here
+    np.testing.assert_allclose(v, g.cavity_volume(), rtol=2e-6)
+
+
+@pytest.mark.parametrize("kind", [DOME, MIDDLE])
+def test_volume_gradient_and_hessian_are_derivatives(kind):
+    s = section_mesh(preset("D"), kind, size=1.0)
+    rng = np.random.default_rng(3)
+    u = rng.normal(size=s.n_dofs) * 0.05
+    du = rng.normal(size=s.n_dofs)
+    g, H = s.volume_gradient(u)
+    eps = 1e-5
+    fd = (s.volume(u + eps * du) - s.volume(u - eps * du)) / (2 * eps)
+    # V is a cubic polynomial of u: the central difference is exact up to eps² V''' and round-off
+    np.testing.assert_allclose(g @ du, fd, rtol=1e-7)
+    Hdu = np.zeros(s.n_dofs)
+    np.add.at(Hdu, s.cavity_edge_dofs, np.einsum("eab,eb->ea", H, du[s.cavity_edge_dofs]))
+    fd = (s.volume_gradient(u + eps * du, hessian=False)
+          - s.volume_gradient(u - eps * du, hessian=False)) / (2 * eps)
+    np.testing.assert_allclose(Hdu, fd, rtol=0, atol=1e-7 * np.abs(fd).max())
+
+
+@pytest.mark.parametrize("kind, law", [(DOME, "elastic50a"), (MIDDLE, "tpu60a")])
+def test_condensed_tangent_is_the_derivative_of_the_residuals(kind, law):
+    s = section_mesh(preset("B"), kind, size=1.0)
+    solid = SectionSolid(s, NearlyIncompressible(material(law)))
+    rng = np.random.default_rng(1)
+    u = rng.normal(size=s.n_dofs) * 0.03
+    u[s.fixed] = 0.0
+    pc = rng.normal(size=(len(s.elements), 3)) * 0.01
+    r, rp, K, G = solid.residual_tangent(u, pc)
+    du = rng.normal(size=s.n_dofs)
+    du[s.fixed] = 0.0
+    dpc = solid.recover(G, np.zeros_like(rp), du)  # the p-variation slaved to du (r_p fixed)
+    eps = 1e-6
+    rpl, rpp = solid.residual(u + eps * du, pc + eps * dpc)
+    rmi, rpm = solid.residual(u - eps * du, pc - eps * dpc)
+    # K du is dr_u along (du, dp): the condensation is exact, so FD agrees to FD accuracy
+    np.testing.assert_allclose(K @ du, (rpl - rmi) / (2 * eps), rtol=0,
+                               atol=1e-6 * np.abs(K @ du).max())
+    # ... and r_p does not change along it (δr_p = G du − M dp/κ = 0 by construction)
+    np.testing.assert_allclose((rpp - rpm) / (2 * eps), 0.0, atol=1e-8 * np.abs(G).max())
+    assert abs(K - K.T).max() <= 1e-10 * abs(K).max()
+
+
+def _thick_sphere_pressure(la, inner, outer, mu):
+    """Exact incompressible neo-Hookean thick sphere: p(λ_a) = ∫ 2μ(λ − λ⁻⁵)/(λ³ − 1) dλ from
+    the outer to the inner hoop stretch (Ogden, Non-linear Elastic Deformations, sec. 5.2)."""
+    lb = (1 + (la**3 - 1) * inner**3 / outer**3) ** (1 / 3)
+    return quad(lambda lam: 2 * mu * (lam - lam**-5) / (lam**3 - 1), lb, la)[0]
+
+
+def _sphere_error(size, layers, bulk_ratio, la=1.3):
+    inner, t = 10.0, 2.0
+    g = SPSCGeometry(w=inner, h=inner, l=0.0, t0=t, n1=2, n2=2, cy=0.0)
+    p = _thick_sphere_pressure(la, inner, inner + t, 1.0)
+    m = WallModel(g, neo_hookean(1.0), WallSettings(mesh_size_mm=size, layers=layers,
+                                                    bulk_ratio=bulk_ratio), base="sliding")
+    st = inflate(m, p * 1e3, increments=8)
+    return st.volume / (2 / 3 * math.pi * (la * inner) ** 3) - 1.0
+
+
+def test_thick_sphere_matches_the_exact_solution_without_locking():
+    # κ/μ from 2e3 to 2e5: the error is the compressibility, ∝ 1/κ, not a locking error that
+    # would grow with κ (a displacement-only element stiffens as κ → ∞)
+    # the error is e_h + C/κ: successive differences fall by exactly the factor of κ
+    errs = [_sphere_error(1.0, 2, br) for br in (2e3, 2e4, 2e5)]
+    assert abs(errs[0]) < 2e-3
+    np.testing.assert_allclose((errs[0] - errs[1]) / (errs[1] - errs[2]), 10.0, rtol=0.02)
+    # discretisation error at κ/μ = 2e6 (compressibility ~1e-7): O(h³) or better for Q2
+    e2, e1 = _sphere_error(2.0, 1, 2e6), _sphere_error(1.0, 2, 2e6)
+    order = math.log(abs(e2) / abs(e1)) / math.log(2.0)
+    assert abs(e1) < 1e-5 and order > 2.5
+
+
+def test_plate_force_balances_pressure_and_base_reactions():
+    g = preset("A", l=0.0)
+    m = WallModel(g, material("tpu60a"), WallSettings(mesh_size_mm=1.0))
+    c = wall_curve(g, material("tpu60a"), pressure_kPa=40, stroke_mm=1.0, points=3, model=m)
+    assert c.all_converged
+    # vertical equilibrium: the internal forces and the closed-profile volume are invariant
+    # under a rigid vertical shift, so the plate force is exactly the clamped base's reaction
+    from spsc.fem import wall as W
+
+    st = W.inflate(m, 40.0)
+    gas = W.GasLaw(0.04, st.volume)
+    z0 = m.top(st.x)
+    s = W._newton(m, st.x, gas=gas, plate=z0 - 1.0, settings=m.settings)
+    ev = m.evaluate(s.x, s.pressure, tangent=False)
+    base_z = np.nonzero(m.fixed & (np.arange(m.n_u) % 2 == 1))[0]
+    np.testing.assert_allclose(s.force, np.sum(ev.r[base_z]), rtol=1e-9)
+    assert s.force > 0.1
+    np.testing.assert_allclose(s.force, c.force_N[-1], rtol=1e-6)
+
+
+def test_gas_law_holds_along_the_stroke():
+    g = preset("B")
+    c = wall_curve(g, material("tpu60a"), pressure_kPa=40, reservoir_mm3=2000.0, stroke_mm=2,
+                   points=5, settings=WallSettings(mesh_size_mm=1.0))
+    assert c.all_converged and c.model == "wall"
+    v = c.inflated_volume_mm3 - c.volume_change_mm3
+    inv = (c.pressure_kPa + 101.325) * (v + 2000.0)
+    # the closed gas is solved to Newton tolerance: P(V + V_r) constant to ~1e-10
+    np.testing.assert_allclose(inv, inv[0], rtol=1e-9)
+    assert np.all(np.diff(c.force_N) > 0) and np.all(np.diff(c.pressure_kPa) > 0)
+
+
+def test_bad_input_is_a_one_line_error():
+    g = preset("A")
+    with pytest.raises(ParameterError, match="stroke"):
+        wall_curve(g, material("tpu60a"), stroke_mm=20.0)
+    with pytest.raises(ParameterError, match="mesh_size"):
+        WallSettings(mesh_size_mm=0.0)
