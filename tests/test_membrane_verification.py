@@ -1,5 +1,5 @@
 """The box-scheme solver against an independent discretisation of the same membrane problem
-(:mod:`spsc.membrane.fe_check`: linear finite elements on the CAD polyline, total-potential
+(``tests/verify/membrane_fe.py``: linear finite elements on the CAD polyline, total-potential
 minimisation with the relaxed (tension-field) energy, plate as a bound, nodal reactions)."""
 
 import math
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from spsc.cad.geometry import preset
-from spsc.membrane.fe_check import AxisymmetricFE
+from verify.membrane_fe import AxisymmetricFE
 from spsc.membrane.materials import material, mooney_rivlin
 from spsc.membrane.solver import solve
 

@@ -1,13 +1,15 @@
-"""An independent discretisation of the same membrane problem, for verification only.
+"""An independent discretisation of the same membrane problem, for verification only (lives in
+the test tree, not in the installed package).
 
 Linear axisymmetric membrane finite elements on the nominal profile polyline, equilibrium found
-by minimising the total potential Π = U − p V_rev with scipy's L-BFGS-B; the plate is a bound
-η_i ≤ H on the nodal heights (active set handled by the optimiser); the gauge pressure of the
-closed gas is found by an outer root solve of (p + P_amb)(V + V_r)^n = const. Nothing is shared
-with the box-scheme solver but the material's W(I1, I2): the nodes come from the CAD polyline
-(:meth:`SPSCGeometry.profile_points`), stretches from element chords, the stress from the chain
-rule of W (not eqs. 22–23), the volume from exact frustums, and the plate force from the nodal
-reactions (not p·A). Slow (seconds per point): tests only.
+by minimising the total potential Π = U − p V_rev with a projected Newton method (analytic
+gradient, sparse finite-difference Hessian, backtracking line search); the plate is a bound
+η_i ≤ H on the nodal heights (active set); the gauge pressure of the closed gas is found by an
+outer root solve on the invariant P(V + V_r)ⁿ = const of :class:`spsc.core.GasLaw`. Nothing else
+is shared with the box-scheme solver than the material's W(I1, I2) and the gas law: the nodes
+come from the CAD polyline (:meth:`SPSCGeometry.profile_points`), stretches from element chords,
+the stress from the chain rule of W (not eqs. 22–23), the volume from exact frustums, and the
+plate force from the nodal reactions (not p·A). Slow (seconds per point): tests only.
 
 Units: mm, N, MPa, mm³.
 """
@@ -22,12 +24,11 @@ from scipy import optimize, sparse
 from scipy.sparse import linalg as splinalg
 
 from spsc.cad.geometry import SPSCGeometry
-
-from .materials import Material
+from spsc.core import GasLaw
+from spsc.membrane.materials import Material
 
 __all__ = ["AxisymmetricFE", "FEState"]
 
-P_AMB = 0.101325
 _GAUSS = (0.5 - 0.5 / math.sqrt(3.0), 0.5 + 0.5 / math.sqrt(3.0))
 
 
@@ -217,7 +218,7 @@ class AxisymmetricFE:
         is the previous equilibrium (the inflated one, or the last plate position)."""
         p_i = start.p if p_i is None else p_i
         v_i = start.volume if v_i is None else v_i
-        const = (p_i + P_AMB) * (v_i + reservoir) ** n_poly
+        law = GasLaw(p_i, v_i, reservoir, n_poly)
         z0 = self.pack(start.rho, np.minimum(start.eta, H))
         cache = {}
 
@@ -226,7 +227,7 @@ class AxisymmetricFE:
             rho, eta = self.unpack(z)
             V = self.volumes(rho, eta)[1]
             cache.update(z=z, p=p)
-            return (p + P_AMB) * (V + reservoir) ** n_poly / const - 1.0
+            return law.invariant(p, V) / law.constant - 1.0
 
         lo, hi = start.p, start.p * 1.05 + 2e-3
         while gas(hi) < 0:

@@ -1,4 +1,5 @@
-"""Independent axisymmetric solid model of an l = 0 chamber (a dome), for checking the 3D FEM.
+"""Independent axisymmetric solid model of an l = 0 chamber (a dome), for checking the 3D FEM
+(verification only: lives in the test tree, not in the installed package).
 
 Built on FElupe (a test-only dependency, imported lazily), not on this package's FEM: 9-node
 biquadratic quadrilaterals of the meridional section of the wall with FElupe's three-field
@@ -7,10 +8,15 @@ W = μ/2 (Ī1 − 3), U = κ/2 (J̄ − 1)², κ = bulk_ratio · μ), follower p
 clamped base (z = 0) and u_r = 0 on the axis. On top of FElupe's assembled residual and
 tangent, this module adds the two things FElupe does not have in this form:
 
-* a closed isothermal/polytropic gas cavity, P(V + V_r)ⁿ = const, whose rank-one stiffness
-  (dp/dV) g gᵀ is added over the cavity dofs (g = ∂V/∂u, the pressure load per unit pressure);
+* a closed isothermal/polytropic gas cavity (:class:`spsc.core.GasLaw`, P(V + V_r)ⁿ = const),
+  whose rank-one stiffness −(dp/dV) g gᵀ is added over the cavity dofs (g = ∂V/∂u, the
+  pressure load per unit pressure);
 * a frictionless rigid plate, exactly enforced on the outer-surface nodes by an active set (an
   active node's z is prescribed at the plate; it is released when its reaction pulls).
+
+The mesh is the wall section of the 3D model (:func:`spsc.fem.mesh.wall_section`), so both
+discretise the same wall; the cavity volume is this module's own (Gauss quadrature on the P2
+cavity profile), independent of the 3D model's.
 
 Units: mm, MPa, N, mm³. FElupe's axisymmetric integrals carry 2πR, so nodal reactions are the
 forces of whole rings and the plate force is their sum.
@@ -26,25 +32,11 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from spsc.cad.geometry import SPSCGeometry
+from spsc.core import GasLaw
+from spsc.fem.mesh import wall_section
 from spsc.membrane.materials import Material
 
-__all__ = ["AxisymmetricDome", "AxiRecord", "section_grid"]
-
-P_AMB = 0.101325  # MPa
-
-
-def section_grid(g: SPSCGeometry, n_profile: int, layers: int) -> np.ndarray:
-    """Fine (2n+1, 2·layers+1, 2) grid of (r, z) points of the wall section: the cavity
-    profile (apex on the axis first, base last) to the outer profile, straight through the
-    thickness; points spaced by arc length along the outer profile."""
-    inner, _ = g.profile_points(2 * n_profile + 1)
-    outer = g.outer_profile_points(4001)
-    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(outer, axis=0).T))])
-    t = np.linspace(0.0, 1.0, 2 * n_profile + 1) * s[-1]
-    outer = np.column_stack([np.interp(t, s, outer[:, 0]), np.interp(t, s, outer[:, 1])])
-    outer[0, 0], outer[-1, 1], inner[0, 0], inner[-1, 1] = 0.0, 0.0, 0.0, 0.0
-    f = np.linspace(0.0, 1.0, 2 * layers + 1)[None, :, None]
-    return inner[:, None, :] + f * (outer - inner)[:, None, :]
+__all__ = ["AxisymmetricDome", "AxiRecord"]
 
 
 def _quad9(shape):
@@ -87,7 +79,7 @@ class AxisymmetricDome:
         if g.l != 0:
             raise ValueError(f"l = {g.l} mm: the axisymmetric model needs l = 0")
         self.fem, self.g = fem, g
-        grid = section_grid(g, n_profile, layers)
+        grid = wall_section(g, n_profile, layers)  # (r, z), apex first
         shape = grid.shape[:2]
         pts = grid.reshape(-1, 2)[:, ::-1].copy()  # FElupe's order: (axial z, radial r)
         cells = _quad9(shape)
@@ -163,7 +155,10 @@ class AxisymmetricDome:
         return float(self.positions(x)[self.cavity_points[0], 1])
 
     # -- residual and tangent -------------------------------------------------------------------
-    def _assemble(self, x, p, tangent=True):
+    def assemble(self, x, p, tangent=True):
+        """Residual r (N), tangent K (None unless ``tangent``) and the pressure load per unit
+        pressure g = ∂V/∂u (mm², on the displacement dofs) at state ``x`` under the follower
+        gauge pressure ``p`` (MPa) on the cavity."""
         self._set(x)
         r = np.asarray(self.solid.assemble.vector(self.field).todense()).ravel()
         self.pressure_item.update(1.0)
@@ -180,8 +175,8 @@ class AxisymmetricDome:
         return r, (K - p * Kp).tocsr(), g
 
     def _newton(self, x, load, active, *, tol=1e-9, max_it=30):
-        """Solve for the load ``(p, gas, plate)``; gas: None or (C, V_r, n) with
-        (p + P_amb)(V + V_r)ⁿ = C. Returns x, the active contact points, the gauge pressure
+        """Solve for the load ``(p, gas, plate)``; gas: None (``p`` prescribed) or the
+        :class:`~spsc.core.GasLaw` of the closed cavity. Returns x, the active contact points, the gauge pressure
         (MPa) and the residual (whose −z components at active points are their ring forces)."""
         p_pres, gas, plate = load
         x = x.copy()
@@ -191,12 +186,10 @@ class AxisymmetricDome:
         for it in range(max_it):
             V = self.volume(x)
             if gas is not None:
-                C, Vr, n = gas
-                p = C / (V + Vr) ** n - P_AMB
-                dpdV = -n * C / (V + Vr) ** (n + 1)
+                p, dpdV = float(gas.pressure(V)), float(gas.dpressure(V))
             else:
                 p, dpdV = p_pres, 0.0
-            r, K, g = self._assemble(x, p)
+            r, K, g = self.assemble(x, p)
             presc = 2 * active  # the axial (z) component
             free = ~self.fixed
             free[presc] = False
@@ -256,8 +249,7 @@ class AxisymmetricDome:
         the pressure stays prescribed) and lower the plate from first contact by ``stroke`` mm;
         returns one AxiRecord per increment."""
         V0 = self.volume(x)
-        gas_law = ((pressure + P_AMB) * (V0 + reservoir) ** polytropic_index, reservoir,
-                   polytropic_index) if gas else None
+        gas_law = GasLaw(pressure, V0, reservoir, polytropic_index) if gas else None
         z0 = float(self.positions(x)[self.contact_points, 1].max())
         active = np.zeros(0, int)
         out = []
