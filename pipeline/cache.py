@@ -13,6 +13,8 @@ import shutil
 import tempfile
 from pathlib import Path
 
+from spsc.core.jsonio import dumps, write_json
+
 __all__ = ["Cache", "DEFAULT_ROOT"]
 
 DEFAULT_ROOT = Path("build/cache")
@@ -51,15 +53,15 @@ class Cache:
         return payload
 
     def put(self, run, compute) -> dict:
-        """``compute(directory)`` → payload dict (JSON-able); stored with the run's key and
-        inputs, atomically. Returns the stored payload (with ``"dir"``)."""
+        """``compute(directory)`` → payload dict (JSON-able; NaN stored as null); stored with
+        the run's key and inputs, atomically. Returns the stored payload (with ``"dir"``)."""
         self.runs_dir.mkdir(parents=True, exist_ok=True)
         final = self.entry(run)
         tmp = Path(tempfile.mkdtemp(prefix=f".{final.name}.", dir=self.runs_dir))
         try:
             payload = dict(compute(tmp))
             payload.update(key=run.key(), inputs=run.inputs(), label=run.label)
-            (tmp / "result.json").write_text(json.dumps(payload, indent=1, default=_plain) + "\n", encoding="utf-8")
+            write_json(tmp / "result.json", payload)
             if final.exists():
                 shutil.rmtree(final)
             os.replace(tmp, final)
@@ -67,16 +69,5 @@ class Cache:
             shutil.rmtree(tmp, ignore_errors=True)
             raise
         payload["dir"] = str(final)
-        return json.loads(json.dumps(payload, default=_plain))
+        return json.loads(dumps(payload))  # exactly what a later get() reads
 
-
-def _plain(v):
-    import numpy as np
-
-    if isinstance(v, np.ndarray):
-        return v.tolist()
-    if isinstance(v, (np.floating, np.integer, np.bool_)):
-        return v.item()
-    if isinstance(v, Path):
-        return str(v)
-    raise TypeError(f"not JSON-able: {type(v).__name__}")

@@ -1,12 +1,18 @@
 """``spsc report``: run the validation study (cached) and write the HTML report.
 
     spsc report [--quick] [--out DIR] [--cache DIR] [--no-fem] [--types ABCD] [--quiet]
+                [--allow-dirty]
 
 Default: the full study into ``reports/validation/``; ``--quick`` (coarse FEM mesh, fewer
 points and pressures; CI) into ``build/report-quick/``. Runs are cached under
 ``build/cache/runs`` by a hash of their inputs and of the code that computes them, so a second
 call with nothing changed takes seconds. A failed run is listed in the report and the others
 go on. Exit 0 when every run succeeded, 1 when some failed (the report is still written).
+
+Provenance: the report names the commit it was built from. Into the committed
+``reports/validation/`` it is built only from a clean tree (exit 2 otherwise) unless
+``--allow-dirty``; a report from a dirty tree (allowed anywhere else) says in big letters that
+it is NOT REPRODUCIBLE.
 """
 
 from __future__ import annotations
@@ -32,11 +38,15 @@ def register(subparsers) -> None:
     p.add_argument("--no-fem", action="store_true", help="membrane and simplified models only")
     p.add_argument("--types", help="subset of the types, e.g. BD (default ABCD)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--allow-dirty", action="store_true",
+                   help="build the committed report from uncommitted changes (it is then "
+                        "marked NOT REPRODUCIBLE)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     from .cache import Cache
+    from .provenance import committed_report_dir, provenance
     from .report import build_report
     from .runner import run_all
     from .study import full_study, quick_study
@@ -48,23 +58,49 @@ def run(args) -> int:
     if args.types:
         study = study.replace(types=tuple(args.types.upper()))
     out = Path(args.out) if args.out else DEFAULT_OUT[bool(args.quick)]
-    argv = sys.argv[1:] if sys.argv and Path(sys.argv[0]).name == "spsc" else None
-    command = "spsc " + (shlex.join(argv) if argv else _reconstruct(args))
-    if os.environ.get("MAKELEVEL"):  # started by make: say so, the way the user typed it
-        command = f"make report{' QUICK=1' if args.quick else ''}  ({command})"
+    committed = _same_dir(out, committed_report_dir())
+    if committed and not args.allow_dirty and not _clean_or_say_why(provenance()):
+        return 2
     cache = Cache(args.cache)
     outcomes = run_all(study.runs(), cache, progress=not args.quiet)
+    source = provenance()  # as it is when the report is written: the tree may have changed
+    if committed and not args.allow_dirty and not _clean_or_say_why(source):
+        return 2
     out.mkdir(parents=True, exist_ok=True)
-    path = build_report(study, outcomes, out, command=command, fig_cache=cache.root / "figures",
+    path = build_report(study, outcomes, out, command=_command(args),
+                        fig_cache=cache.root / "figures", source=source,
                         wall_seconds=time.perf_counter() - t0)
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
           f"{len(failed)} failed) in {time.perf_counter() - t0:.1f} s")
+    if not source.clean:
+        print(f"spsc report: warning: NOT REPRODUCIBLE, built from {source.describe()}",
+              file=sys.stderr)
     if failed:
         print(f"spsc report: failed runs: {', '.join(failed)}", file=sys.stderr)
         return 1
     return 0
+
+
+def _clean_or_say_why(source) -> bool:
+    if source.clean:
+        return True
+    print(f"spsc report: error: the committed report is built from a clean tree only; this is "
+          f"{source.describe()} (commit first, or pass --allow-dirty)", file=sys.stderr)
+    return False
+
+
+def _same_dir(a: Path, b: Path | None) -> bool:
+    return b is not None and a.resolve() == b.resolve()
+
+
+def _command(args) -> str:
+    argv = sys.argv[1:] if sys.argv and Path(sys.argv[0]).name == "spsc" else None
+    command = "spsc " + (shlex.join(argv) if argv else _reconstruct(args))
+    if os.environ.get("MAKELEVEL"):  # started by make: say so, the way the user typed it
+        command = f"make report{' QUICK=1' if args.quick else ''}  ({command})"
+    return command
 
 
 def _reconstruct(args) -> str:
@@ -78,4 +114,6 @@ def _reconstruct(args) -> str:
         parts += ["--cache", args.cache]
     if args.no_fem:
         parts.append("--no-fem")
+    if args.allow_dirty:
+        parts.append("--allow-dirty")
     return shlex.join(parts)

@@ -1,16 +1,23 @@
-"""Figures of the validation report: curves of the three models, deformed shapes (FEM render
+"""Figures of the validation report: curves of the models, deformed shapes (FEM render
 from its VTU beside the membrane meridian), mesh convergence. PNG files, matplotlib (Agg) and
 pyvista off screen; no display needed."""
 
 from __future__ import annotations
 
+import hashlib
+import json
+import shutil
+import sys
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["curves_figure", "render_vtu", "shapes_figure", "convergence_figure"]
+from .metrics import interp
 
-_COLORS = {"fem": "C3", "membrane": "C0", "simplified": "C2", "f_el": "0.45"}
+__all__ = ["FigureCache", "curves_figure", "render_vtu", "shapes_figure", "shapes_panel",
+           "convergence_figure"]
+
+_F_EL = {"color": "0.45", "label": "FEM open chamber F_el"}
 
 
 def _plt():
@@ -22,57 +29,44 @@ def _plt():
     return plt
 
 
-def curves_figure(path, title: str, *, fem=None, membrane=None, simplified=None, f_el=None):
-    """F(y), P(y), A(y), ΔV(y) of the models on one plot each. ``membrane`` and
-    ``simplified`` force is p·A plus the FEM open-chamber F_el (interpolated on their grid)
-    when ``f_el`` is given; F_el itself is drawn too. Curves may be None (failed runs)."""
+_PANELS = (("force_N", "force F (N)"), ("pressure_kPa", "gauge pressure P (kPa)"),
+           ("contact_area_mm2", "contact area A (mm²)"),
+           ("volume_change_mm3", "volume change ΔV (mm³)"))
+
+
+def curves_figure(path, title: str, curves, *, f_el=None) -> Path:
+    """F(y), P(y), A(y), ΔV(y) of the models on one plot each. ``curves``: (Model, Curve or
+    None) pairs (None: a failed run, left out); a model without bending gets F_el(y) (the FEM
+    open chamber, interpolated on its grid) added to its force p·A, which is drawn faintly."""
     plt = _plt()
     fig, ax = plt.subplots(2, 2, figsize=(10, 7), constrained_layout=True)
-    panels = (("force_N", "force F (N)"), ("pressure_kPa", "gauge pressure P (kPa)"),
-              ("contact_area_mm2", "contact area A (mm²)"),
-              ("volume_change_mm3", "volume change ΔV (mm³)"))
     fel = None if f_el is None else interp(f_el.y_mm, f_el.force_N)
-    for a, (col, lab) in zip(ax.flat, panels):
-        for name, c, style in (("membrane", membrane, "-"), ("simplified", simplified, "--")):
-            if c is None:
-                continue
-            v = getattr(c, col)
-            label = name
-            if col == "force_N" and fel is not None:
-                a.plot(c.y_mm, v, style, color=_COLORS[name], lw=0.8, alpha=0.5,
-                       label=f"{name} p·A")
-                v = v + fel(c.y_mm)
-                label = f"{name} p·A + FEM F_el"
-            a.plot(c.y_mm, v, style, color=_COLORS[name], label=label)
-        if fem is not None:
-            a.plot(fem.y_mm, getattr(fem, col), "o", color=_COLORS["fem"], ms=4, label="FEM")
+    for a, (col, lab) in zip(ax.flat, _PANELS):
+        for m, c in curves:
+            if c is not None:
+                _draw(a, m, c, col, fel)
         if col == "force_N" and f_el is not None:
-            a.plot(f_el.y_mm, f_el.force_N, "s:", color=_COLORS["f_el"], ms=3,
-                   label="FEM open chamber F_el")
+            a.plot(f_el.y_mm, f_el.force_N, "s:", color=_F_EL["color"], ms=3,
+                   label=_F_EL["label"])
         a.set_xlabel("plate travel y (mm)")
         a.set_ylabel(lab)
         a.grid(alpha=0.3)
-        a.legend(fontsize=7)
+        if a.get_legend_handles_labels()[0]:  # every run of the panel may have failed
+            a.legend(fontsize=7)
     fig.suptitle(title, fontsize=10)
     fig.savefig(path, dpi=90)
     plt.close(fig)
     return Path(path)
 
 
-def interp(y, v):
-    """Linear interpolation of the finite samples of v(y); NaN outside them."""
-    y, v = np.asarray(y, float), np.asarray(v, float)
-    ok = np.isfinite(v)
-
-    def f(x):
-        x = np.asarray(x, float)
-        if ok.sum() < 2:
-            return np.full_like(x, np.nan)
-        out = np.interp(x, y[ok], v[ok])
-        out[(x < y[ok][0] - 1e-12) | (x > y[ok][-1] + 1e-12)] = np.nan
-        return out
-
-    return f
+def _draw(a, m, c, col, fel) -> None:
+    v, label = getattr(c, col), m.name
+    marker = m.style not in ("-", "--", "-.", ":")
+    kw = {"ms": 4} if marker else {}
+    if col == "force_N" and fel is not None and not m.bending:
+        a.plot(c.y_mm, v, m.style, color=m.color, lw=0.8, alpha=0.5, label=f"{m.name} p·A", **kw)
+        v, label = v + fel(c.y_mm), f"{m.name} p·A + FEM F_el"
+    a.plot(c.y_mm, v, m.style, color=m.color, label=label, **kw)
 
 
 def render_vtu(vtu, png, *, plate: bool = False, window=(640, 480)) -> Path:
@@ -171,3 +165,64 @@ def convergence_figure(path, title: str, curves) -> Path:
     fig.savefig(path, dpi=90)
     plt.close(fig)
     return Path(path)
+
+
+def shapes_panel(path, title: str, mem_payload, fem_payload) -> Path:
+    """Renders of the FEM VTUs (inflated, pressed) beside the meridians, into ``path``."""
+    renders = []
+    if fem_payload:
+        d = Path(fem_payload["dir"])
+        for k, cap in (("inflated", "FEM inflated"), ("pressed", "FEM pressed")):
+            name = fem_payload.get("vtu", {}).get(k)
+            if not name or not (d / name).is_file():
+                continue
+            png = path.with_name(f"render-{path.stem}-{k}.png")
+            try:
+                render_vtu(d / name, png, plate=k == "pressed")
+            except Exception as exc:  # noqa: BLE001 — a failed render must not stop the report
+                print(f"spsc report: render of {d / name} failed: {exc}", file=sys.stderr)
+                continue
+            if k == "pressed" and fem_payload.get("pressed_y_mm") is not None:
+                cap += f", y = {fem_payload['pressed_y_mm']:g} mm"
+            renders.append((png, cap))
+    mer = (mem_payload or {}).get("meridians")
+    plates = [max(mer["pressed"]["eta"])] if mer and mer.get("pressed") else []
+    shapes_figure(path, "Deformed shapes — " + title, renders=renders, membrane=mer,
+                  fem=(fem_payload or {}).get("sections"), plates=plates)
+    for png, _ in renders:  # composed into the figure; the HTML shows only that
+        png.unlink(missing_ok=True)
+    return Path(path)
+
+
+#: the code a figure depends on besides its runs: drawing, interpolation, model styles, layout
+_FIGURE_SOURCES = ("figures.py", "metrics.py", "study.py", "render_sections.py")
+
+
+class FigureCache:
+    """Figures kept by a hash of what they show: the runs' cache keys (``run_key(run)``, None
+    for a missing run), extra inputs (titles) and the plotting code. ``root`` None: always
+    draw."""
+
+    def __init__(self, run_key, root=None):
+        self.run_key = run_key
+        self.root = None if root is None else Path(root)
+        here = Path(__file__).parent
+        h = hashlib.sha256()
+        for name in _FIGURE_SOURCES:
+            h.update((here / name).read_bytes())
+        self.code = h.hexdigest()[:16]
+
+    def draw(self, path: Path, runs, make, *extra) -> Path:
+        """``make(path)`` unless a figure of the same runs, extra inputs and code is cached."""
+        parts = [path.name, list(map(str, extra)), self.code]
+        parts += [self.run_key(r) if r is not None else None for r in runs]
+        key = hashlib.sha256(json.dumps(parts, default=str).encode()).hexdigest()[:16]
+        cached = None if self.root is None else self.root / f"{path.stem}-{key}.png"
+        if cached is not None and cached.is_file():
+            shutil.copyfile(cached, path)
+            return path
+        make(path)
+        if cached is not None and path.is_file():
+            cached.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(path, cached)
+        return path

@@ -9,25 +9,31 @@ where not reached) and message are stored like any other.
 
 from __future__ import annotations
 
+import functools
+import importlib
 import math
 import sys
 import time
 import traceback
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
+from spsc.core.curve import Curve, SolveInfo
+
 from .cache import Cache
 from .study import Run
 
-__all__ = ["Outcome", "compute", "run_all"]
+__all__ = ["Outcome", "compute", "curve_model", "run_all"]
 
 
 @dataclass(frozen=True, eq=False)
 class Outcome:
     """What became of a run: ``ok`` (a payload exists), ``cached`` (read, not computed),
-    ``error`` (why it failed), ``seconds`` (compute time of the payload, or of the failure)."""
+    ``error`` (why it failed), ``seconds`` (compute time of the payload, or of the failure).
+    The payload holds the model's curve JSON (``Curve.to_dict()``, with its ``solver`` block)
+    under ``curve`` and model-specific files and shapes beside it."""
 
     run: Run
     ok: bool
@@ -36,11 +42,14 @@ class Outcome:
     seconds: float = 0.0
     cached: bool = False
 
-    @property
-    def curve(self):
-        from spsc.core.curve import Curve
-
+    @functools.cached_property
+    def curve(self) -> Curve | None:
         return Curve.from_dict(self.payload["curve"]) if self.ok else None
+
+    @property
+    def solver(self) -> SolveInfo | None:
+        """How the solve went (converged, message, instability, iterations, details)."""
+        return self.curve.solver if self.ok else None
 
     @property
     def dir(self) -> Path | None:
@@ -54,14 +63,13 @@ def _meridian(shape) -> dict | None:
     return {"x": np.round(x, 6), "rho": np.round(rho, 6), "eta": np.round(eta, 6)}
 
 
-def _membrane(run: Run, directory: Path, progress) -> dict:
+def _membrane(run: Run, directory: Path, progress, mesh_dir) -> dict:
     from spsc.membrane.solver import solve
 
     r = solve(run.geometry(), run.material, pressure_kPa=run.pressure_kPa,
               reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm, points=run.points)
     last = max((i for i, s in enumerate(r.shapes) if s is not None), default=None)
-    return {"curve": r.curve.to_dict(), "converged": r.converged, "message": r.message,
-            "notes": list(r.notes), "newton_iterations": r.newton_iterations,
+    return {"curve": r.curve.to_dict(),
             "meridians": {"nominal": {"x": r.inflated.x, "y": r.inflated.y}
                           if r.inflated is not None else None,
                           "inflated": _meridian(r.inflated),
@@ -69,13 +77,18 @@ def _membrane(run: Run, directory: Path, progress) -> dict:
                           "pressed_y_mm": float(r.curve.y_mm[last]) if last else None}}
 
 
-def _simplified(run: Run, directory: Path, progress) -> dict:
-    from spsc.membrane.simplified import simplified_curve
+def curve_model(module: str, function: str):
+    """The compute entry of a model that is a function returning a :class:`Curve` from a
+    geometry and the membrane's setup arguments (``material``, ``pressure_kPa``,
+    ``reservoir_mm3``, ``stroke_mm``, ``points``): the simplified model, the wall model."""
 
-    c = simplified_curve(run.geometry(), pressure_kPa=run.pressure_kPa,
-                         reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm,
-                         points=run.points, material=run.material)
-    return {"curve": c.to_dict(), "converged": c.all_converged, "message": ""}
+    def compute(run: Run, directory: Path, progress, mesh_dir) -> dict:
+        fn = getattr(importlib.import_module(module), function)
+        c = fn(run.geometry(), material=run.material, pressure_kPa=run.pressure_kPa,
+               reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm, points=run.points)
+        return {"curve": c.to_dict()}
+
+    return compute
 
 
 def _section(model, x, z_centre: float) -> dict:
@@ -91,9 +104,7 @@ def _section(model, x, z_centre: float) -> dict:
             "rho": np.round(X[sel, 0] + u[:, 0], 6), "eta": np.round(X[sel, 2] + u[:, 2], 6)}
 
 
-def _fem(run: Run, directory: Path, progress, mesh_dir=None) -> dict:
-    from dataclasses import replace as dc_replace
-
+def _fem(run: Run, directory: Path, progress, mesh_dir) -> dict:
     from spsc.fem.run import ChamberRun, run_chamber, write_vtu
     from spsc.membrane.materials import material
 
@@ -101,32 +112,37 @@ def _fem(run: Run, directory: Path, progress, mesh_dir=None) -> dict:
                       reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm,
                       points=run.points, size_mm=run.mesh_mm, layers=run.layers)
     curve, result, model = run_chamber(spec, progress=progress, cache_dir=mesh_dir)
-    infl = result.of("inflate")
-    presses = result.of("press")
+    infl, presses = result.of("inflate"), result.of("press")
     keep = {"inflated": infl[-1] if infl else result.records[0]}
     if presses:
         keep["pressed"] = presses[-1]
-    paths = write_vtu(model, dc_replace(result, records=list(keep.values())), directory)
-    vtu = {name: p.name for name, p in zip(keep, paths)}
-    return {"curve": curve.to_dict(), "converged": result.ok, "message": result.message,
-            "instability": result.instability, "dofs": model.disc.n,
-            "tetrahedra": model.mesh.n_tets,
-            "newton_iterations": sum(r.iterations for r in result.records),
-            "vtu": vtu, "pressed_y_mm": float(curve.y_mm[len(presses)]) if presses else None,
+    paths = write_vtu(model, replace(result, records=list(keep.values())), directory)
+    info = curve.solver  # the run's facts the curve's protocol may not carry yet
+    info = replace(info, instability=info.instability or result.instability,
+                   iterations=info.iterations or sum(r.iterations for r in result.records),
+                   details={"dofs": model.disc.n, "tetrahedra": model.mesh.n_tets,
+                            **info.details})
+    return {"curve": curve.replace(solver=info).to_dict(),
+            "vtu": {name: p.name for name, p in zip(keep, paths)},
+            "pressed_y_mm": float(curve.y_mm[len(presses)]) if presses else None,
             "sections": {name: _section(model, rec.x, run.geometry().z_widest)
                          for name, rec in keep.items()}}
 
 
-_COMPUTE = {"membrane": _membrane, "simplified": _simplified, "fem": _fem}
+#: model name -> compute(run, directory, progress, mesh_dir) -> payload; one entry per model
+#: of :data:`~.study.MODELS`
+_COMPUTE = {
+    "membrane": _membrane,
+    "simplified": curve_model("spsc.membrane.simplified", "simplified_curve"),
+    "fem": _fem,
+}
 
 
 def compute(run: Run, directory: Path, progress=None, *, mesh_dir=None) -> dict:
-    """Compute ``run`` (files into ``directory``) → JSON-able payload with ``seconds``."""
+    """Compute ``run`` (files into ``directory``; FEM meshes cached in ``mesh_dir``) →
+    JSON-able payload with ``seconds``."""
     t0 = time.perf_counter()
-    if run.model == "fem":
-        out = _fem(run, directory, progress, mesh_dir=mesh_dir)
-    else:
-        out = _COMPUTE[run.model](run, directory, progress)
+    out = _COMPUTE[run.model](run, directory, progress, mesh_dir)
     out["seconds"] = round(time.perf_counter() - t0, 3)
     return out
 
@@ -157,8 +173,8 @@ def run_all(runs, cache: Cache, *, compute=compute, progress: bool = True,
                                        seconds=float(hit.get("seconds", math.nan)))
                     bar.update(1)
                     continue
-                payload = cache.put(run, lambda d, _run=run: _call(compute, _run, d, step,
-                                                                   cache.mesh_dir))
+                payload = cache.put(run, lambda d, _run=run: compute(
+                    _run, d, step, mesh_dir=cache.mesh_dir))
                 out[run] = Outcome(run, True, payload,
                                    seconds=float(payload.get("seconds", time.perf_counter() - t0)))
             except Exception as exc:  # noqa: BLE001 — isolate any failure of one run
@@ -174,8 +190,3 @@ def run_all(runs, cache: Cache, *, compute=compute, progress: bool = True,
         bar.close()
     return out
 
-
-def _call(fn, run, directory, step, mesh_dir):
-    if fn is compute:
-        return fn(run, directory, step, mesh_dir=mesh_dir)
-    return fn(run, directory, step)

@@ -20,17 +20,49 @@ from pathlib import Path
 from spsc.core.errors import ParameterError, require
 from spsc.cad.geometry import TYPES, SPSCGeometry, preset
 
-__all__ = ["MODELS", "Run", "Study", "code_version", "source_closure", "quick_study",
-           "full_study"]
+__all__ = ["MODELS", "Model", "Run", "Study", "code_version", "model", "source_closure",
+           "quick_study", "full_study"]
 
-#: model -> the module that computes it (its import closure is the run's code version)
-MODELS = {
-    "membrane": "spsc.membrane.solver",
-    "simplified": "spsc.membrane.simplified",
-    "fem": "spsc.fem.run",
-}
-#: bump when the runner changes what it stores for a run
-PAYLOAD_VERSION = 1
+
+@dataclass(frozen=True)
+class Model:
+    """A model the study runs and the report shows; a new model is one entry of
+    :data:`MODELS` (plus its compute entry in :mod:`.runner`).
+
+    name : ``Run.model``, the runner's compute entry and the report's label.
+    module : the module that computes it; its import closure is the run's code version.
+    sweep : True: run at every setup pressure of the study on the fine grid (the models with the
+        membrane's setup arguments); False: the FEM — the comparison pressure on its own grid
+        and mesh, plus the open chamber (F_el).
+    bending : the model's force includes the wall's own structural force; False: its force is
+        p·A and the report adds the FEM's F_el(y) to it (DESIGN.md).
+    color, style : how its curves are drawn (matplotlib colour and format).
+    """
+
+    name: str
+    module: str
+    sweep: bool = True
+    bending: bool = False
+    color: str = "C1"
+    style: str = "-."
+
+
+#: every model, in the order the report shows them
+MODELS = (
+    Model("membrane", "spsc.membrane.solver", color="C0", style="-"),
+    Model("simplified", "spsc.membrane.simplified", color="C2", style="--"),
+    Model("fem", "spsc.fem.run", sweep=False, bending=True, color="C3", style="o"),
+)
+#: bump when the runner changes what it stores for a run (2: the curve's JSON with its solver)
+PAYLOAD_VERSION = 2
+
+
+def model(name: str) -> Model:
+    """The :class:`Model` called ``name``."""
+    for m in MODELS:
+        if m.name == name:
+            return m
+    raise ParameterError("model", name, "one of " + ", ".join(m.name for m in MODELS))
 
 
 @dataclass(frozen=True)
@@ -52,13 +84,12 @@ class Run:
     size: str = "table1"
 
     def __post_init__(self):
-        if self.model not in MODELS:
-            raise ParameterError("model", self.model, "one of " + ", ".join(MODELS))
+        model(self.model)
         require("pressure", self.pressure_kPa, ge=0, unit="kPa gauge")
         require("reservoir", self.reservoir_mm3, ge=0, unit="mm³")
         require("stroke", self.stroke_mm, gt=0, unit="mm")
         require("points", self.points, ge=2)
-        if self.model == "fem":
+        if not model(self.model).sweep:
             require("mesh size", self.mesh_mm, gt=0, unit="mm")
             require("layers", self.layers, ge=1)
         elif self.mesh_mm is not None or self.layers is not None:
@@ -82,7 +113,7 @@ class Run:
         if self.mode == "low":
             s += f"-vr{self.reservoir_mm3:g}"
         s += f"-y{self.stroke_mm:g}x{self.points}"
-        if self.model == "fem":
+        if self.mesh_mm is not None:
             s += f"-h{self.mesh_mm:g}l{self.layers}"
         return s
 
@@ -142,11 +173,11 @@ def source_closure(module: str) -> tuple[Path, ...]:
 
 
 @functools.lru_cache(maxsize=None)
-def code_version(model: str) -> str:
+def code_version(name: str) -> str:
     """Hash of the source files the model's computation imports (not the git commit, so an
     unrelated edit or commit keeps the cache)."""
     h = hashlib.sha256()
-    for path in source_closure(MODELS[model]):
+    for path in source_closure(model(name).module):
         h.update(path.name.encode())
         h.update(path.read_bytes())
     return h.hexdigest()[:16]
@@ -204,7 +235,13 @@ class Study:
         return tuple(sorted(set(self.pressures_kPa) | {self.compare_pressure_kPa}))
 
     # -- the runs ---------------------------------------------------------------------------
+    @property
+    def sweep_models(self) -> tuple[Model, ...]:
+        """The models run at every setup pressure (membrane, simplified, …)."""
+        return tuple(m for m in MODELS if m.sweep)
+
     def membrane(self, model: str, type_: str, material: str, pressure: float, mode: str) -> Run:
+        """The run of a sweep ``model`` (membrane, simplified, …) at one setup pressure."""
         return Run(model, type_, material, float(pressure), self.reservoir(mode),
                    self.stroke_mm, self.membrane_points)
 
@@ -233,8 +270,7 @@ class Study:
             for t in self.types:
                 for mode in self.mode_names:
                     for p in self.all_pressures:
-                        for model in ("membrane", "simplified"):
-                            out.append(self.membrane(model, t, mat, p, mode))
+                        out += [self.membrane(m.name, t, mat, p, mode) for m in self.sweep_models]
         if self.fem:
             fem = []
             for mat in self.materials:

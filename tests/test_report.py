@@ -1,6 +1,7 @@
 """The validation report: its metrics on curves with known answers, the HTML (offline, local
 figures, failed runs listed) and the ``spsc report`` verb."""
 
+import html
 import json
 import re
 from pathlib import Path
@@ -11,44 +12,28 @@ import pytest
 from spsc.core.curve import Curve
 from spsc.pipeline.cache import Cache
 from spsc.pipeline.cli import main
-from spsc.pipeline.report import PAPER, build_report, errors, headline, with_f_el
+from spsc.pipeline.paper_bench import paper_bench
+from spsc.pipeline.provenance import Provenance
+from spsc.pipeline.report import build_report
 from spsc.pipeline.runner import run_all
 from spsc.pipeline.study import Run, Study
 
-
-def _curve(y, F, P, A=None, dV=None, model="membrane"):
-    y = np.asarray(y, float)
-    z = np.zeros_like(y)
-    return Curve(y, F, P, z if A is None else A, z if dV is None else dV, model=model)
+PAPER_TEXT = Path(__file__).resolve().parents[2] / "shared" / "paper" / "spsc-paper.txt"
+CLEAN = Provenance("0123456789abcdef0123456789abcdef01234567")
 
 
-def test_headline_is_the_mean_slope_over_stroke_pressures_and_types():
-    y = np.linspace(0, 6, 13)
-    # type X: slopes 2 and 4 N/mm at two pressures; type Y: 6 N/mm; sensitivities 1, 3, 5
-    cs = {"X": [_curve(y, 2 * y, 1 * y), _curve(y, 4 * y, 3 * y)], "Y": [_curve(y, 6 * y, 5 * y)]}
-    h = headline(cs)
-    assert h["types"]["X"]["stiffness"] == pytest.approx(3.0, rel=1e-12)
-    assert h["types"]["X"]["sensitivity"] == pytest.approx(2.0, rel=1e-12)
-    assert h["stiffness"] == pytest.approx(4.5, rel=1e-12)  # (3 + 6) / 2: types weigh equally
-    assert h["sensitivity"] == pytest.approx(3.5, rel=1e-12)
-
-
-def test_errors_at_the_fem_points_and_f_el_added_on_the_membrane_grid():
-    yf = np.linspace(0, 6, 4)
-    ym = np.linspace(0, 6, 7)
-    fem = _curve(yf, 3 * yf, 40 + yf, model="fem")
-    f_el = _curve(yf, yf, 0 * yf, model="fem")
-    mem = _curve(ym, 2 * ym, 40 + ym + 0.5 * (ym == 6))
-    comb = with_f_el(mem, f_el)
-    np.testing.assert_allclose(comb.force_N, 3 * ym, rtol=1e-12)
-    e = errors(fem, comb)
-    assert e["force_N"]["max"] == pytest.approx(0.0, abs=1e-12)
-    assert e["pressure_kPa"]["max"] == pytest.approx(0.5)
-    assert e["pressure_kPa"]["rms"] == pytest.approx(np.sqrt(0.25 / 4))
-    assert e["pressure_kPa"]["n"] == 4
-    # a non-converged FEM point is left out, never compared
-    fem_nan = fem.replace(pressure_kPa=np.where(yf == 6, np.nan, fem.pressure_kPa))
-    assert errors(fem_nan, comb)["pressure_kPa"]["max"] == pytest.approx(0.0, abs=1e-12)
+def test_paper_figures_are_quoted_from_the_text():
+    """Every number is printed in its quoted sentence, and the sentence is in the paper."""
+    bench = paper_bench()
+    assert {f.key for f in bench.figures} == {"stiffness_low", "stiffness_high",
+                                              "sensitivity_low", "sensitivity_high", "jnd_mm"}
+    text = " ".join(PAPER_TEXT.read_text(encoding="utf-8").split()) \
+        if PAPER_TEXT.is_file() else None
+    for f in bench.figures:
+        assert float(f.printed) == f.value and f"{f.printed} {f.unit}" in f.quote, f.key
+        assert "sec. " in f.cite
+        if text is not None:
+            assert f.quote in text, f.key
 
 
 SMALL = Study(name="small", types=("B",), pressures_kPa=(10.0, 40.0), fem_points=4, fem=False)
@@ -58,7 +43,7 @@ def test_report_is_offline_html_with_local_figures_and_lists_failures(tmp_path):
     bad = Run("membrane", "B", "no-such-material", 40, 0, 6, 7)
     outcomes = run_all(SMALL.runs() + [bad], Cache(tmp_path / "cache"), progress=False)
     out = tmp_path / "report"
-    path = build_report(SMALL, outcomes, out, command="spsc report --test")
+    path = build_report(SMALL, outcomes, out, command="spsc report --test", source=CLEAN)
     page = path.read_text(encoding="utf-8")
     srcs = re.findall(r'src="([^"]+)"', page)
     assert srcs and all((out / s).is_file() for s in srcs)
@@ -67,16 +52,72 @@ def test_report_is_offline_html_with_local_figures_and_lists_failures(tmp_path):
     assert "spsc report --test" in page and "numpy" in page and "scipy" in page
     for word in ("Headline", "JND", "paper, bench"):
         assert word in page
+    assert CLEAN.commit in page and "NOT REPRODUCIBLE" not in page
     summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))  # strict JSON (no NaN)
     assert summary["failed"][0]["label"] == bad.label
-    h = summary["headline"]["tpu60a"]
-    assert h["high"]["membrane+F_el"]["stiffness"] > h["low"]["membrane+F_el"]["stiffness"] > 0
-    assert h["high"]["membrane+F_el"]["sensitivity"] > 5 * h["low"]["membrane+F_el"]["sensitivity"]
-    assert PAPER["stiffness_N_per_mm"] == {"low": 5.0, "high": 8.0}
+    h = summary["headline"]["tpu60a"]["membrane p·A"]  # no FEM: no F_el to add
+    assert h["high"]["stiffness"] > h["low"]["stiffness"] > 0
+    assert h["high"]["sensitivity"] > 5 * h["low"]["sensitivity"]
+    assert summary["provenance"]["commit"] == CLEAN.commit
     data = sorted(p.name for p in (out / "data").iterdir())
     assert len(data) == 2 * len(SMALL.runs())
     c = Curve.from_json(out / "data" / f"{SMALL.runs()[0].label}.json")
     assert c.model == "membrane" and len(c) == SMALL.membrane_points
+
+
+def _headline_section(page: str) -> str:
+    return page[page.index("<h2>Headline"):page.index("<h2>JND")]
+
+
+def test_headline_shows_the_paper_figures_with_their_citation(tmp_path):
+    outcomes = run_all(SMALL.runs(), Cache(tmp_path / "cache"), progress=False)
+    page = build_report(SMALL, outcomes, tmp_path / "r", source=CLEAN).read_text(encoding="utf-8")
+    head = _headline_section(page)
+    bench = paper_bench()
+    row = re.search(r'<tr class="paper">(.*?)</tr>', head, re.S).group(1)
+    cells = re.findall(r"<td>(.*?)</td>", row)
+    assert cells[1:] == ["5.0", "8.0", "1.6", "0.5", "6.1", "12.2"]
+    for f in bench.figures:
+        assert html.escape(f"{f.key} = {f.printed} {f.unit}: {f.cite}", quote=True) in head
+        assert html.escape(f.quote, quote=True) in head
+    jnd = paper_bench().get("jnd_mm")
+    assert html.escape(jnd.quote, quote=True) in page[page.index("<h2>JND"):]
+    # a material the paper did not test gets no paper row
+    other = build_report(SMALL.replace(materials=("elastic50a",)), {}, tmp_path / "o",
+                         source=CLEAN).read_text(encoding="utf-8")
+    assert 'class="paper"' not in other
+
+
+def test_a_dirty_tree_is_marked_not_reproducible(tmp_path):
+    dirty = Provenance(CLEAN.commit, (" M membrane/solver.py",))
+    page = build_report(SMALL, {}, tmp_path / "r", source=dirty).read_text(encoding="utf-8")
+    banner = re.search(r'<div class="not-reproducible">(.*?)</div>', page, re.S)
+    assert banner and banner.group(1).startswith("NOT REPRODUCIBLE")
+    assert "membrane/solver.py" in banner.group(1)
+    nogit = build_report(SMALL, {}, tmp_path / "n", source=Provenance(None))
+    assert "NOT REPRODUCIBLE" in nogit.read_text(encoding="utf-8")
+
+
+def test_spsc_report_refuses_the_committed_report_from_a_dirty_tree(tmp_path, monkeypatch,
+                                                                    capsys):
+    from spsc.pipeline import cmd_report, provenance, runner
+
+    dirty = Provenance(CLEAN.commit, ("?? stray.py",))
+    monkeypatch.setattr(provenance, "provenance", lambda *a: dirty)
+    monkeypatch.setattr(provenance, "committed_report_dir", lambda *a: tmp_path / "committed")
+    ran = []
+    monkeypatch.setattr(runner, "run_all", lambda runs, *a, **k: ran.append(1) or {})
+    args = ["report", "--no-fem", "--types", "C", "--cache", str(tmp_path / "c"), "--quiet"]
+    assert main(args + ["--out", str(tmp_path / "committed")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "clean tree" in err[0] and "--allow-dirty" in err[0]
+    assert not ran and not (tmp_path / "committed").exists()
+    assert main(args + ["--out", str(tmp_path / "committed"), "--allow-dirty"]) == 0
+    page = (tmp_path / "committed" / "index.html").read_text(encoding="utf-8")
+    assert "NOT REPRODUCIBLE" in page
+    assert main(args + ["--out", str(tmp_path / "elsewhere")]) == 0  # e.g. --quick's build/
+    assert "NOT REPRODUCIBLE" in (tmp_path / "elsewhere" / "index.html").read_text(encoding="utf-8")
+    assert cmd_report.DEFAULT_OUT[True] == Path("build/report-quick")
 
 
 def test_spsc_report_verb_membrane_only(tmp_path, capsys):
@@ -106,7 +147,8 @@ def tiny(tmp_path_factory):
 def test_fem_runs_store_vtus_and_the_cavity_section(tiny):
     cache, out = tiny
     fem = out[TINY.fem_run("B", "tpu60a", "high")]
-    assert fem.ok and fem.payload["converged"], fem.error or fem.payload["message"]
+    assert fem.ok and fem.solver.converged, fem.error or fem.solver.message
+    assert fem.solver.details["dofs"] > 0 and fem.solver.iterations > 0
     vtu = fem.payload["vtu"]
     assert set(vtu) == {"inflated", "pressed"} and all((fem.dir / v).is_file()
                                                        for v in vtu.values())
@@ -121,14 +163,16 @@ def test_fem_runs_store_vtus_and_the_cavity_section(tiny):
 def test_report_with_fem_renders_compares_and_reuses_its_figures(tiny, tmp_path, monkeypatch):
     cache, out = tiny
     figs = tmp_path / "figcache"
-    path = build_report(TINY, out, tmp_path / "a", fig_cache=figs)
+    path = build_report(TINY, out, tmp_path / "a", fig_cache=figs, source=CLEAN)
     page = path.read_text(encoding="utf-8")
-    for word in ("Membrane vs FEM", "mesh convergence", "shapes-B-tpu60a-high.png",
+    for word in ("Models vs FEM", "mesh convergence", "shapes-B-tpu60a-high.png",
                  "curves-B-tpu60a-high.png"):
         assert word in page
     srcs = re.findall(r'src="([^"]+)"', page)
     assert all((path.parent / s).is_file() for s in srcs)
-    e = json.loads((path.parent / "summary.json").read_text(encoding="utf-8"))["comparison"]["B-tpu60a-high"]
+    comp = json.loads((path.parent / "summary.json").read_text(encoding="utf-8"))["comparison"]
+    assert set(comp["B-tpu60a-high"]) == {"membrane+F_el", "simplified+F_el"}
+    e = comp["B-tpu60a-high"]["membrane+F_el"]
     assert e["force_N"]["n"] == 3 and e["pressure_kPa"]["rms"] >= 0
     assert len(list(figs.iterdir())) == 3  # curves, shapes, convergence
 
@@ -139,7 +183,7 @@ def test_report_with_fem_renders_compares_and_reuses_its_figures(tiny, tmp_path,
 
     for name in ("curves_figure", "shapes_figure", "render_vtu", "convergence_figure"):
         monkeypatch.setattr(figures, name, no_drawing)
-    again = build_report(TINY, out, tmp_path / "b", fig_cache=figs)
+    again = build_report(TINY, out, tmp_path / "b", fig_cache=figs, source=CLEAN)
     assert sorted(p.name for p in (tmp_path / "b" / "figures").iterdir()) == \
         sorted(p.name for p in (tmp_path / "a" / "figures").iterdir())
     assert again.read_text(encoding="utf-8").count("<img") == page.count("<img")
@@ -153,7 +197,7 @@ def test_quick_report_end_to_end(tmp_path, capsys):
             "--quiet"]
     assert main(args) == 0
     page = (tmp_path / "r" / "index.html").read_text(encoding="utf-8")
-    for word in ("Headline", "JND depth", "Membrane vs FEM", "mesh convergence", "Versions",
+    for word in ("Headline", "JND depth", "Models vs FEM", "mesh convergence", "Versions",
                  "shapes-D-tpu60a-low.png", "curves-A-tpu60a-high.png"):
         assert word in page
     capsys.readouterr()
