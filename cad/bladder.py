@@ -20,7 +20,8 @@ from .chamber import PROFILE_POINTS, cavity_solid, outer_solid
 from spsc.core.errors import ParameterError, require
 from .geometry import SPSCGeometry
 
-__all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "Bladder", "build_bladder", "nipple"]
+__all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "Bladder", "build_bladder", "nipple",
+           "widest_outer_radius", "flange_hole_centres"]
 
 
 @dataclass(frozen=True)
@@ -98,7 +99,9 @@ class Bladder:
     design: dict
 
 
-def _widest_outer_radius(g: SPSCGeometry) -> float:
+def widest_outer_radius(g: SPSCGeometry) -> float:
+    """Largest half-width of the outer wall (mm): where the flange starts, for both the B-rep
+    (here) and the export mesh (:mod:`spsc.cad.meshbuild`)."""
     return float(g.outer_profile_points(PROFILE_POINTS)[:, 0].max())
 
 
@@ -108,7 +111,11 @@ def _stadium(radius: float, l: float, z0: float, height: float) -> cq.Solid:
     return wp.extrude(height).val()
 
 
-def _hole_centres(spec: BladderSpec, r_mid: float) -> list[tuple[float, float]]:
+def flange_hole_centres(spec: BladderSpec) -> list[tuple[float, float]]:
+    """(x, y) centres (mm) of the flange's M3 holes: on the stadium midway across the flange
+    (half a flange width beyond :func:`widest_outer_radius`), 2 on the x axis or 4 at 45°.
+    Shared by the B-rep and the export mesh so both drill the same holes."""
+    r_mid = widest_outer_radius(spec.geometry) + spec.flange.width / 2
     n, l = spec.flange.holes, spec.geometry.l
     angles = {0: [], 2: [0.0, 180.0], 4: [45.0, 135.0, 225.0, 315.0]}[n]
     out = []
@@ -139,7 +146,7 @@ def nipple(p: PortSpec, y_start: float, z: float) -> cq.Solid:
 def build_bladder(spec: BladderSpec) -> Bladder:
     """Build the printable bladder solid and its design facts (for ``spsc check``)."""
     g, f, p = spec.geometry, spec.flange, spec.port
-    r_wall = _widest_outer_radius(g)
+    r_wall = widest_outer_radius(g)
     r_flange = r_wall + f.width
     plate = _stadium(r_flange, g.l, -f.thickness, f.thickness)
     y_edge = -(g.l / 2 + r_flange)
@@ -154,8 +161,7 @@ def build_bladder(spec: BladderSpec) -> Bladder:
     bore_v = cq.Solid.makeCylinder(p.bore / 2, -z_axis + 0.5, cq.Vector(0, y_riser, z_axis),
                                    cq.Vector(0, 0, 1))
     cutters = [cavity_solid(g), bore_h, bore_v]
-    r_mid = r_wall + f.width / 2
-    for x, y in _hole_centres(spec, r_mid):
+    for x, y in flange_hole_centres(spec):
         cutters.append(cq.Solid.makeCylinder(f.hole_diameter / 2, f.thickness + 2.0,
                                              cq.Vector(x, y, -f.thickness - 1.0)))
     solid = body.cut(*cutters).clean()

@@ -9,7 +9,6 @@ extrusion of length ``l`` along y, width along x, cavity centred on the origin.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -22,7 +21,6 @@ __all__ = [
     "TYPES",
     "TABLE1_VOLUME_CM3",
     "preset",
-    "DesignSpaceWarning",
 ]
 
 #: Form factors (n1, n2, c_y) of the four notable types, Table 1.
@@ -50,10 +48,6 @@ DESIGN_SPACE = {
 
 #: Lengths below this (mm) are zero: OCCT's Precision::Confusion.
 LENGTH_CONFUSION_MM = 1e-7
-
-
-class DesignSpaceWarning(UserWarning):
-    """The geometry is valid but outside the design space the solvers are verified on."""
 
 
 @dataclass(frozen=True)
@@ -133,10 +127,6 @@ class SPSCGeometry:
                 out.append(f"{key} = {v:.4g} is outside the verified design space [{lo:g}, {hi:g}]")
         return out
 
-    def warn_if_outside(self) -> None:
-        for msg in self.design_space_warnings():
-            warnings.warn(msg, DesignSpaceWarning, stacklevel=2)
-
     # -- the profile, eqs. 10–11 --------------------------------------------------------------
     def profile(self, u):
         """Super-ellipse point (X, Y) in mm at angle ``u`` from +j, clockwise (eqs. 10–11).
@@ -201,12 +191,6 @@ class SPSCGeometry:
         area = integrate.quad(lambda z: float(self.radius_at(z)) ** 2, 0.0, self.h, **opts)[0]
         width = integrate.quad(lambda z: float(self.radius_at(z)), 0.0, self.h, **opts)[0]
         return math.pi * area + 2.0 * self.l * width
-
-    def cross_section_area(self) -> float:
-        """Area of the cavity cross-section in the i–j mid-plane, 2∫₀ʰ r dz (mm²)."""
-        pts = [self.z_widest] if 0.0 < self.z_widest < self.h else None
-        return 2.0 * integrate.quad(lambda z: float(self.radius_at(z)), 0.0, self.h,
-                                    points=pts, limit=200, epsabs=1e-10)[0]
 
     # -- polylines for the CAD --------------------------------------------------------------------
     def profile_points(self, n: int = 121) -> tuple[np.ndarray, np.ndarray]:

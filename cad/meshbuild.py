@@ -15,7 +15,7 @@ import math
 import manifold3d as m3
 import numpy as np
 
-from .bladder import BladderSpec, _hole_centres, _widest_outer_radius
+from .bladder import BladderSpec, flange_hole_centres, widest_outer_radius
 from .export import TriMesh
 from .geometry import SPSCGeometry
 
@@ -95,7 +95,7 @@ def bladder_mesh(spec: BladderSpec) -> TriMesh:
     f, p = spec.flange, spec.port
     inner, _ = g.profile_points(MESH_PROFILE_POINTS)
     outer = g.outer_profile_points(MESH_PROFILE_POINTS)
-    r_wall = _widest_outer_radius(g)
+    r_wall = widest_outer_radius(g)
     r_flange = r_wall + f.width
     y_edge = -(g.l / 2 + r_flange)
     z_axis = spec.port_axis_z
@@ -115,7 +115,7 @@ def bladder_mesh(spec: BladderSpec) -> TriMesh:
     cut += _cylinder(p.bore / 2, y_riser - y_tip + 0.5, [0.0, y_tip - 0.5, z_axis],
                      [0.0, 1.0, 0.0])
     cut += _cylinder(p.bore / 2, -z_axis + 0.5, [0.0, y_riser, z_axis], [0.0, 0.0, 1.0])
-    for x, y in _hole_centres(spec, r_wall + f.width / 2):
+    for x, y in flange_hole_centres(spec):
         cut += _cylinder(f.hole_diameter / 2, f.thickness + 2.0, [x, y, -f.thickness - 1.0],
                          [0.0, 0.0, 1.0])
     solid = solid - cut

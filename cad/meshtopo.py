@@ -13,11 +13,14 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse.csgraph import connected_components
 
-__all__ = ["topology", "self_intersecting_faces", "shells", "nesting_depth", "signed_volume",
-           "face_areas", "face_normals", "cap_port", "surface_distance", "sample_surface"]
+__all__ = ["meshset", "topology", "self_intersecting_faces", "shells", "nesting_depth",
+           "signed_volume", "face_areas", "face_normals", "cap_port", "surface_distance",
+           "sample_surface"]
 
 
-def _meshset(v, f):
+def meshset(v, f):
+    """A pymeshlab ``MeshSet`` holding the mesh (vertices ``v`` (n, 3) mm, faces ``f`` (m, 3)),
+    for pymeshlab's filters (the gate's topology and self-intersection checks use it)."""
     import pymeshlab
 
     ms = pymeshlab.MeshSet()
@@ -28,7 +31,7 @@ def _meshset(v, f):
 
 def topology(v, f) -> dict:
     """pymeshlab's topological measures (boundary and non-manifold edges/vertices, genus, ...)."""
-    return dict(_meshset(v, f).get_topological_measures())
+    return dict(meshset(v, f).get_topological_measures())
 
 
 def self_intersecting_faces(v, f, *, max_refine: int = 1500) -> int:
@@ -40,7 +43,7 @@ def self_intersecting_faces(v, f, *, max_refine: int = 1500) -> int:
     shares no vertex with it, with overlapping bounding boxes, is not coplanar with it (to 1e-9
     of the part size). Above ``max_refine`` selected faces the selection is taken as is.
     """
-    ms = _meshset(v, f)
+    ms = meshset(v, f)
     ms.compute_selection_by_self_intersections_per_face()
     sel = np.flatnonzero(ms.current_mesh().face_selection_array())
     if len(sel) == 0 or len(sel) > max_refine:

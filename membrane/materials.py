@@ -52,11 +52,6 @@ class Material:
         """Initial shear modulus μ0 = 2(C10 + C01) in MPa."""
         return 2.0 * (self._c(1, 0) + self._c(0, 1))
 
-    @property
-    def youngs_modulus(self) -> float:
-        """Small-strain Young's modulus E = 3 μ0 (incompressible), MPa."""
-        return 3.0 * self.shear_modulus
-
     def energy(self, I1, I2):
         """Strain energy density W in MPa (= mJ/mm³)."""
         a, b = np.asarray(I1, float) - 3.0, np.asarray(I2, float) - 3.0

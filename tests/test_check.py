@@ -102,7 +102,7 @@ def test_coplanar_facets_split_by_a_boolean_are_not_self_intersections():
     solid = M.sphere(12, 64) - M.sphere(11, 64) - M.cylinder(4, 1.5, 1.5, 16).translate(
         (0, 0, -12.5))
     v, f = arrays(solid)
-    ms = meshtopo._meshset(v, f)
+    ms = meshtopo.meshset(v, f)
     ms.compute_selection_by_self_intersections_per_face()
     assert ms.current_mesh().selected_face_number() > 0, "reproducer no longer exercised"
     assert meshtopo.self_intersecting_faces(v, f) == 0
