@@ -36,14 +36,14 @@ def bench_run(args):
     for size, layers in args.sizes:
         run = ChamberRun(preset(args.type), material(args.material), pressure_kPa=args.pressure,
                          reservoir_mm3=args.reservoir, stroke_mm=args.stroke, points=args.points,
-                         size_mm=size, layers=layers)
+                         mesh_size_mm=size, layers=layers)
         t0 = time.perf_counter()
         curve, result, model = run_chamber(run, cache_dir=args.cache)
         seconds = time.perf_counter() - t0
         force = float(curve.force_N[-1])
         change = None if previous is None else abs(force / previous - 1)
         row = {"size_mm": size, "layers": layers, "tets": model.mesh.n_tets,
-               "unknowns": model.disc.n, "seconds": round(seconds, 1), "ok": result.ok,
+               "unknowns": model.disc.n, "seconds": round(seconds, 1), "ok": result.converged,
                "threads": os.environ.get("OMP_NUM_THREADS", "unset"),
                "steps": args.points - 1,
                "newton_iterations": sum(r.iterations for r in result.records),

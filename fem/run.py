@@ -8,14 +8,15 @@ open), whose force is the structural F_el(y).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import time
+from dataclasses import InitVar, dataclass
 from pathlib import Path
 
 import numpy as np
 
 from spsc.core.errors import require
 from spsc.cad.geometry import SPSCGeometry
-from spsc.core.curve import Curve
+from spsc.core.curve import Curve, SolveInfo
 from spsc.membrane.materials import Material
 
 from .element import TET_EDGES
@@ -29,7 +30,9 @@ __all__ = ["ChamberRun", "run_chamber", "to_curve", "write_vtu"]
 @dataclass(frozen=True)
 class ChamberRun:
     """Inputs of a chamber run (mm, kPa, mm³). ``points``: plate positions of the curve,
-    y = 0 (first contact) to the stroke, as in ``spsc membrane``; points − 1 increments."""
+    y = 0 (first contact) to the stroke, as in ``spsc membrane``; points − 1 increments.
+    ``mesh_size_mm``: element edge along the wall surfaces (``spsc fem --mesh-size``; not the
+    preset footprint, which is ``--footprint`` and part of the geometry)."""
 
     geometry: SPSCGeometry
     material: Material
@@ -37,19 +40,23 @@ class ChamberRun:
     reservoir_mm3: float = 0.0
     stroke_mm: float = 4.0
     points: int = 11
-    size_mm: float = 1.0
+    mesh_size_mm: float = 1.0
     layers: int = 2
     polytropic_index: float = 1.0
     inflate_increments: int = 4
     full: bool = False
     bulk_ratio: float = 2000.0
+    #: deprecated keyword for ``mesh_size_mm`` (callers not yet renamed)
+    size_mm: InitVar[float | None] = None
 
-    def __post_init__(self):
+    def __post_init__(self, size_mm=None):
+        if size_mm is not None:
+            object.__setattr__(self, "mesh_size_mm", size_mm)
         require("pressure", self.pressure_kPa, ge=0, unit="kPa")
         require("reservoir", self.reservoir_mm3, ge=0, unit="mm³")
         require("stroke", self.stroke_mm, gt=0, unit="mm")
         require("points", self.points, ge=2)
-        require("mesh size", self.size_mm, gt=0, unit="mm")
+        require("mesh size", self.mesh_size_mm, gt=0, unit="mm")
         require("layers", self.layers, ge=1)
 
     def steps(self) -> list:
@@ -61,7 +68,7 @@ class ChamberRun:
 
 
 def build_model(run: ChamberRun, *, cache_dir=None) -> FEMModel:
-    mesh = cached_mesh(spsc_wall, cache_dir=cache_dir, g=run.geometry, size=run.size_mm,
+    mesh = cached_mesh(spsc_wall, cache_dir=cache_dir, g=run.geometry, size=run.mesh_size_mm,
                        layers=run.layers, full=run.full)
     return FEMModel.build(mesh, run.material, bulk_ratio=run.bulk_ratio)
 
@@ -69,10 +76,13 @@ def build_model(run: ChamberRun, *, cache_dir=None) -> FEMModel:
 def run_chamber(run: ChamberRun, *, settings: Settings | None = None, progress=None,
                 cache_dir=None):
     """Solve ``run``; returns (Curve, Result, FEMModel). ``progress(done, total)`` is called per
-    converged load point."""
+    converged load point. The curve's ``solver`` is the run's
+    :class:`~spsc.core.curve.SolveInfo` (mesh build time in its details)."""
+    t_start = time.perf_counter()
     model = build_model(run, cache_dir=cache_dir)
+    mesh_seconds = time.perf_counter() - t_start
     result = solve(model, run.steps(), settings=settings, progress=progress)
-    return to_curve(run, model, result), result, model
+    return to_curve(run, model, result, mesh_seconds=mesh_seconds), result, model
 
 
 def _apex_height(model: FEMModel, x) -> float:
@@ -82,9 +92,12 @@ def _apex_height(model: FEMModel, x) -> float:
     return float(np.max(X[on_axis, 2] + model.displacement(x)[on_axis, 2]))
 
 
-def to_curve(run: ChamberRun, model: FEMModel, result: Result) -> Curve:
+def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
+             mesh_seconds: float = float("nan")) -> Curve:
     """The Curve of a run: y = 0 at first contact with the inflated chamber, then one point per
-    press increment; points not reached hold NaN with the reason."""
+    press increment; points not reached hold NaN with the reason. ``solver`` is filled from
+    ``result`` (converged, message, instability, seconds, Newton iterations) with the model's
+    size in ``details`` (unknowns, tetrahedra, mesh size, layers, part)."""
     start = result.records[0]
     inflated = result.of("inflate")[-1] if result.of("inflate") else start
     presses = result.of("press")
@@ -104,16 +117,24 @@ def to_curve(run: ChamberRun, model: FEMModel, result: Result) -> Curve:
     if not conv[0]:
         msg[0] = result.message
     setup = {"p_i_kPa": run.pressure_kPa, "reservoir_mm3": run.reservoir_mm3,
-             "polytropic_n": run.polytropic_index, "mesh_size_mm": run.size_mm,
+             "polytropic_n": run.polytropic_index, "mesh_size_mm": run.mesh_size_mm,
              "layers": run.layers, "dofs": model.disc.n,
              "model_part": "full" if run.full else "quarter"}
     if result.instability:
         setup["instability"] = result.instability
+    info = SolveInfo(converged=result.converged, message=result.message,
+                     y_reached_mm=y[conv][-1] if conv.any() else float("nan"),
+                     instability=result.instability, seconds=result.seconds,
+                     iterations=result.iterations,
+                     details={"dofs": model.disc.n, "tetrahedra": model.mesh.n_tets,
+                              "mesh_size_mm": run.mesh_size_mm, "layers": run.layers,
+                              "model_part": "full" if run.full else "quarter",
+                              "bulk_ratio": run.bulk_ratio, "mesh_seconds": mesh_seconds})
     return Curve(y, F, P, A, dV, model="fem", geometry=run.geometry.as_dict(),
                  material=run.material.name, setup=setup,
                  nominal_volume_mm3=start.volume, inflated_volume_mm3=inflated.volume,
                  inflated_height_mm=_apex_height(model, inflated.x), converged=conv,
-                 message=tuple(msg))
+                 message=tuple(msg), solver=info)
 
 
 def write_vtu(model: FEMModel, result: Result, directory) -> list[Path]:

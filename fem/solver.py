@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import logging
 import math
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -90,15 +91,29 @@ class Record:
 
 @dataclass(frozen=True, eq=False)
 class Result:
-    """All converged records, and why and where the run stopped (``ok`` if it did not)."""
+    """All converged records, whether every step converged (``converged``), why and where
+    the run stopped (``message``, "converged" if it did not), a detected instability, and
+    the wall-clock time of the solve (s)."""
 
     records: list
-    ok: bool
+    converged: bool
     message: str
     instability: str = ""
+    seconds: float = float("nan")
 
     def of(self, kind: str) -> list:
         return [r for r in self.records if r.kind == kind]
+
+    @property
+    def iterations(self) -> int:
+        """Newton iterations over the converged load points."""
+        return sum(r.iterations for r in self.records)
+
+    @property
+    def ok(self) -> bool:
+        """Deprecated name of :attr:`converged` (the one protocol is
+        :class:`spsc.core.curve.SolveInfo`); kept until the tests that read it move."""
+        return self.converged
 
 
 _log = logging.getLogger(__name__)
@@ -262,6 +277,7 @@ def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=
     whose ``records`` hold every converged point (the undeformed state first).
     """
     settings = settings or Settings()
+    t_start = time.perf_counter()
     x = model.zero_state()
     ev = model.evaluate(x, Load(), tangent=False)
     records = [Record(-1, "start", x.copy(), 0.0, ev.volume, None, 0.0, 0.0, 0)]
@@ -313,7 +329,8 @@ def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=
                         instability = instability or (
                             "Newton stalls under step cuts: possible snap-through or buckling "
                             f"at y ≈ {t_new * step.stroke:.3g} mm")
-                    return Result(records, False, msg, instability)
+                    return Result(records, False, msg, instability,
+                                  time.perf_counter() - t_start)
                 continue
             x, active, t, load = x_new, act_new, t_new, trial
             dt = min(nominal, 2 * dt)
@@ -326,7 +343,7 @@ def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=
                     instability = (f"the tangent has {rec.unstable_modes} negative eigenvalue(s) "
                                    f"at {where}: unstable equilibrium (buckling or snap-through)")
                     return Result(records, False, f"step {k} ({kind}) stopped: {instability}",
-                                  instability)
+                                  instability, time.perf_counter() - t_start)
                 if kind == "press" and rec.force < (1 - settings.softening) * last_force:
                     instability = instability or (
                         f"plate force falls from {last_force:.4g} N to {rec.force:.4g} N near "
@@ -338,4 +355,4 @@ def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=
                 done += 1
                 if progress is not None:
                     progress(done, total)
-    return Result(records, True, "converged", instability)
+    return Result(records, True, "converged", instability, time.perf_counter() - t_start)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -19,7 +19,7 @@ from spsc.core.errors import ParameterError, require
 from spsc.cad.geometry import SPSCGeometry
 
 from .bvp import BoxScheme
-from spsc.core.curve import Curve
+from spsc.core.curve import Curve, SolveInfo
 from .materials import Material, material as catalogue_material
 from .meridian import Meridian
 from .shape import Shape, make_shape
@@ -34,24 +34,25 @@ class SolverSettings:
 
     inflation_intervals : int  intervals of the inflation grid (>= 8)
     contact_intervals, free_intervals : int  intervals on [0, s_Γ] and [s_Γ, L] (>= 4, >= 8)
-    tol : float  max scaled residual for convergence (> 0)
-    max_iter : int  Newton iterations per solve (>= 2)
+    rtol : float  max scaled residual for convergence (> 0); the same name as the FEM's
+        :class:`spsc.fem.solver.Settings`
+    max_iterations : int  Newton iterations per solve (>= 2)
     max_halvings : int  step halvings allowed between two requested plate positions (>= 0)
     """
 
     inflation_intervals: int = 192
     contact_intervals: int = 48
     free_intervals: int = 144
-    tol: float = 1e-9
-    max_iter: int = 25
+    rtol: float = 1e-9
+    max_iterations: int = 25
     max_halvings: int = 6
 
     def __post_init__(self):
         require("inflation_intervals", self.inflation_intervals, ge=8)
         require("contact_intervals", self.contact_intervals, ge=4)
         require("free_intervals", self.free_intervals, ge=8)
-        require("tol", self.tol, gt=0)
-        require("max_iter", self.max_iter, ge=2)
+        require("rtol", self.rtol, gt=0)
+        require("max_iterations", self.max_iterations, ge=2)
         require("max_halvings", self.max_halvings, ge=0)
 
     def scaled(self, factor: float) -> "SolverSettings":
@@ -64,18 +65,47 @@ class SolverSettings:
 
 @dataclass(frozen=True, eq=False)
 class MembraneResult:
-    """What :func:`solve` returns: the :class:`Curve`, the inflated shape, the shape at each
-    plate position (None where not converged), and why/where it stopped."""
+    """What :func:`solve` returns: the :class:`Curve` (whose ``solver`` is the
+    :class:`~spsc.core.curve.SolveInfo` of the solve: converged, message, y reached, seconds,
+    Newton iterations, notes), the inflated shape and the shape at each plate position (None
+    where not converged). The protocol fields are read through from ``curve.solver``."""
 
     curve: Curve
-    inflated: Shape
+    inflated: Shape | None
     shapes: tuple
-    converged: bool
-    message: str
-    y_reached_mm: float
-    seconds: float
-    newton_iterations: int = 0
-    notes: tuple = field(default_factory=tuple)
+
+    @property
+    def solver(self) -> SolveInfo:
+        return self.curve.solver
+
+    @property
+    def converged(self) -> bool:
+        return self.curve.solver.converged
+
+    @property
+    def message(self) -> str:
+        return self.curve.solver.message
+
+    @property
+    def y_reached_mm(self) -> float:
+        return self.curve.solver.y_reached_mm
+
+    @property
+    def seconds(self) -> float:
+        return self.curve.solver.seconds
+
+    @property
+    def iterations(self) -> int:
+        return self.curve.solver.iterations
+
+    @property
+    def notes(self) -> tuple:
+        return self.curve.solver.notes
+
+    @property
+    def newton_iterations(self) -> int:
+        """Deprecated name of :attr:`iterations` (kept for pipeline/runner.py)."""
+        return self.curve.solver.iterations
 
 
 @dataclass(frozen=True, eq=False)
@@ -119,14 +149,16 @@ def inflate(geometry: SPSCGeometry, material, pressure_kPa: float, *,
         s = bs.nodes()
         v = np.column_stack([mer.x(s), mer.y(s), mer.angle(s), np.ones_like(s)]).ravel()
         return Inflation(make_shape(bs, v, 0.0), True, "", 0)
-    r = bs.newton(_stress_guess(bs, p), p=p, tol=settings.tol, max_iter=settings.max_iter)
+    r = bs.newton(_stress_guess(bs, p), p=p, tol=settings.rtol,
+                  max_iter=settings.max_iterations)
     iters = r.iterations
     if not r.converged:  # continuation in pressure from a small one
         frac, v, done = 0.125, None, 0.0
         while done < 1.0 and frac > 1e-3:
             target = min(1.0, done + frac)
             guess = _stress_guess(bs, target * p) if v is None else v
-            rr = bs.newton(guess, p=target * p, tol=settings.tol, max_iter=settings.max_iter)
+            rr = bs.newton(guess, p=target * p, tol=settings.rtol,
+                           max_iter=settings.max_iterations)
             iters += rr.iterations
             if rr.converged:
                 v, done, frac = rr.v, target, frac * 2.0
@@ -174,10 +206,11 @@ def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm
                 nominal_volume_mm3=geometry.cavity_volume())
     nan = np.full(npts, np.nan)
     if not ok:
+        info = SolveInfo(converged=False, message=msg, seconds=time.perf_counter() - t_start,
+                         iterations=iters, details=_details(settings))
         curve = Curve(y, nan, nan, nan, nan, model="membrane", converged=np.zeros(npts, bool),
-                      message=(msg,) * npts, **meta)
-        return MembraneResult(curve, None, (None,) * npts, False, msg, float("nan"),
-                              time.perf_counter() - t_start, iters)
+                      message=(msg,) * npts, solver=info, **meta)
+        return MembraneResult(curve, None, (None,) * npts)
     apex = float(infl.eta[0])
     if stroke >= apex:
         raise ParameterError("stroke", stroke_mm,
@@ -207,14 +240,23 @@ def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm
         F[k] = 1e-3 * P[k] * A[k]
         DV[k] = infl.volume_mm3 - sh.volume_mm3
         conv[k], shapes[k] = True, sh
-    curve = Curve(y, F, P, A, DV, model="membrane", inflated_volume_mm3=infl.volume_mm3,
-                  inflated_height_mm=apex, converged=conv, message=tuple(msgs), **meta)
-    done = bool(conv.all())
     notes = []
     wr = infl.T2 <= 0.0
     if wr.any():
         notes.append(f"inflated: hoop wrinkles (T2 = 0) over s = {infl.s[wr][0]:.3g}–"
                      f"{infl.s[wr][-1]:.3g} mm of the meridian (tension-field membrane)")
-    return MembraneResult(curve, infl, tuple(shapes), done, stop,
-                          float(y[conv][-1]), time.perf_counter() - t_start,
-                          iters + press.iterations, tuple(notes))
+    info = SolveInfo(converged=bool(conv.all()), message=stop or "converged",
+                     y_reached_mm=float(y[conv][-1]), seconds=time.perf_counter() - t_start,
+                     iterations=iters + press.iterations, notes=tuple(notes),
+                     details=_details(settings))
+    curve = Curve(y, F, P, A, DV, model="membrane", inflated_volume_mm3=infl.volume_mm3,
+                  inflated_height_mm=apex, converged=conv, message=tuple(msgs), solver=info,
+                  **meta)
+    return MembraneResult(curve, infl, tuple(shapes))
+
+
+def _details(settings: SolverSettings) -> dict:
+    """Discretisation facts of a solve (for ``SolveInfo.details``)."""
+    return {"inflation_intervals": settings.inflation_intervals,
+            "contact_intervals": settings.contact_intervals,
+            "free_intervals": settings.free_intervals, "rtol": settings.rtol}

@@ -73,7 +73,8 @@ class Press:
 
     def _solve(self, bs: BoxScheme, v0, y: float):
         H = self.apex - y
-        r = bs.newton(v0, H=H, gas=self.gas, tol=self.st.tol, max_iter=self.st.max_iter)
+        r = bs.newton(v0, H=H, gas=self.gas, tol=self.st.rtol,
+                      max_iter=self.st.max_iterations)
         self.iterations += r.iterations
         if not r.converged:
             return None, r.v, r.message

@@ -70,7 +70,7 @@ def test_pressure_continuation_reaches_the_same_inflation():
     continuation takes over; it must land on the same equilibrium."""
     g = preset("B")
     direct = inflate(g, TPU, 40)  # 6 iterations
-    cont = inflate(g, TPU, 40, settings=SolverSettings(max_iter=5))
+    cont = inflate(g, TPU, 40, settings=SolverSettings(max_iterations=5))
     assert direct.iterations <= 6 and cont.iterations > direct.iterations and cont.converged
     # both solved to a 1e-9 scaled residual: volumes agree to ~1e-9
     np.testing.assert_allclose(cont.shape.volume_mm3, direct.shape.volume_mm3, rtol=1e-8)
@@ -147,7 +147,7 @@ def test_full_matrix_converges(t, size):
 
 def test_non_converged_points_carry_why_and_no_number():
     r = solve(preset("B"), TPU, pressure_kPa=40, points=5,
-              settings=SolverSettings(max_iter=2, max_halvings=0))
+              settings=SolverSettings(max_iterations=2, max_halvings=0))
     c = r.curve
     bad = ~c.converged
     assert bad.any() and not r.converged and r.message
