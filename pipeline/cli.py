@@ -1,13 +1,18 @@
 """The ``spsc`` command line: one sub-command module per verb, each with ``register`` and ``run``.
 
-Every invalid input ends in one line on stderr, ``spsc <verb>: error: <message>``, and exit 2;
-a failed check or a non-converged solve exits 1 after writing what it computed.
+The error contract, in one place (:func:`main`): every invalid input — argparse's own errors
+(unknown option, missing or malformed value), a :class:`ParameterError` from validation, a
+missing input file, an output path that cannot be written — ends in one line on stderr,
+``spsc <verb>: error: <message>``, and exit 2. Warnings are one line on stderr,
+``spsc <verb>: warning: <message>``. A failed check or a non-converged solve exits 1 after
+writing what it computed, with the reason on stderr.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import re
 import sys
 
 from spsc.core.errors import ParameterError
@@ -17,18 +22,57 @@ COMMANDS = {
     "bladder": "cmd_bladder",
     "fingertip": "cmd_fingertip",
     "check": "cmd_check",
+    "curve": "cmd_curve",
     "membrane": "cmd_membrane",
-    "identify": "cmd_identify",
     "fem": "cmd_fem",
+    "identify": "cmd_identify",
     "report": "cmd_report",
 }
 
+#: Numbers as option values: argparse takes ``-inf``, ``-1e5`` or ``-.5e-3`` for option names
+#: unless they match this (no spsc option looks like a number).
+_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.I)
+
+
+class UsageError(Exception):
+    """An argparse error, carried to :func:`main` (which prints it as one line)."""
+
+    def __init__(self, prog: str, message: str):
+        self.prog, self.message = prog, message
+        super().__init__(f"{prog}: error: {message}")
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with the one-line error contract: no usage dump, a hint to ``--help``; values
+    such as ``-inf`` or ``-1e5`` are values, not option names."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = _NUMBER
+
+    def parse_args(self, args=None, namespace=None):
+        ns, extra = self.parse_known_args(args, namespace)
+        if extra:  # name the verb they were given to, not the top-level parser
+            verb = getattr(ns, "command", None)
+            prog = f"{self.prog} {verb}" if verb else self.prog
+            raise UsageError(prog, f"unrecognized arguments: {' '.join(extra)} "
+                             f"(see {prog} --help)")
+        return ns
+
+    def error(self, message):
+        # a type function's message already names the parameter: drop argparse's prefix
+        m = re.match(r"^argument [^:]+: (\S+ = .*)$", message)
+        if m:
+            message = m.group(1)
+        raise UsageError(self.prog, f"{message} (see {self.prog} --help)")
+
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog="spsc",
         description="Soft pneumatic sensing chambers: CAD, printability, membrane model, FEM.")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
+                                parser_class=Parser)
     for verb, module in COMMANDS.items():
         try:
             mod = importlib.import_module(f"spsc.pipeline.{module}")
@@ -40,17 +84,32 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _fail(prog: str, message: str) -> int:
+    print(f"{prog}: error: {message}", file=sys.stderr)
+    return 2
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except UsageError as exc:
+        return _fail(exc.prog, exc.message)
+    except SystemExit as exc:  # --help
+        return int(exc.code or 0)
+    prog = f"spsc {args.command}"
     try:
         return int(args.func(args) or 0)
     except ParameterError as exc:
-        print(f"spsc {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+        return _fail(prog, str(exc))
     except FileNotFoundError as exc:
-        print(f"spsc {args.command}: error: {exc.filename or exc}: no such file", file=sys.stderr)
-        return 2
+        return _fail(prog, f"{exc.filename or exc}: no such file")
+    except OSError as exc:  # an input or output path the system refuses (full disk, rights)
+        where = f"{exc.filename}: " if exc.filename else ""
+        return _fail(prog, f"{where}{exc.strerror or exc}")
+    except KeyboardInterrupt:
+        print(f"{prog}: interrupted", file=sys.stderr)
+        return 130
 
 
 if __name__ == "__main__":

@@ -6,7 +6,8 @@ import argparse
 import time
 from pathlib import Path
 
-from .options import add_geometry_options, geometry_from_args
+from .options import (add_geometry_options, check_output_dir, geometry_from_args, integer,
+                      number, warn)
 
 MATERIAL_PROCESS = {"tpu60a": "fdm", "elastic50a": "sla", "silicone40a": "sla", "as40": "molding"}
 
@@ -20,8 +21,10 @@ def register(sub) -> None:
                    help="tpu60a (FDM), elastic50a or silicone40a (SLA), as40 (molding); "
                    "selects the process whose minimum wall the gate applies")
     p.add_argument("--out", default=None, help="output folder (default build/bladder-TYPE)")
-    p.add_argument("--flange-holes", type=int, default=4, help="screw holes: 0, 2 or 4")
-    p.add_argument("--tube-id", type=float, default=3.0, help="inner diameter of the tube (mm)")
+    p.add_argument("--flange-holes", type=integer("flange_holes"), default=4,
+                   help="screw holes: 0, 2 or 4")
+    p.add_argument("--tube-id", type=number("tube_id", "mm"), default=3.0,
+                   help="inner diameter of the tube (mm)")
     p.add_argument("--no-check", action="store_true", help="skip the printability gate")
     p.set_defaults(func=run)
 
@@ -40,10 +43,10 @@ def run(args: argparse.Namespace) -> int:
     geom = geometry_from_args(args)
     process = process_for(args.material)
     for msg in geom.design_space_warnings():
-        print(f"warning: {msg}")
+        warn("bladder", msg)
     spec = BladderSpec(geom, FlangeSpec(holes=args.flange_holes), PortSpec(tube_id=args.tube_id))
     name = f"bladder-{args.type}" if args.type else "bladder"
-    outdir = Path(args.out or f"build/{name}")
+    outdir = check_output_dir("--out", args.out or f"build/{name}")
 
     t0 = time.perf_counter()
     bladder = build_bladder(spec)

@@ -13,7 +13,9 @@ from pathlib import Path
 
 from spsc.cad.check import check_mesh, design_path_for, load_design
 from spsc.core.errors import require
-from spsc.cad.process import PROCESSES
+from spsc.cad.process import PROCESSES, process
+
+from .options import check_output_file
 
 __all__ = ["register", "run"]
 
@@ -38,6 +40,7 @@ def register(subparsers) -> None:
 def run(args) -> int:
     min_wall = None if args.min_wall is None else require("--min-wall", args.min_wall, gt=0,
                                                           unit="mm")
+    process(args.process)
     mesh = Path(args.file)
     if not mesh.is_file():
         raise FileNotFoundError(2, "no such file", str(mesh))
@@ -46,8 +49,8 @@ def run(args) -> int:
     else:
         sidecar = design_path_for(mesh)
         design = load_design(sidecar) if sidecar.is_file() else None
+    out = check_output_file("--json", args.json if args.json else mesh.with_name("check.json"))
     report = check_mesh(mesh, design=design, process=args.process, min_wall=min_wall)
-    out = Path(args.json) if args.json else mesh.with_name("check.json")
     report.to_json(out)
     print(report.summary())
     if report.passed:

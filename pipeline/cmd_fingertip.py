@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import argparse
 import time
-from pathlib import Path
 
 from .cmd_bladder import gate
+from .options import check_output_dir, number
 
 #: Chord sag (mm) and angle (rad) of the fingertip's export mesh: its many small features would
 #: give 600k triangles at the bladder's settings; the SLA gate (0.5 mm) has ample margin.
@@ -17,10 +17,12 @@ def register(sub) -> None:
     p = sub.add_parser("fingertip", help="build the fused fingertip (sec. 4.1) and check it",
                        description="Two Type A chambers (pulp, distal edge) fused into one cavity, "
                        "five FSR05 pockets on raised pads, rear port, slot and screw mount.")
-    p.add_argument("--angle", type=float, default=45.0,
+    p.add_argument("--angle", type=number("angle", "deg"), default=45.0,
                    help="angle between the pulp and distal chamber axes, deg (30-90)")
-    p.add_argument("--pocket-diameter", type=float, default=8.0, help="FSR pocket diameter, mm")
-    p.add_argument("--pocket-depth", type=float, default=0.5, help="FSR pocket depth, mm")
+    p.add_argument("--pocket-diameter", type=number("pocket_diameter", "mm"), default=8.0,
+                   help="FSR pocket diameter, mm")
+    p.add_argument("--pocket-depth", type=number("pocket_depth", "mm"), default=0.5,
+                   help="FSR pocket depth, mm")
     p.add_argument("--process", default="sla", help="process of the gate: sla (Silicone 40A, "
                    "the paper's choice), fdm or molding")
     p.add_argument("--out", default="build/fingertip", help="output folder")
@@ -32,9 +34,12 @@ def run(args: argparse.Namespace) -> int:
     from spsc.cad.export import export_part, tessellate
     from spsc.cad.fingertip import FingertipSpec, PocketSpec, build_fingertip, measure_pockets
 
+    from spsc.cad.process import process
+
     spec = FingertipSpec(angle=args.angle,
                          pocket=PocketSpec(diameter=args.pocket_diameter, depth=args.pocket_depth))
-    outdir = Path(args.out)
+    process(args.process)  # validated before the build, not after it
+    outdir = check_output_dir("--out", args.out)
     t0 = time.perf_counter()
     tip = build_fingertip(spec)
     t_build = time.perf_counter() - t0

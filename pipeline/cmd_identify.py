@@ -9,40 +9,49 @@ V_b,i defaults to the nominal cavity volume of the named type (or of the seven p
 
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 from spsc.core.errors import ParameterError, require
 
-from .options import add_geometry_options, geometry_from_args, geometry_given
+from .options import (add_gas_options, add_geometry_options, add_output_options,
+                      check_output_file, geometry_from_args, geometry_given, number)
 
 
 def _floats(name: str, text: str) -> list[float]:
     try:
-        return [float(v) for v in str(text).split(",") if v.strip()]
+        values = [float(v) for v in str(text).split(",") if v.strip()]
     except ValueError:
         raise ParameterError(name, text, "comma-separated numbers") from None
+    if not values:
+        raise ParameterError(name, text, "at least one number (comma-separated)")
+    return values
 
 
 def register(subparsers) -> None:
     p = subparsers.add_parser("identify", help="identify A(y), ΔV(y) from bench data",
                               description=__doc__.split("\n\n")[0])
     p.add_argument("bench", help="bench CSV: y_mm, force_N, pressure_kPa[, elastic_force_N]")
-    p.add_argument("--pressure", type=float, required=True, help="setup pressure of the test, kPa gauge")
     add_geometry_options(p)
-    p.add_argument("--bladder-volume", type=float, help="V_b,i in mm³ (default: nominal cavity)")
-    p.add_argument("--reservoir", type=float, default=0.0, help="reservoir of the test, mm³")
-    p.add_argument("--polytropic-n", type=float, default=1.0, help="polytropic index (1: isothermal)")
-    p.add_argument("--predict-pressures", default="10,20,30,40", help="kPa gauge, comma-separated")
-    p.add_argument("--predict-reservoirs", default="0,40000", help="mm³, comma-separated")
-    p.add_argument("--json", help="write identified and predicted curves here")
-    p.add_argument("--csv", help="write the identified curve CSV here")
+    g = p.add_argument_group("setup of the bench test")
+    add_gas_options(g, pressure_required=True,
+                    pressure_help="setup pressure of the test, kPa gauge (required)")
+    g.add_argument("--bladder-volume", type=number("bladder_volume", "mm³"), metavar="MM3",
+                   help="V_b,i in mm³ (default: nominal cavity of the chamber)")
+    q = p.add_argument_group("predictions")
+    q.add_argument("--predict-pressures", default="10,20,30,40", metavar="KPA,...",
+                   help="kPa gauge, comma-separated (default 10,20,30,40)")
+    q.add_argument("--predict-reservoirs", default="0,40000", metavar="MM3,...",
+                   help="mm³, comma-separated (default 0,40000)")
+    add_output_options(p, json="write identified and predicted curves here",
+                       csv="write the identified curve CSV here")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     from spsc.membrane.identify import identify, predict, read_bench
 
+    if args.json:
+        check_output_file("--json", args.json)
+    if args.csv:
+        check_output_file("--csv", args.csv)
     geometry, name = {}, ""
     if geometry_given(args):
         geom = geometry_from_args(args)
@@ -64,9 +73,8 @@ def run(args) -> int:
                      polytropic_n=args.polytropic_n, elastic_force_N=bench.elastic_force_N)
              for r in reservoirs for p in pressures]
     if args.json:
-        data = ident.to_dict()  # the Curve JSON of DESIGN.md, plus the predictions
-        data["predictions"] = [c.to_dict() for c in preds]
-        Path(args.json).write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
+        # the Curve JSON of DESIGN.md, the predictions under "extra"
+        ident.to_json(args.json, extra={"predictions": [c.to_dict() for c in preds]})
     if args.csv:
         ident.to_csv(args.csv)
     print(f"identified from {args.bench}: p_i = {args.pressure:g} kPa, V_b,i = {vb:.1f} mm³, "

@@ -1,11 +1,12 @@
 """The spsc command line: bad input ends in one line naming the parameter, and exit code 2."""
 
+import json
 import subprocess
 import sys
 
 import pytest
 
-from spsc.pipeline.cli import main
+from spsc.pipeline.cli import build_parser, main
 
 
 @pytest.mark.parametrize("argv,name", [
@@ -20,17 +21,95 @@ from spsc.pipeline.cli import main
     (["bladder", "--type", "B", "--flange-holes", "3"], "flange.holes"),
     (["fingertip", "--angle", "10"], "angle"),
     (["check", "/nonexistent/part.stl"], None),
+    # argparse's own errors: one line (no usage dump), a hint to --help
+    (["membrane", "--pressure", "abc"], "pressure"),
+    (["membrane", "--type", "B", "--points", "2.5"], "points"),
+    (["bladder", "--type", "B", "--flange-holes", "2.5"], "flange_holes"),
+    (["membrane", "--type", "B", "--no-such-option"], None),
+    (["membrane", "--type"], None),
+    (["curve", "--model", "nothing"], None),
+    (["nothing"], None),
+    # numbers that look like options parse, then validation names the parameter
+    (["membrane", "--type", "B", "--w", "-inf"], "w"),
+    (["membrane", "--type", "B", "--pressure", "-1e5"], "pressure"),
+    (["membrane", "--type", "B", "--reservoir", "nan"], "reservoir"),
+    (["membrane", "--type", "B", "--stroke", "inf"], "stroke"),
+    (["membrane", "--type", "B", "--w", ""], "w"),
+    # --size meant two things: refused with the two names that replace it
+    (["membrane", "--type", "B", "--size", "GS1"], None),
+    (["membrane", "--type", "B", "--footprint", "huge"], "footprint"),
+    (["fem", "--type", "B", "--mesh-size", "-1"], "mesh size"),
+    (["identify", "x.csv", "--pressure", "40", "--bladder-volume", "5000",
+      "--predict-pressures", ","], "predict-pressures"),
 ])
 def test_bad_input_is_one_line_exit_2(argv, name, capsys):
     assert main(argv) == 2
-    err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and err.startswith(f"spsc {argv[0]}: error: ")
+    out, err = capsys.readouterr()
+    err = err.strip()
+    verb = "spsc" if argv[0] == "nothing" else f"spsc {argv[0]}"
+    assert len(err.splitlines()) == 1 and err.startswith(f"{verb}: error: "), err
+    assert "usage:" not in err and out == ""
     if name:
         assert f"error: {name} = " in err
+
+
+def test_argparse_errors_point_to_help(capsys):
+    assert main(["membrane", "--pressure", "abc"]) == 2
+    assert capsys.readouterr().err == ("spsc membrane: error: pressure = 'abc' is invalid: "
+                                       "allowed a number (kPa gauge) (see spsc membrane --help)\n")
+
+
+def test_footprint_selects_the_preset_size(tmp_path):
+    j = tmp_path / "gs1.json"
+    assert main(["membrane", "--model", "simplified", "--type", "B", "--footprint", "GS1",
+                 "--json", str(j)]) == 0
+    g = json.loads(j.read_text(encoding="utf-8"))["geometry"]
+    assert (g["w"], g["h"], g["l"], g["t0"]) == (10.0, 10.0, 10.0, 1.0)
+
+
+#: Options each verb's help must show (besides every option its parser declares).
+KEY_OPTIONS = {
+    "bladder": ["--type", "--footprint", "--material", "--out", "--flange-holes"],
+    "fingertip": ["--angle", "--process", "--out"],
+    "check": ["--min-wall", "--process", "--design", "--json"],
+    "curve": ["--model", "--pressure", "--reservoir", "--stroke", "--points", "--mesh-size",
+              "--layers", "--vtu", "--meridians", "--json", "--csv", "--png", "--quiet"],
+    "membrane": ["--model", "--pressure", "--meridians", "--json", "--csv", "--png"],
+    "fem": ["--pressure", "--mesh-size", "--layers", "--full", "--solver", "--vtu", "--quiet"],
+    "identify": ["--pressure", "--bladder-volume", "--reservoir", "--polytropic-n",
+                 "--predict-pressures", "--json"],
+    "report": ["--quick", "--out", "--cache", "--no-fem", "--types", "--quiet"],
+}
+
+
+def _verbs():
+    import argparse
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    return sub.choices
+
+
+def test_every_verb_is_covered():
+    assert set(_verbs()) == set(KEY_OPTIONS)
+
+
+@pytest.mark.parametrize("verb", sorted(KEY_OPTIONS))
+def test_help_of_every_verb(verb, capsys):
+    """``spsc VERB --help`` exits 0 and mentions every option the verb declares."""
+    import argparse
+
+    assert main([verb, "--help"]) == 0
+    out = capsys.readouterr().out
+    declared = [s for a in _verbs()[verb]._actions if a.help != argparse.SUPPRESS
+                for s in a.option_strings]
+    assert "--help" in declared
+    for opt in declared + KEY_OPTIONS[verb]:
+        assert opt in out, (verb, opt)
+    assert "--size" not in out.replace("--mesh-size", "")
 
 
 def test_console_script_help():
     out = subprocess.run([sys.executable, "-m", "spsc.pipeline.cli", "--help"],
                          capture_output=True, encoding="utf-8", check=True).stdout
-    for verb in ("bladder", "fingertip", "check", "membrane", "identify"):
+    for verb in KEY_OPTIONS:
         assert verb in out

@@ -16,7 +16,10 @@ def test_spsc_fem_writes_the_curve_json(tmp_path, capsys, monkeypatch):
     assert code == 0
     data = json.loads(out.read_text(encoding="utf-8"))
     assert data["model"] == "fem" and data["setup"]["reservoir_mm3"] == 40000.0
-    assert data["solver"]["converged"] and data["solver"]["dofs"] > 0
+    info = data["solver"]
+    assert info["converged"] and info["details"]["dofs"] > 0 and info["details"]["tetrahedra"] > 0
+    assert info["iterations"] > 0 and info["seconds"] > 0 and info["details"]["mesh_size_mm"] == 3
+    assert data["extra"]["vtu"] == sorted(p.name for p in (tmp_path / "vtu").glob("*.vtu"))
     curve = Curve.from_json(out)
     assert len(curve) == 3 and curve.all_converged and curve.force_N[-1] > 0
     assert len(list((tmp_path / "vtu").glob("*.vtu"))) == 1 + 4 + 2

@@ -70,11 +70,11 @@ def test_cli_identify_writes_predictions(tmp_path, capsys):
     assert rc == 0
     import json
     d = json.loads(out.read_text(encoding="utf-8"))
-    assert len(d["predictions"]) == 4  # 2 pressures × 2 reservoirs
-    ident = Curve.from_json(out)  # the file is a Curve JSON (DESIGN.md) plus predictions
+    assert len(d["extra"]["predictions"]) == 4  # 2 pressures × 2 reservoirs
+    ident = Curve.from_json(out)  # a Curve JSON (DESIGN.md), predictions in "extra"
     assert ident.model == "identified"
     np.testing.assert_allclose(ident.contact_area_mm2, a, rtol=1e-9, atol=1e-9)
-    hi40 = d["predictions"][1]
+    hi40 = d["extra"]["predictions"][1]
     np.testing.assert_allclose(hi40["curve"]["force_N"], bench.force_N, rtol=1e-9, atol=1e-12)
     rc = main(["identify", str(f), "--pressure", "40", "--type", "D"])  # V_b,i of Table 1 type D
     assert rc == 0 and "6505.2 mm³" in capsys.readouterr().out

@@ -27,10 +27,12 @@ def test_membrane_writes_json_csv_png(tmp_path, capsys):
     for k in CURVE_COLUMNS:
         np.testing.assert_array_equal(getattr(a, k), getattr(b, k))
     assert png.stat().st_size > 10_000
-    m = d["meridians_mm"]
+    m = d["extra"]["meridians_mm"]
     assert len(m) == 11 and m[0]["rho"][0] == 0.0 and m[-1]["x"][0] == 0.0
     assert m[-1]["rho"][-1] == pytest.approx(11.0) and m[-1]["eta"][-1] == pytest.approx(0.0, abs=1e-9)
     assert "mean stiffness" in capsys.readouterr().out
+    assert d["solver"]["converged"] and d["solver"]["iterations"] > 0
+    assert d["solver"]["seconds"] > 0 and d["solver"]["details"]["inflation_intervals"] > 0
 
 
 def test_seven_parameters_and_a_pure_dome(tmp_path):
@@ -47,7 +49,9 @@ def test_seven_parameters_and_a_pure_dome(tmp_path):
 def test_simplified_model_option(tmp_path):
     j = tmp_path / "s.json"
     assert main(["membrane", "--type", "B", "--model", "simplified", "--json", str(j)]) == 0
-    assert json.loads(j.read_text(encoding="utf-8"))["model"] == "simplified"
+    d = json.loads(j.read_text(encoding="utf-8"))
+    assert d["model"] == "simplified"
+    assert d["solver"]["converged"] and d["solver"]["seconds"] >= 0
 
 
 @pytest.mark.parametrize("argv, needle", [

@@ -1,0 +1,334 @@
+"""``spsc curve``: the one verb that computes a :class:`~spsc.core.curve.Curve` from a chamber
+and a setup, with any model — JSON, CSV and a plot.
+
+    spsc curve --model membrane|simplified|fem --type D --pressure 40 [--reservoir 40000]
+               [--stroke MM] [--points N] [--material tpu60a] [model options]
+               [--json F] [--csv F] [--png F] [--quiet]
+
+``spsc membrane`` and ``spsc fem`` are its short forms (the same code, the same JSON). A model
+is one entry of :data:`MODELS`: its default stroke and points, its own options (an argparse
+group) and a function from the setup to a Curve. Pressures kPa gauge, volumes mm³, lengths
+mm. Exit 0 when every plate position converged, 1 when some did not (what was computed is
+still written, the reason on stderr), 2 on invalid input (one line on stderr).
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from spsc.core.errors import ParameterError
+
+from .options import (PLOT_SUFFIXES, add_geometry_options, add_output_options,
+                      add_quiet_option, add_setup_options, check_output_dir,
+                      check_output_file, geometry_from_args, integer, number, warn)
+
+__all__ = ["MODELS", "Model", "Job", "Computed", "add_curve_parser", "register", "run"]
+
+
+@dataclass(frozen=True)
+class Job:
+    """What every model receives: the chamber, the material and the setup (mm, kPa, mm³), the
+    parsed arguments (for its own options) and whether to show progress."""
+
+    geometry: object
+    material: object
+    pressure_kPa: float
+    reservoir_mm3: float
+    stroke_mm: float
+    points: int
+    polytropic_n: float
+    args: object
+    quiet: bool
+    verb: str
+
+
+@dataclass
+class Computed:
+    """A model's outcome: the Curve (its ``solver`` says how the solve went), model-specific
+    JSON additions (``extra``) and, for the plot, the membrane's shapes (or None)."""
+
+    curve: object
+    extra: dict = field(default_factory=dict)
+    shapes: object = None
+
+
+@dataclass(frozen=True)
+class Model:
+    """One entry of the model table.
+
+    name, help : the ``--model`` value and its one-line description
+    stroke_mm, points : default stroke (mm) and plate positions
+    add_options : registers the model's own options on an argparse group (dest default None)
+    defaults : dest -> value of those options when the model runs and they are not given
+    compute : Job -> Computed
+    """
+
+    name: str
+    help: str
+    stroke_mm: float
+    points: int
+    add_options: Callable | None
+    defaults: dict
+    compute: Callable
+
+
+# -- the models ----------------------------------------------------------------------------
+def _membrane_options(g) -> None:
+    g.add_argument("--meridians", action="store_true", default=None,
+                   help="add the deformed meridians (x, rho, eta per position) to the JSON")
+
+
+def _membrane(job: Job) -> Computed:
+    from spsc.membrane.solver import solve
+
+    r = solve(job.geometry, job.material, pressure_kPa=job.pressure_kPa,
+              reservoir_mm3=job.reservoir_mm3, stroke_mm=job.stroke_mm, points=job.points,
+              polytropic_n=job.polytropic_n)
+    extra = {}
+    if job.args.meridians:
+        extra["meridians_mm"] = [None if sh is None else dict(zip(("x", "rho", "eta"), (
+            [round(float(v), 6) for v in a] for a in sh.meridian()))) for sh in r.shapes]
+    return Computed(r.curve, extra, r)
+
+
+def _simplified(job: Job) -> Computed:
+    from spsc.membrane.simplified import simplified_curve
+
+    return Computed(simplified_curve(job.geometry, pressure_kPa=job.pressure_kPa,
+                                     reservoir_mm3=job.reservoir_mm3, stroke_mm=job.stroke_mm,
+                                     points=job.points, polytropic_n=job.polytropic_n,
+                                     material=job.material.name))
+
+
+def _fem_options(g) -> None:
+    g.add_argument("--mesh-size", type=number("mesh size", "mm"), default=None, metavar="MM",
+                   help="element edge along the wall surfaces, mm (default 1.0)")
+    g.add_argument("--layers", type=integer("layers"), default=None, metavar="N",
+                   help="quadratic elements through the wall thickness (default 2)")
+    g.add_argument("--full", action="store_true", default=None,
+                   help="full model instead of the quarter on the symmetry planes")
+    g.add_argument("--solver", default=None,
+                   choices=("auto", "pardiso", "superlu", "superlu-mmd"),
+                   help="sparse linear solver (default auto: pardiso if installed)")
+    g.add_argument("--vtu", metavar="DIR", default=None,
+                   help="write one VTU per converged step into this folder (for ParaView)")
+
+
+def _fem(job: Job) -> Computed:
+    from tqdm import tqdm
+
+    from spsc.fem.run import ChamberRun, run_chamber, write_vtu
+    from spsc.fem.solver import Settings
+
+    a = job.args
+    spec = ChamberRun(job.geometry, job.material, pressure_kPa=job.pressure_kPa,
+                      reservoir_mm3=job.reservoir_mm3, stroke_mm=job.stroke_mm,
+                      points=job.points, mesh_size_mm=a.mesh_size, layers=a.layers,
+                      polytropic_index=job.polytropic_n, full=bool(a.full))
+    total = spec.points - 1 + (spec.inflate_increments if spec.pressure_kPa > 0 else 0)
+    bar = tqdm(total=total, desc=f"spsc {job.verb}", unit="step", disable=job.quiet,
+               file=sys.stderr)
+
+    def progress(done, total):
+        bar.total = total
+        bar.update(done - bar.n)
+
+    try:
+        curve, result, model = run_chamber(spec, settings=Settings(solver=a.solver),
+                                           progress=progress)
+    finally:
+        bar.close()
+    extra = {}
+    if a.vtu:
+        extra["vtu"] = [p.name for p in write_vtu(model, result, a.vtu)]
+    return Computed(curve, extra)
+
+
+#: The models behind ``spsc curve --model``. Adding one (e.g. the axisymmetric ``wall`` model
+#: of spsc.fem, a function of the same setup returning a Curve) is one entry here: a compute
+#: function Job -> Computed, its defaults and, if it has any, its options.
+MODELS: dict[str, Model] = {m.name: m for m in (
+    Model("membrane", "axisymmetric membrane: inflation and plate contact (fast)", 6.0, 41,
+          _membrane_options, {"meridians": False}, _membrane),
+    Model("simplified", "the nominal chamber cut by the plate, with the air spring", 6.0, 41,
+          None, {}, _simplified),
+    Model("fem", "3D hyperelastic FEM of the printed wall (quarter model by default)", 4.0, 11,
+          _fem_options, {"mesh_size": 1.0, "layers": 2, "full": False, "solver": "auto",
+                         "vtu": None}, _fem),
+)}
+
+
+# -- the verb and its short forms -------------------------------------------------------------
+def add_curve_parser(subparsers, verb: str, *, models: tuple[str, ...], help: str,
+                     description: str):
+    """Register ``verb`` computing a Curve with any of ``models`` (the first is the default;
+    ``--model`` only when there is a choice). ``spsc curve``, ``spsc membrane`` and
+    ``spsc fem`` are all this parser."""
+    p = subparsers.add_parser(verb, help=help, description=description)
+    add_geometry_options(p)
+    strokes = {MODELS[m].stroke_mm for m in models}
+    points = {MODELS[m].points for m in models}
+    note = "the model's: " + ", ".join(f"{m} {MODELS[m].stroke_mm:g} mm, {MODELS[m].points}"
+                                       for m in models)
+    add_setup_options(p, stroke=strokes.pop() if len(strokes) == 1 else None,
+                      points=points.pop() if len(points) == 1 else None,
+                      defaults_note=note)
+    if len(models) > 1:
+        p.add_argument("--model", choices=models, default=models[0],
+                       help="; ".join(f"{m}: {MODELS[m].help}" for m in models)
+                       + f" (default {models[0]})")
+    else:
+        p.set_defaults(model=models[0])
+    for m in models:
+        if MODELS[m].add_options is not None:
+            MODELS[m].add_options(p.add_argument_group(f"{m} model options"))
+    add_output_options(p, png="write a plot of F, p, A, dV and the stiffness here "
+                       "(" + ", ".join(s.lstrip(".") for s in PLOT_SUFFIXES[:3]) + " ...)")
+    add_quiet_option(p)
+    p.set_defaults(func=run, models=models)
+    return p
+
+
+def register(subparsers) -> None:
+    add_curve_parser(subparsers, "curve", models=tuple(MODELS),
+                     help="the Curve F, p, A, dV(y) of a chamber with any model",
+                     description=__doc__.split("\n\n")[0])
+
+
+def _model_args(args, model: Model) -> None:
+    """Refuse options of another model; fill in this model's defaults."""
+    for other in args.models:
+        if other == model.name:
+            continue
+        for dest in MODELS[other].defaults:
+            if dest not in model.defaults and getattr(args, dest, None) is not None:
+                raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
+                                     f"only with --model {other}")
+    for dest, value in model.defaults.items():
+        if getattr(args, dest, None) is None:
+            setattr(args, dest, value)
+    if args.stroke is None:
+        args.stroke = model.stroke_mm
+    if args.points is None:
+        args.points = model.points
+
+
+def _check_outputs(args) -> None:
+    if args.json:
+        check_output_file("--json", args.json)
+    if args.csv:
+        check_output_file("--csv", args.csv)
+    if args.png:
+        check_output_file("--png", args.png, PLOT_SUFFIXES)
+    if getattr(args, "vtu", None):
+        check_output_dir("--vtu", args.vtu)
+
+
+def run(args) -> int:
+    from spsc.membrane.materials import material
+
+    verb = args.command
+    model = MODELS[args.model]
+    _model_args(args, model)
+    _check_outputs(args)
+    geom = geometry_from_args(args)
+    mat = material(args.material)
+    for msg in geom.design_space_warnings():
+        warn(verb, msg)
+    job = Job(geom, mat, args.pressure, args.reservoir, args.stroke, args.points,
+              args.polytropic_n, args, bool(args.quiet), verb)
+    out = model.compute(job)
+    curve = out.curve
+    if args.json:
+        curve.to_json(args.json, extra=out.extra or None)
+    if args.csv:
+        curve.to_csv(args.csv)
+    if args.png:
+        plot(curve, out.shapes, args.png)
+    summary(curve)
+    noted = [m for m, c in zip(curve.message, curve.converged) if c and m]
+    if noted:
+        warn(verb, noted[-1] + (f" (and at {len(noted) - 1} other positions)"
+                                if len(noted) > 1 else ""))
+    info = curve.solver
+    if info.instability:
+        print(f"spsc {verb}: instability: {info.instability}", file=sys.stderr)
+    if not (info.converged and curve.all_converged):
+        first = next((m for m, c in zip(curve.message, curve.converged) if not c), "")
+        print(f"spsc {verb}: not converged: {info.message if not info.converged else first}",
+              file=sys.stderr)
+        return 1
+    return 0
+
+
+def summary(curve) -> None:
+    """The result on stdout: setup, volumes, the curve (at most 11 rows), means and timing."""
+    s, info = curve.setup, curve.solver
+    d = info.details
+    size = (f" ({d.get('model_part')}, {d['dofs']} unknowns, {d.get('tetrahedra')} tetrahedra)"
+            if "dofs" in d else "")
+    print(f"{curve.model} model{size}, material {curve.material}, p_i = {s['p_i_kPa']:g} kPa, "
+          f"V_r = {s['reservoir_mm3']:g} mm³")
+    print(f"cavity volume {curve.nominal_volume_mm3:.1f} -> {curve.inflated_volume_mm3:.1f} mm³ "
+          f"({100 * (curve.inflated_volume_mm3 / curve.nominal_volume_mm3 - 1):+.2f} %), "
+          f"apex at {curve.inflated_height_mm:.3f} mm")
+    print(f"{'y_mm':>7} {'force_N':>9} {'p_kPa':>8} {'A_mm2':>8} {'dV_mm3':>9}")
+    step = max(1, (len(curve) - 1) // 10)
+    rows = sorted(set(range(0, len(curve), step)) | {len(curve) - 1})
+    for k in rows:
+        print(f"{curve.y_mm[k]:7.3f} {curve.force_N[k]:9.4f} {curve.pressure_kPa[k]:8.3f} "
+              f"{curve.contact_area_mm2[k]:8.2f} {curve.volume_change_mm3[k]:9.2f}")
+    k, q = curve.mean_stiffness(), curve.mean_sensitivity()
+    if np.isfinite(k):
+        print(f"mean stiffness {k:.4g} N/mm, mean sensitivity {q:.4g} kPa/mm")
+    if info.iterations:
+        print(f"solved in {info.seconds:.3g} s ({info.iterations} Newton iterations)")
+    else:
+        print(f"computed in {info.seconds:.3g} s")
+
+
+def plot(curve, result, path) -> None:
+    """F, p, A, ΔV and dF/dy against y; the membrane's deformed meridians (inflated and last
+    position) when ``result`` has them."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(2, 3, figsize=(12, 6.5), constrained_layout=True)
+    y = curve.y_mm
+    for a, (val, lab) in zip(ax.flat, ((curve.force_N, "force (N)"),
+                                       (curve.pressure_kPa, "gauge pressure (kPa)"),
+                                       (curve.contact_area_mm2, "contact area (mm²)"),
+                                       (curve.volume_change_mm3, "volume change (mm³)"),
+                                       (curve.stiffness(), "stiffness dF/dy (N/mm)"))):
+        a.plot(y, val, "o-", ms=2.5)
+        a.set_xlabel("plate travel y (mm)")
+        a.set_ylabel(lab)
+        a.grid(alpha=0.3)
+    a = ax.flat[5]
+    if result is not None and getattr(result, "inflated", None) is not None:
+        sh = result.inflated
+        a.plot(sh.x, sh.y, "k:", label="nominal")
+        a.plot(sh.rho, sh.eta, "b-", label="inflated")
+        k = max(i for i, s in enumerate(result.shapes) if s is not None)
+        last = result.shapes[k]
+        if k > 0:
+            _, rho, eta = last.meridian()
+            a.plot(rho, eta, "r-", label=f"y = {curve.y_mm[k]:.2f} mm")
+            a.axhline(last.eta[last.gamma_index], color="0.5", lw=0.8)
+        a.set_aspect("equal")
+        a.set_xlabel("radius (mm)")
+        a.set_ylabel("height (mm)")
+        a.legend(fontsize=8)
+    else:
+        a.axis("off")
+    g = curve.geometry
+    fig.suptitle(f"{curve.model}: w={g.get('w')}, h={g.get('h')}, l={g.get('l')}, "
+                 f"n1={g.get('n1')}, n2={g.get('n2')}, cy={g.get('cy')}; {curve.material}, "
+                 f"p_i={curve.setup.get('p_i_kPa')} kPa, V_r={curve.setup.get('reservoir_mm3')} mm³")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -1,0 +1,178 @@
+"""``spsc curve --model X``: one verb for every model; ``spsc membrane`` and ``spsc fem`` are
+its short forms and write the same JSON (timing apart); the model table; the error contract."""
+
+import json
+
+import numpy as np
+import pytest
+
+from spsc.core.curve import Curve, SolveInfo
+from spsc.pipeline import cmd_curve
+from spsc.pipeline.cli import build_parser, main
+
+#: The only fields allowed to differ between two runs of the same inputs: wall-clock times.
+TIMING = (("solver", "seconds"), ("solver", "details", "mesh_seconds"))
+
+
+def _json_without_timing(path):
+    d = json.loads(path.read_text(encoding="utf-8"))
+    for keys in TIMING:
+        node = d
+        for k in keys[:-1]:
+            node = node.get(k, {})
+        node.pop(keys[-1], None)
+    return d
+
+
+def _same_json(tmp_path, short: list[str], long: list[str]):
+    a, b = tmp_path / "short.json", tmp_path / "long.json"
+    assert main([*short, "--json", str(a)]) == 0
+    assert main([*long, "--json", str(b)]) == 0
+    da, db = _json_without_timing(a), _json_without_timing(b)
+    assert da == db  # exact: same code, same inputs, deterministic solvers
+    return da
+
+
+def test_membrane_short_form_is_curve_model_membrane(tmp_path):
+    args = ["--type", "D", "--pressure", "30", "--reservoir", "40000", "--points", "5",
+            "--meridians"]
+    d = _same_json(tmp_path, ["membrane", *args], ["curve", "--model", "membrane", *args])
+    assert d["model"] == "membrane" and len(d["curve"]["y_mm"]) == 5
+    assert d["curve"]["y_mm"][-1] == 6.0  # the membrane's default stroke in both forms
+    assert len(d["extra"]["meridians_mm"]) == 5
+    assert d["solver"]["converged"] and d["solver"]["iterations"] > 0
+
+
+def test_simplified_through_both_verbs(tmp_path):
+    args = ["--type", "B", "--points", "7", "--stroke", "3"]
+    d = _same_json(tmp_path, ["membrane", "--model", "simplified", *args],
+                   ["curve", "--model", "simplified", *args])
+    assert d["model"] == "simplified" and d["solver"]["converged"]
+
+
+def test_fem_short_form_is_curve_model_fem(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # mesh cache under build/cache/fem here
+    args = ["--type", "B", "--mesh-size", "3", "--layers", "1", "--stroke", "1", "--points",
+            "3", "--quiet"]
+    d = _same_json(tmp_path, ["fem", *args], ["curve", "--model", "fem", *args])
+    assert d["model"] == "fem" and d["solver"]["details"]["dofs"] > 0
+    assert d["solver"]["converged"] and d["curve"]["force_N"][-1] > 0
+
+
+@pytest.mark.parametrize("short, long, stroke, points", [
+    (["fem"], ["curve", "--model", "fem"], 4.0, 11),
+    (["membrane"], ["curve", "--model", "membrane"], 6.0, 41),
+    (["membrane", "--model", "simplified"], ["curve", "--model", "simplified"], 6.0, 41),
+])
+def test_short_forms_have_the_model_defaults(short, long, stroke, points):
+    """Defaults resolved as the verb resolves them: the short form and the long form agree,
+    and every option of the model has a value."""
+    parser = build_parser()
+    resolved = []
+    for argv in (short, long):
+        args = parser.parse_args([*argv, "--type", "B"])
+        cmd_curve._model_args(args, cmd_curve.MODELS[args.model])
+        resolved.append({k: v for k, v in vars(args).items()
+                         if k not in ("command", "models", "func")})
+    a, b = resolved
+    assert a["stroke"] == b["stroke"] == stroke and a["points"] == b["points"] == points
+    for key in set(a) & set(b):
+        assert a[key] == b[key], key
+    model = cmd_curve.MODELS[a["model"]]
+    assert all(b[k] is not None or v is None for k, v in model.defaults.items())
+
+
+def _toy_curve(job, converged=True):
+    y = np.linspace(0.0, job.stroke_mm, job.points)
+    conv = np.ones(y.size, bool)
+    msg = [""] * y.size
+    if not converged:
+        conv[-1], msg[-1] = False, "toy: no equilibrium at the last point"
+    f = np.where(conv, 2.0 * y, np.nan)
+    info = SolveInfo(converged=converged, message="converged" if converged else msg[-1],
+                     y_reached_mm=y[conv][-1], seconds=0.0, iterations=3)
+    return Curve(y, f, 40 + y, 10 * y, 5 * y, model="toy", geometry=job.geometry.as_dict(),
+                 material=job.material.name,
+                 setup={"p_i_kPa": job.pressure_kPa, "reservoir_mm3": job.reservoir_mm3,
+                        "polytropic_n": job.polytropic_n},
+                 nominal_volume_mm3=100.0, inflated_volume_mm3=110.0, inflated_height_mm=13.0,
+                 converged=conv, message=tuple(msg), solver=info)
+
+
+@pytest.fixture
+def toy(monkeypatch):
+    """A model added as one entry of the table (what the wall model will do)."""
+    calls = []
+
+    def options(g):
+        g.add_argument("--toy-knob", type=float, default=None, help="a toy option")
+
+    def compute(job):
+        calls.append(job)
+        return cmd_curve.Computed(_toy_curve(job, converged=job.args.toy_knob < 5),
+                                  {"knob": job.args.toy_knob})
+    monkeypatch.setitem(cmd_curve.MODELS, "toy", cmd_curve.Model(
+        "toy", "a toy model", 2.0, 5, options, {"toy_knob": 1.0}, compute))
+    return calls
+
+
+def test_a_model_is_one_table_entry(toy, tmp_path, capsys):
+    j, c = tmp_path / "t.json", tmp_path / "t.csv"
+    assert main(["curve", "--model", "toy", "--type", "A", "--json", str(j), "--csv", str(c)]) == 0
+    assert len(toy) == 1 and toy[0].stroke_mm == 2.0 and toy[0].points == 5  # its defaults
+    d = json.loads(j.read_text(encoding="utf-8"))
+    assert d["model"] == "toy" and d["extra"] == {"knob": 1.0}
+    assert Curve.from_csv(c).force_N[-1] == 4.0
+    assert "--toy-knob" in _help(["curve"], capsys)
+    # its option belongs to it: refused with another model, before any work
+    assert main(["curve", "--model", "membrane", "--type", "A", "--toy-knob", "2"]) == 2
+    assert "--toy-knob = 2.0 is invalid: allowed only with --model toy" in capsys.readouterr().err
+
+
+def test_not_converged_exits_1_and_keeps_what_was_computed(toy, tmp_path, capsys):
+    j = tmp_path / "t.json"
+    assert main(["curve", "--model", "toy", "--type", "A", "--toy-knob", "9",
+                 "--json", str(j)]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["spsc curve: not converged: toy: no equilibrium at the last point"]
+    c = Curve.from_json(j)
+    assert c.converged.tolist() == [True] * 4 + [False] and np.isnan(c.force_N[-1])
+    assert c.force_N[3] == pytest.approx(3.0) and not c.solver.converged
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--json", "{tmp}/no/such/folder/x.json"], "--json = "),
+    (["--json", "{tmp}"], "this is a folder"),
+    (["--png", "{tmp}/plot.xyz"], "--png = "),
+    (["--csv", "{tmp}/x.json/y.csv"], "--csv = "),
+])
+def test_output_paths_are_checked_before_the_work(toy, tmp_path, capsys, argv, message):
+    (tmp_path / "x.json").write_text("{}", encoding="utf-8")
+    argv = [a.format(tmp=tmp_path) for a in argv]
+    assert main(["curve", "--model", "toy", "--type", "A", *argv]) == 2
+    err = capsys.readouterr().err
+    assert not toy and err.count("\n") == 1 and message in err
+    assert err.startswith("spsc curve: error: ")
+
+
+def test_an_os_error_while_writing_is_one_line(toy, tmp_path, capsys, monkeypatch):
+    def full_disk(self, *a, **k):
+        raise OSError(28, "No space left on device", str(tmp_path / "t.json"))
+    monkeypatch.setattr(Curve, "to_json", full_disk)
+    assert main(["curve", "--model", "toy", "--type", "A", "--json",
+                 str(tmp_path / "t.json")]) == 2
+    err = capsys.readouterr().err
+    assert err == f"spsc curve: error: {tmp_path / 't.json'}: No space left on device\n"
+
+
+def test_warnings_go_to_stderr(toy, capsys):
+    # l/w = 3.6 is outside the covered design space (l/w <= 3): a warning, not an error
+    assert main(["curve", "--model", "toy", "--type", "A", "--l", "40"]) == 0
+    out, err = capsys.readouterr()
+    assert "warning" not in out and "toy model" in out
+    assert err.startswith("spsc curve: warning: ") and err.count("\n") == 1
+
+
+def _help(argv, capsys) -> str:
+    assert main([*argv, "--help"]) == 0
+    return capsys.readouterr().out
