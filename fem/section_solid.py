@@ -28,17 +28,38 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import math
+
 import numpy as np
 import scipy.sparse as sp
 
 from .material import NearlyIncompressible
 from .section import DOME, Section
 
-__all__ = ["SectionSolid", "InvertedSection"]
+__all__ = ["MixedSolid", "section_solid", "stadium_dome", "junction_mode", "InvertedSection"]
 
 
 class InvertedSection(ValueError):
     """A quadrature point with det F ≤ 0: the trial state is not admissible."""
+
+
+def _hoop_free_operator(s: Section) -> np.ndarray:
+    """∂F/∂u of the in-plane components only (no hoop term), shape (ne, nq, 3, 3, 9, 2)."""
+    ne, nq = s.dV.shape
+    B = np.zeros((ne, nq, 3, 3, 9, 2))
+    B[:, :, 0, 0, :, 0] = s.dNdX[..., 0]
+    B[:, :, 0, 1, :, 0] = s.dNdX[..., 1]
+    B[:, :, 1, 0, :, 1] = s.dNdX[..., 0]
+    B[:, :, 1, 1, :, 1] = s.dNdX[..., 1]
+    return B
+
+
+def _pressure_basis(dV, Xq, measure):
+    """q = (1, (R − R_c)/h, (Z − Z_c)/h) at the quadrature points, (ne, nq, 3)."""
+    w = dV / dV.sum(axis=1, keepdims=True)
+    centre = np.einsum("eq,eqi->ei", w, Xq)
+    h = np.sqrt(dV.sum(axis=1) / measure(centre[:, 0]))[:, None, None]
+    return np.concatenate([np.ones(dV.shape + (1,)), (Xq - centre[:, None, :]) / h], -1)
 
 
 def _strain_operator(s: Section) -> np.ndarray:
@@ -55,43 +76,45 @@ def _strain_operator(s: Section) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
-class SectionSolid:
-    """A :class:`Section` with a nearly incompressible law: residual and tangent of u."""
+class MixedSolid:
+    """A 2D (or 2.5D) nearly incompressible solid given by its arrays: the strain operator
+    ``B`` (ne, nq, 9, nd) = ∂F/∂u_e, weights × measure ``dV`` (ne, nq) in mm³, the pressure
+    basis ``q`` (ne, nq, 3), the element unknowns ``element_dofs`` (ne, nd) among ``n_dofs``.
+    F = I + B u_e (total Lagrangian, linear in u)."""
 
-    section: Section
     law: NearlyIncompressible
-    B: np.ndarray = field(init=False, repr=False)
-    q: np.ndarray = field(init=False, repr=False)
+    B: np.ndarray = field(repr=False)
+    dV: np.ndarray = field(repr=False)
+    q: np.ndarray = field(repr=False)
+    element_dofs: np.ndarray = field(repr=False)
+    n_dofs: int
     M: np.ndarray = field(init=False, repr=False)
     Minv: np.ndarray = field(init=False, repr=False)
     rows: np.ndarray = field(init=False, repr=False)
     cols: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
-        s = self.section
-        w = s.dV / s.dV.sum(axis=1, keepdims=True)
-        centre = np.einsum("eq,eqi->ei", w, s.Xq)
-        h = np.sqrt(s.dV.sum(axis=1) / s.measure(centre[:, 0]))[:, None, None]
-        q = np.concatenate([np.ones(s.dV.shape + (1,)), (s.Xq - centre[:, None, :]) / h], -1)
-        M = np.einsum("eqk,eql,eq->ekl", q, q, s.dV)
-        dofs = s.element_dofs
-        object.__setattr__(self, "B", _strain_operator(s))
-        object.__setattr__(self, "q", q)
+        M = np.einsum("eqk,eql,eq->ekl", self.q, self.q, self.dV)
+        dofs, nd = self.element_dofs, self.element_dofs.shape[1]
         object.__setattr__(self, "M", M)
         object.__setattr__(self, "Minv", np.linalg.inv(M))
-        object.__setattr__(self, "rows", np.repeat(dofs, 18, axis=1).ravel())
-        object.__setattr__(self, "cols", np.tile(dofs, (1, 18)).ravel())
+        object.__setattr__(self, "rows", np.repeat(dofs, nd, axis=1).ravel())
+        object.__setattr__(self, "cols", np.tile(dofs, (1, nd)).ravel())
+
+    @property
+    def n_pressure(self) -> int:
+        return self.q.shape[-1] * len(self.element_dofs)
 
     def deformation(self, u) -> np.ndarray:
         """F at the quadrature points, (ne, nq, 3, 3)."""
-        ue = np.asarray(u)[self.section.element_dofs]  # (ne, 18)
+        ue = np.asarray(u)[self.element_dofs]  # (ne, nd)
         F = np.einsum("eqcd,ed->eqc", self.B, ue).reshape(ue.shape[0], -1, 3, 3)
         F += np.eye(3)
         return F
 
     def zero_pressure(self) -> np.ndarray:
         """Pressure coefficients (ne, 3) of the undeformed state (MPa)."""
-        return np.zeros((len(self.section.elements), 3))
+        return np.zeros((len(self.element_dofs), self.q.shape[-1]))
 
     def _fields(self, u, pc):
         F = self.deformation(u)
@@ -99,7 +122,7 @@ class SectionSolid:
         if np.any(J <= 0):
             raise InvertedSection("det F <= 0 in the wall section")
         p = np.einsum("eqk,ek->eq", self.q, pc)
-        rp = (np.einsum("eqk,eq,eq->ek", self.q, J - 1.0, self.section.dV)
+        rp = (np.einsum("eqk,eq,eq->ek", self.q, J - 1.0, self.dV)
               - np.einsum("ekl,el->ek", self.M, pc) / self.law.kappa)
         return F, J, p, rp
 
@@ -111,42 +134,117 @@ class SectionSolid:
         """(r_u, r_p): nodal forces (N), shape (2n,), and the pressure residual (ne, 3)."""
         F, _, p, rp = self._fields(u, pc)
         P = self.law.stress(F, p).reshape(F.shape[0], F.shape[1], 9)
-        re = np.einsum("eqc,eqcd,eq->ed", P, self.B, self.section.dV)
-        r = np.zeros(self.section.n_dofs)
-        np.add.at(r, self.section.element_dofs, re)
+        re = np.einsum("eqc,eqcd,eq->ed", P, self.B, self.dV)
+        r = np.zeros(self.n_dofs)
+        np.add.at(r, self.element_dofs, re)
         return r, rp
 
     def residual_tangent(self, u, pc):
         """(r_u, r_p, K, G): the residuals, the condensed tangent K + κ Gᵀ M⁻¹ G (N/mm, CSR)
         and the element blocks G (ne, 3, 18) for :meth:`condensed_rhs` and :meth:`recover`."""
-        s = self.section
         F, J, p, rp = self._fields(u, pc)
         P, A = self.law.stress_tangent(F, p)
         ne, nq = p.shape
         P = P.reshape(ne, nq, 9)
         A = A.reshape(ne, nq, 9, 9)
-        # batched matmul over elements: (18, nq·9) @ (nq·9, 18); einsum is 10x slower here
-        BdV = self.B * s.dV[..., None, None]
+        nd = self.B.shape[-1]
+        # batched matmul over elements: (nd, nq·9) @ (nq·9, nd); einsum is 10x slower here
+        BdV = self.B * self.dV[..., None, None]
         re = np.einsum("eqc,eqcd->ed", P, BdV)
-        AB = (A @ self.B).reshape(ne, nq * 9, 18)
-        Ke = np.swapaxes(BdV.reshape(ne, nq * 9, 18), 1, 2) @ AB
+        AB = (A @ self.B).reshape(ne, nq * 9, nd)
+        # contiguous operands: a transposed stack would send matmul down its slow loop
+        BdVt = np.ascontiguousarray(np.swapaxes(BdV.reshape(ne, nq * 9, nd), 1, 2))
+        Ke = BdVt @ AB
         JG = J[..., None] * np.swapaxes(np.linalg.inv(F), -1, -2).reshape(ne, nq, 9)
-        JGB = (JG[:, :, None, :] @ BdV)[:, :, 0, :]  # (ne, nq, 18)
-        G = np.swapaxes(self.q, 1, 2) @ JGB  # (ne, 3, 18)
-        Ke += self.law.kappa * (np.swapaxes(G, 1, 2) @ (self.Minv @ G))
-        r = np.zeros(s.n_dofs)
-        np.add.at(r, s.element_dofs, re)
-        K = sp.csr_matrix((Ke.ravel(), (self.rows, self.cols)), shape=(s.n_dofs,) * 2)
+        JGB = np.einsum("eqc,eqcd->eqd", JG, BdV)  # (ne, nq, nd)
+        G = np.ascontiguousarray(np.swapaxes(self.q, 1, 2)) @ JGB  # (ne, k, nd)
+        Ke += self.law.kappa * (np.ascontiguousarray(np.swapaxes(G, 1, 2)) @ (self.Minv @ G))
+        r = np.zeros(self.n_dofs)
+        np.add.at(r, self.element_dofs, re)
+        K = sp.csr_matrix((Ke.ravel(), (self.rows, self.cols)), shape=(self.n_dofs,) * 2)
         return r, rp, K, G
 
     def condensed_rhs(self, G, rp) -> np.ndarray:
         """κ Gᵀ M⁻¹ r_p as nodal forces (N), to add to r_u in the condensed solve."""
         fe = self.law.kappa * np.einsum("ekd,ek->ed", G, np.einsum("ekl,el->ek", self.Minv, rp))
-        f = np.zeros(self.section.n_dofs)
-        np.add.at(f, self.section.element_dofs, fe)
+        f = np.zeros(self.n_dofs)
+        np.add.at(f, self.element_dofs, fe)
         return f
 
     def recover(self, G, rp, du) -> np.ndarray:
         """Δp = κ M⁻¹ (r_p + G Δu), shape (ne, 3)."""
-        Gdu = np.einsum("ekd,ed->ek", G, np.asarray(du)[self.section.element_dofs])
+        Gdu = np.einsum("ekd,ed->ek", G, np.asarray(du)[self.element_dofs])
         return self.law.kappa * np.einsum("ekl,el->ek", self.Minv, rp + Gdu)
+
+
+def section_solid(section: Section, law: NearlyIncompressible) -> MixedSolid:
+    """The solid of an axisymmetric dome or a plane-strain section (F_θθ = 1 + u_R/R or 1)."""
+    B = _strain_operator(section)
+    q = _pressure_basis(section.dV, section.Xq, section.measure)
+    return MixedSolid(law, B, section.dV, q, section.element_dofs, section.n_dofs)
+
+
+#: Gauss points and weights on θ ∈ [0, π/2] (weights sum to 1) for the stadium's half-domes
+_THETA, _THETA_W = np.polynomial.legendre.leggauss(4)
+_THETA = 0.25 * np.pi * (_THETA + 1.0)
+_THETA_W = 0.5 * _THETA_W
+
+
+def junction_mode(theta):
+    """c(θ) = cos²θ and dc/dθ: 1 in the junction plane with the middle (θ = 0), 0 at the
+    half-dome's tip meridian (θ = π/2)."""
+    theta = np.asarray(theta, float)
+    return np.cos(theta) ** 2, -np.sin(2.0 * theta)
+
+
+def stadium_dome(section: Section, law: NearlyIncompressible, dofs_tip, dofs_junction,
+                 dofs_hoop, n_dofs: int) -> MixedSolid:
+    """The two half-domes of a stadium (l > 0) as a 2.5D solid of revolution whose meridian
+    varies around the axis, θ from the junction plane with the straight middle (θ = 0) to the
+    tip meridian (θ = π/2):
+
+        u_R, u_Z = (1 − c) u_tip + c u_j,   c(θ) = cos²θ = (1 + cos 2θ)/2,
+        u_θ = sin 2θ · v,
+
+    the axisymmetric field plus the second harmonic, the hoop displacement v letting the
+    meridians differ without shearing the shell (the junction meridian u_j moves with the
+    middle; u_θ = 0 at the junction and the tip by symmetry). In physical cylindrical
+    components (R, Z, θ)
+
+        F = [[1 + u_R,R, u_R,Z, (u_R,θ − u_θ)/R],
+             [u_Z,R, 1 + u_Z,Z, u_Z,θ/R],
+             [u_θ,R, u_θ,Z, 1 + (u_R + u_θ,θ)/R]],
+
+    integrated over the four quarter-domes (4R dθ dA, θ ∈ [0, π/2], 4-point Gauss). With
+    u_j = u_tip and v = 0 it is the axisymmetric dome exactly. ``dofs_tip``,
+    ``dofs_junction`` (ne, 18) and ``dofs_hoop`` (ne, 9): global unknowns among ``n_dofs``.
+    """
+    ne, nq = section.dV.shape
+    R = section.Xq[..., 0][..., None]
+    Ba = _strain_operator(section)  # axisymmetric: (ne, nq, 9, 18), includes F_θθ
+    Bt = np.zeros((ne, nq, 3, 3, 9, 2))
+    Bt[:, :, 0, 2, :, 0] = section.N / R  # u_R,θ / R
+    Bt[:, :, 1, 2, :, 1] = section.N / R  # u_Z,θ / R
+    Bt = Bt.reshape(ne, nq, 9, 18)
+    Bv = np.zeros((ne, nq, 3, 3, 9))  # per unit u_θ amplitude: sin 2θ and its θ-derivative
+    Bv_s = Bv.copy()
+    Bv_s[:, :, 0, 2, :] = -section.N / R  # −u_θ/R
+    Bv_s[:, :, 2, 0, :] = section.dNdX[..., 0]  # u_θ,R
+    Bv_s[:, :, 2, 1, :] = section.dNdX[..., 1]  # u_θ,Z
+    Bv_d = Bv.copy()
+    Bv_d[:, :, 2, 2, :] = section.N / R  # u_θ,θ / R
+    Bv_s, Bv_d = Bv_s.reshape(ne, nq, 9, 9), Bv_d.reshape(ne, nq, 9, 9)
+    Bs, dVs, qs = [], [], []
+    q1 = _pressure_basis(section.dV, section.Xq, section.measure)
+    for th, w in zip(_THETA, _THETA_W):
+        c, dc = junction_mode(th)
+        sn, dsn = math.sin(2.0 * th), 2.0 * math.cos(2.0 * th)
+        Bs.append(np.concatenate([(1.0 - c) * Ba - dc * Bt, c * Ba + dc * Bt,
+                                  sn * Bv_s + dsn * Bv_d], -1))
+        dVs.append(section.dV * w)  # 2πR dA × (weight of θ over the quarter, sum 1)
+        qs.append(np.concatenate([(1.0 - c) * q1, c * q1], -1))
+    # θ-points are quadrature points of the same element; the pressure has the
+    # divergence's two θ-modes (1 − c, c): one more would over-constrain J = 1 and lock
+    edofs = np.concatenate([dofs_tip, dofs_junction, dofs_hoop], axis=1)
+    return MixedSolid(law, np.concatenate(Bs, 1), np.concatenate(dVs, 1),
+                      np.concatenate(qs, 1), edofs, n_dofs)

@@ -48,7 +48,8 @@ from spsc.membrane.materials import Material
 from .linsolve import solve_rank_one
 from .material import NearlyIncompressible
 from .section import DOME, MIDDLE, section_mesh
-from .section_solid import InvertedSection, SectionSolid
+from .section_solid import (_THETA, _THETA_W, InvertedSection, junction_mode, section_solid,
+                            stadium_dome)
 
 __all__ = ["WallSettings", "WallModel", "WallState", "wall_curve", "inflate", "WallFailure"]
 
@@ -104,56 +105,174 @@ class WallState:
     negative: int | None = None
 
 
+class _Dome:
+    """The axisymmetric dome of an l = 0 chamber: the body of revolution of the section."""
+
+    def __init__(self, section, law):
+        self.section, self.solid = section, section_solid(section, law)
+        self.dofs = np.arange(section.n_dofs)
+        self.fixed = section.fixed
+        self.reference = section.nodes.ravel()
+        self.zdofs = 2 * section.outer + 1
+
+    def volume(self, u) -> float:
+        return self.section.volume(u)
+
+    def volume_gradient(self, u, hessian=True):
+        if not hessian:
+            return self.section.volume_gradient(u, hessian=False)
+        g, H = self.section.volume_gradient(u)
+        return g, H, self.section.cavity_edge_dofs
+
+    def contact_area(self, u, plate) -> float:
+        return self.section.contact_area(u, plate)
+
+    def apex(self, u) -> float:
+        return float(self.section.positions(u)[self.section.cavity[0], 1])
+
+
+class _StadiumDome(_Dome):
+    """The two half-domes of a stadium (:func:`~spsc.fem.section_solid.stadium_dome`): local
+    unknowns [u_tip, u_j, v]; u_j is the junction meridian, shared with the straight middle,
+    its pole height is the tip's (one pole). The cavity volume is ∫dθ ½∮ r² dz over the
+    meridians: the hoop displacement v is tangent to the surface and changes it only at second
+    order, which is neglected."""
+
+    def __init__(self, section, law, junction):
+        nd, nn = section.n_dofs, len(section.nodes)
+        self.section = section
+        self.dofs = np.concatenate([np.arange(nd), junction, 2 * nd + np.arange(nn)])
+        local = section.element_dofs
+        self.solid = stadium_dome(section, law, local, local + nd, 2 * nd + section.elements,
+                                  2 * nd + nn)
+        hoop_fixed = section.fixed[1::2] | (np.abs(section.nodes[:, 0]) < 1e-12)
+        self.fixed = np.concatenate([section.fixed, section.fixed, hoop_fixed])
+        self.reference = np.concatenate([section.nodes.ravel()] * 2 + [np.zeros(nn)])
+        self.zdofs = np.concatenate([2 * section.outer + 1, nd + 2 * section.outer + 1])
+
+    def _at(self, u, theta):
+        nd = self.section.n_dofs
+        c, _ = junction_mode(theta)
+        return (1.0 - c) * u[:nd] + c * u[nd:2 * nd]
+
+    def volume(self, u) -> float:
+        return float(sum(w * self.section.volume(self._at(u, th))
+                         for th, w in zip(_THETA, _THETA_W)))
+
+    def volume_gradient(self, u, hessian=True):
+        nd = self.section.n_dofs
+        g = np.zeros(u.size)
+        d = self.section.cavity_edge_dofs
+        H = np.zeros((len(d), 12, 12))
+        for th, w in zip(_THETA, _THETA_W):
+            c, _ = junction_mode(th)
+            coef = np.array([1.0 - c, c])
+            if hessian:
+                gk, Hk = self.section.volume_gradient(self._at(u, th))
+                H += w * np.einsum("a,b,eij->eaibj", coef, coef,
+                                   Hk.reshape(len(d), 6, 6)).reshape(len(d), 12, 12)
+            else:
+                gk = self.section.volume_gradient(self._at(u, th), hessian=False)
+            g[:nd] += w * coef[0] * gk
+            g[nd:2 * nd] += w * coef[1] * gk
+        if not hessian:
+            return g
+        return g, H, np.concatenate([d, d + nd], axis=1)
+
+    def contact_area(self, u, plate) -> float:
+        thetas = 0.25 * np.pi * (np.arange(8) + 0.5) / 4.0  # midpoints of 8 sectors
+        return float(np.mean([self.section.contact_area(self._at(u, th), plate)
+                              for th in thetas]))
+
+    def apex(self, u) -> float:
+        return float(self.section.positions(u[:self.section.n_dofs])[self.section.cavity[0], 1])
+
+
+class _Middle:
+    """The straight middle of length l, plane strain on the junction meridian u_j (both
+    x-halves, whole length: measure 2l)."""
+
+    def __init__(self, section, law, junction):
+        self.section, self.solid = section, section_solid(section, law)
+        self.dofs = junction
+        self.fixed = section.fixed
+        self.reference = section.nodes.ravel()
+        self.zdofs = 2 * section.outer + 1
+
+    volume = _Dome.volume
+    volume_gradient = _Dome.volume_gradient
+    contact_area = _Dome.contact_area
+
+
 class WallModel:
-    """The sections of one chamber (dome, and middle when l > 0) and their shared loads.
-    ``base``: ``"clamped"`` (the chamber) or ``"sliding"`` (u_z = 0 only, for the exact
-    thick-sphere check)."""
+    """The parts of one chamber and their shared loads. l = 0: the axisymmetric dome. l > 0:
+    the two half-domes (meridian varying from the tip to the junction) and the straight
+    middle in plane strain on the junction meridian. ``base``: ``"clamped"`` (the chamber)
+    or ``"sliding"`` (u_z = 0 only, for the exact thick-sphere check)."""
 
     def __init__(self, geometry: SPSCGeometry, material: Material,
                  settings: WallSettings | None = None, *, base: str = "clamped"):
         self.geometry, self.material = geometry, material
         self.settings = settings = settings or WallSettings()
         law = NearlyIncompressible(material, settings.bulk_ratio)
-        kinds = [DOME] + ([MIDDLE] if geometry.l > 0 else [])
-        self.solids = [SectionSolid(section_mesh(geometry, k, size=settings.mesh_size_mm,
-                                                 layers=settings.layers, base=base), law)
-                       for k in kinds]
-        sizes = [s.section.n_dofs for s in self.solids]
-        self.offsets = np.concatenate([[0], np.cumsum(sizes)])
-        self.n_u = int(self.offsets[-1])
-        psizes = [3 * len(s.section.elements) for s in self.solids]
+        mesh = dict(size=settings.mesh_size_mm, layers=settings.layers, base=base)
+        axi = section_mesh(geometry, DOME, **mesh)
+        nd = axi.n_dofs
+        if geometry.l > 0:
+            junction = np.arange(nd) + nd
+            pole = 2 * np.nonzero(np.abs(axi.nodes[:, 0]) < 1e-12)[0] + 1
+            junction[pole] = pole  # one pole: the junction meridian's is the tip's
+            self.parts_ = [_StadiumDome(axi, law, junction),
+                           _Middle(section_mesh(geometry, MIDDLE, **mesh), law, junction)]
+            self.n_u = 2 * nd + len(axi.nodes)
+        else:
+            self.parts_ = [_Dome(axi, law)]
+            self.n_u = nd
+        self.solids = [pt.solid for pt in self.parts_]
+        psizes = [s.n_pressure for s in self.solids]
         self.p_offsets = self.n_u + np.concatenate([[0], np.cumsum(psizes)])
         self.n = int(self.p_offsets[-1])
-        self.fixed = np.concatenate([s.section.fixed for s in self.solids])
-        zdofs = [off + 2 * s.section.outer + 1 for off, s in zip(self.offsets, self.solids)]
-        zdofs = np.concatenate(zdofs)
+        used = np.zeros(self.n_u, bool)
+        self.fixed = np.zeros(self.n_u, bool)
+        self.reference = np.zeros(self.n_u)
+        for pt in self.parts_:
+            used[pt.dofs] = True
+            self.fixed[pt.dofs[pt.fixed]] = True
+            self.reference[pt.dofs] = pt.reference
+        self.fixed |= ~used  # aliased slots carry no unknown
+        zdofs = np.unique(np.concatenate([pt.dofs[pt.zdofs] for pt in self.parts_]))
         self.contact_dofs = zdofs[~self.fixed[zdofs]]
-        self.reference = np.concatenate([s.section.nodes.ravel() for s in self.solids])
         self.mu = law.mu
 
     def parts(self, x):
-        """Displacements (2n_s,) of each section."""
-        return [x[a:b] for a, b in zip(self.offsets[:-1], self.offsets[1:])]
+        """The local unknowns of each part."""
+        return [x[pt.dofs] for pt in self.parts_]
+
+    def _gather(self, vectors) -> np.ndarray:
+        out = np.zeros(self.n_u)
+        for pt, v in zip(self.parts_, vectors):
+            np.add.at(out, pt.dofs, v)
+        return out
 
     def pressures(self, x):
-        """Hydrostatic pressure coefficients (ne_s, 3) of each section (MPa)."""
-        return [x[a:b].reshape(-1, 3) for a, b in zip(self.p_offsets[:-1], self.p_offsets[1:])]
+        """Hydrostatic pressure coefficients (ne_s, 3) of each part (MPa)."""
+        return [x[a:b].reshape(len(s.element_dofs), -1)
+                for s, a, b in zip(self.solids, self.p_offsets[:-1], self.p_offsets[1:])]
 
     def zero_state(self) -> np.ndarray:
         return np.zeros(self.n)
 
     def volume(self, x) -> float:
         """Cavity volume (mm³)."""
-        return sum(s.section.volume(u) for s, u in zip(self.solids, self.parts(x)))
+        return sum(pt.volume(u) for pt, u in zip(self.parts_, self.parts(x)))
 
     def contact_area(self, x, plate: float) -> float:
         """Outer surface on the plate (mm²)."""
-        return sum(s.section.contact_area(u, plate) for s, u in zip(self.solids, self.parts(x)))
+        return sum(pt.contact_area(u, plate) for pt, u in zip(self.parts_, self.parts(x)))
 
     def apex(self, x) -> float:
         """Height of the cavity apex (mm)."""
-        dome = self.solids[0].section
-        return float(dome.positions(self.parts(x)[0])[dome.cavity[0], 1])
+        return self.parts_[0].apex(x[self.parts_[0].dofs])
 
     def top(self, x) -> float:
         """Highest point of the outer surface (mm): where the plate first touches."""
@@ -163,34 +282,42 @@ class WallModel:
         """Residuals at gauge cavity ``pressure`` (MPa): r_u = r_int − p g (N), the pressure
         residuals, and with ``tangent`` the condensed K_int − p H (N/mm) and the blocks G;
         g = ∂V/∂u (mm²)."""
-        rs, rps, Ks, Gs, gs = [], [], [], [], []
-        for s, u, pc in zip(self.solids, self.parts(x), self.pressures(x)):
+        rs, rps, Gs, gs = [], [], [], []
+        rows, cols, vals = [], [], []
+        for pt, u, pc in zip(self.parts_, self.parts(x), self.pressures(x)):
             if tangent:
-                r, rp, K, G = s.residual_tangent(u, pc)
-                g, H = s.section.volume_gradient(u)
+                r, rp, K, G = pt.solid.residual_tangent(u, pc)
+                g, H, d = pt.volume_gradient(u)
+                K = K.tocoo()
+                rows += [pt.dofs[K.row]]
+                cols += [pt.dofs[K.col]]
+                vals += [K.data]
                 if pressure != 0.0:
-                    d = s.section.cavity_edge_dofs
-                    rows = np.repeat(d, 6, axis=1).ravel()
-                    cols = np.tile(d, (1, 6)).ravel()
-                    K = K - pressure * sp.csr_matrix((H.ravel(), (rows, cols)), shape=K.shape)
-                Ks.append(K)
+                    nd = d.shape[1]
+                    rows += [pt.dofs[np.repeat(d, nd, axis=1).ravel()]]
+                    cols += [pt.dofs[np.tile(d, (1, nd)).ravel()]]
+                    vals += [-pressure * H.ravel()]
                 Gs.append(G)
             else:
-                r, rp = s.residual(u, pc)
-                g = s.section.volume_gradient(u, hessian=False)
+                r, rp = pt.solid.residual(u, pc)
+                g = pt.volume_gradient(u, hessian=False)
             rs.append(r - pressure * g)
             rps.append(rp)
             gs.append(g)
-        K = sp.block_diag(Ks, format="csr") if tangent else None
-        return _Evaluation(np.concatenate(rs), rps, K, Gs, np.concatenate(gs))
+        K = None
+        if tangent:
+            K = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows),
+                                                      np.concatenate(cols))),
+                              shape=(self.n_u, self.n_u))
+        return _Evaluation(self._gather(rs), rps, K, Gs, self._gather(gs))
 
     def pressure_error(self, ev: "_Evaluation") -> float:
         return max(s.pressure_error(rp) for s, rp in zip(self.solids, ev.rp))
 
     def condensed(self, ev: "_Evaluation") -> np.ndarray:
         """r_u + κ Gᵀ M⁻¹ r_p: the right-hand side of the condensed Newton system (N)."""
-        return ev.r + np.concatenate([s.condensed_rhs(G, rp)
-                                      for s, G, rp in zip(self.solids, ev.G, ev.rp)])
+        return ev.r + self._gather([s.condensed_rhs(G, rp)
+                                    for s, G, rp in zip(self.solids, ev.G, ev.rp)])
 
     def recover(self, ev: "_Evaluation", du) -> np.ndarray:
         """Δp of every section (flattened, MPa) from the displacement step ``du``."""
@@ -401,14 +528,27 @@ def inflate(model: WallModel, pressure_kPa: float, increments: int = 4) -> WallS
     return path.states[-1]
 
 
-def wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
-               reservoir_mm3: float = 0.0, stroke_mm: float = 6.0, points: int = 25,
-               polytropic_n: float = 1.0, settings: WallSettings | None = None,
-               model: WallModel | None = None, progress=None) -> Curve:
+def wall_curve(geometry: SPSCGeometry, material: Material, **kwargs) -> Curve:
     """Inflate to ``pressure_kPa`` (kPa gauge), close the valve (gas with ``reservoir_mm3``,
     polytropic index ``polytropic_n``), lower the plate from first contact by ``stroke_mm`` in
     ``points`` − 1 equal increments. ``pressure_kPa = 0``: vented chamber (F_el). Returns the
-    :class:`Curve` (model ``wall``); points not reached hold NaN and the reason."""
+    :class:`Curve` (model ``wall``); points not reached hold NaN and the reason.
+
+    Keyword arguments: ``pressure_kPa`` (40), ``reservoir_mm3`` (0), ``stroke_mm`` (6),
+    ``points`` (25), ``polytropic_n`` (1), ``settings`` (:class:`WallSettings`), ``model`` (a
+    :class:`WallModel` to reuse), ``progress`` (called once per converged point).
+    """
+    from threadpoolctl import threadpool_limits
+
+    # small dense blocks: one BLAS thread (threads spin on them, 100x slower when loaded)
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _wall_curve(geometry, material, **kwargs)
+
+
+def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
+               reservoir_mm3: float = 0.0, stroke_mm: float = 6.0, points: int = 25,
+               polytropic_n: float = 1.0, settings: WallSettings | None = None,
+               model: WallModel | None = None, progress=None) -> Curve:
     t_start = time.perf_counter()
     require("pressure", pressure_kPa, ge=0, le=1000, unit="kPa gauge")
     require("reservoir", reservoir_mm3, ge=0, unit="mm³")
@@ -469,9 +609,10 @@ def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reserv
                      y_reached_mm=y[conv][-1] if conv.any() else float("nan"),
                      instability=path.instability, seconds=seconds,
                      iterations=path.iterations,
-                     details={"unknowns": model.n, "displacement_unknowns": model.n_u, "sections": [sl.section.kind
-                                                                for sl in model.solids],
-                              "elements": sum(len(sl.section.elements) for sl in model.solids),
+                     details={"unknowns": model.n, "displacement_unknowns": model.n_u,
+                              "parts": [type(pt).__name__.strip("_").lower()
+                                        for pt in model.parts_],
+                              "elements": len(model.parts_[0].section.elements),
                               "mesh_size_mm": s.mesh_size_mm, "layers": s.layers,
                               "bulk_ratio": s.bulk_ratio})
     setup = {"p_i_kPa": pressure_kPa, "reservoir_mm3": reservoir, "polytropic_n": n_poly}

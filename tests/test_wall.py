@@ -11,7 +11,7 @@ from spsc.cad.geometry import SPSCGeometry, preset
 from spsc.core.errors import ParameterError
 from spsc.fem.material import NearlyIncompressible
 from spsc.fem.section import DOME, MIDDLE, section_mesh
-from spsc.fem.section_solid import SectionSolid
+from spsc.fem.section_solid import section_solid, stadium_dome
 from spsc.fem.wall import WallModel, WallSettings, inflate, wall_curve
 from spsc.membrane.materials import material, neo_hookean
 
@@ -48,7 +48,7 @@ def test_volume_gradient_and_hessian_are_derivatives(kind):
 @pytest.mark.parametrize("kind, law", [(DOME, "elastic50a"), (MIDDLE, "tpu60a")])
 def test_condensed_tangent_is_the_derivative_of_the_residuals(kind, law):
     s = section_mesh(preset("B"), kind, size=1.0)
-    solid = SectionSolid(s, NearlyIncompressible(material(law)))
+    solid = section_solid(s, NearlyIncompressible(material(law)))
     rng = np.random.default_rng(1)
     u = rng.normal(size=s.n_dofs) * 0.03
     u[s.fixed] = 0.0
@@ -66,6 +66,44 @@ def test_condensed_tangent_is_the_derivative_of_the_residuals(kind, law):
     # ... and r_p does not change along it (δr_p = G du − M dp/κ = 0 by construction)
     np.testing.assert_allclose((rpp - rpm) / (2 * eps), 0.0, atol=1e-8 * np.abs(G).max())
     assert abs(K - K.T).max() <= 1e-10 * abs(K).max()
+
+
+def test_stadium_dome_with_equal_meridians_is_the_axisymmetric_dome():
+    s = section_mesh(preset("A"), DOME, size=1.0)
+    law = NearlyIncompressible(material("tpu60a"))
+    nd, nn = s.n_dofs, len(s.nodes)
+    axi = section_solid(s, law)
+    st = stadium_dome(s, law, s.element_dofs, s.element_dofs + nd, 2 * nd + s.elements,
+                      2 * nd + nn)
+    rng = np.random.default_rng(0)
+    u = rng.normal(size=nd) * 0.02
+    pc = rng.normal(size=(len(s.elements), 3)) * 0.01
+    r1, rp1 = axi.residual(u, pc)
+    r2, rp2 = st.residual(np.concatenate([u, u, np.zeros(nn)]), np.concatenate([pc, pc], 1))
+    # the θ-modes split the axisymmetric energy exactly (c + (1 − c) = 1): round-off only
+    np.testing.assert_allclose(r2[:nd] + r2[nd:2 * nd], r1, rtol=0, atol=1e-12 * abs(r1).max())
+    np.testing.assert_allclose(rp2[:, :3] + rp2[:, 3:], rp1, rtol=0, atol=1e-14)
+
+
+def test_stadium_tangent_is_the_derivative_of_the_residual():
+    s = section_mesh(preset("C"), DOME, size=1.5)
+    law = NearlyIncompressible(material("elastic50a"))
+    nd, nn = s.n_dofs, len(s.nodes)
+    st = stadium_dome(s, law, s.element_dofs, s.element_dofs + nd, 2 * nd + s.elements,
+                      2 * nd + nn)
+    rng = np.random.default_rng(5)
+    fixed = np.concatenate([s.fixed, s.fixed, np.abs(s.nodes[:, 0]) < 1e-12])
+    U = rng.normal(size=st.n_dofs) * 0.02
+    U[fixed] = 0.0
+    pc = rng.normal(size=(len(s.elements), 6)) * 0.01
+    r, rp, K, G = st.residual_tangent(U, pc)
+    dU = rng.normal(size=st.n_dofs)
+    dU[fixed] = 0.0
+    dp = st.recover(G, np.zeros_like(rp), dU)
+    eps = 1e-6
+    fd = (st.residual(U + eps * dU, pc + eps * dp)[0]
+          - st.residual(U - eps * dU, pc - eps * dp)[0]) / (2 * eps)
+    np.testing.assert_allclose(K @ dU, fd, rtol=0, atol=1e-6 * np.abs(fd).max())
 
 
 def _thick_sphere_pressure(la, inner, outer, mu):
