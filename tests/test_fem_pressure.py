@@ -1,10 +1,9 @@
-"""Follower pressure, cavity volume and the gas law: derivatives checked by differences."""
+"""Follower pressure and cavity volume: derivatives checked by differences (the gas law: test_gaslaw.py)."""
 
 import numpy as np
 import scipy.sparse as sp
 
 from spsc.cad.geometry import preset
-from spsc.core.gaslaw import GasLaw
 from spsc.fem.linsolve import solve_rank_one
 from spsc.fem.mesh import spsc_wall
 from spsc.fem.pressure import CavitySurface
@@ -45,18 +44,6 @@ def test_uniform_dilation_scales_volume():
     s = 1.1
     np.testing.assert_allclose(cs.volume(m.nodes, (s - 1) * m.nodes),
                                s**3 * cs.volume(m.nodes, 0 * m.nodes), rtol=1e-12)
-
-
-def test_gas_law_and_its_derivative():
-    gas = GasLaw(p_closed=0.04, v_closed=4000.0, reservoir=40000.0, n=1.4)
-    for V in (3500.0, 4000.0, 4200.0):
-        np.testing.assert_allclose(gas.invariant(gas.pressure(V), V),
-                                   gas.invariant(0.04, 4000.0), rtol=1e-13)
-        h = 1e-3
-        np.testing.assert_allclose(gas.dpressure(V),
-                                   (gas.pressure(V + h) - gas.pressure(V - h)) / (2 * h),
-                                   rtol=1e-7)
-    np.testing.assert_allclose(gas.pressure(4000.0), 0.04, rtol=1e-14)
 
 
 def test_sherman_morrison_solve():
