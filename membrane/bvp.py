@@ -75,7 +75,7 @@ class BoxScheme:
 
     def __init__(self, meridian: Meridian, material: Material, nc: int, nf: int, *,
                  edge: str = "clamped",
-                 slack: bool = False):
+                 slack: bool = False, wrinkling: bool = True):
         self.mer, self.mat = meridian, material
         g = meridian.geometry
         self.w, self.l, self.t0, self.L = g.w, g.l, g.t0, meridian.length
@@ -84,6 +84,7 @@ class BoxScheme:
         self.contact = self.nc > 0
         self.slack = bool(slack) and self.contact
         self.edge = edge
+        self.wrinkling = bool(wrinkling)
         self.tau_c = np.linspace(0.0, 1.0, self.nc + 1)
         self.tau_f = np.linspace(0.0, 1.0, self.nf + 1)
         self.scale_T = material.shear_modulus * self.t0  # N/mm
@@ -124,8 +125,9 @@ class BoxScheme:
             # free membrane: relaxed law (wrinkles instead of compression); on the plate the
             # taut law, whose compression signals the slack core (handled in slack mode)
             k = self.nc
-            T1m, T2m = relaxed_tensions(self.mat, self.t0, l1m, l2m)
-            T1n, _ = relaxed_tensions(self.mat, self.t0, l1, l2n)
+            law = relaxed_tensions if self.wrinkling else tensions  # taut: compression carried
+            T1m, T2m = law(self.mat, self.t0, l1m, l2m)
+            T1n, _ = law(self.mat, self.t0, l1, l2n)
             if k:
                 T1m[:k], T2m[:k] = tensions(self.mat, self.t0, l1m[:k], l2m[:k])
                 T1n[:k] = tensions(self.mat, self.t0, l1[:k], l2n[:k])[0]

@@ -38,6 +38,8 @@ class SolverSettings:
         :class:`spsc.fem.solver.Settings`
     max_iterations : int  Newton iterations per solve (>= 2)
     max_halvings : int  step halvings allowed between two requested plate positions (>= 0)
+    wrinkling : bool  True: tension-field membrane (no compression: it wrinkles, and a slack
+        core lies on the plate); False: the paper's taut law (hoop compression carried)
     """
 
     inflation_intervals: int = 192
@@ -46,6 +48,7 @@ class SolverSettings:
     rtol: float = 1e-9
     max_iterations: int = 25
     max_halvings: int = 6
+    wrinkling: bool = True
 
     def __post_init__(self):
         require("inflation_intervals", self.inflation_intervals, ge=8)
@@ -144,7 +147,8 @@ def inflate(geometry: SPSCGeometry, material, pressure_kPa: float, *,
     mat = _material(material)
     p = require("pressure", pressure_kPa, ge=0, unit="kPa gauge") * 1e-3
     mer = Meridian(geometry)
-    bs = BoxScheme(mer, mat, 0, settings.inflation_intervals, edge=edge)
+    bs = BoxScheme(mer, mat, 0, settings.inflation_intervals, edge=edge,
+                   wrinkling=settings.wrinkling)
     if p == 0.0:
         s = bs.nodes()
         v = np.column_stack([mer.x(s), mer.y(s), mer.angle(s), np.ones_like(s)]).ravel()
@@ -259,4 +263,5 @@ def _details(settings: SolverSettings) -> dict:
     """Discretisation facts of a solve (for ``SolveInfo.details``)."""
     return {"inflation_intervals": settings.inflation_intervals,
             "contact_intervals": settings.contact_intervals,
-            "free_intervals": settings.free_intervals, "rtol": settings.rtol}
+            "free_intervals": settings.free_intervals, "rtol": settings.rtol,
+            "wrinkling": settings.wrinkling}

@@ -29,10 +29,11 @@ class Press:
     def __init__(self, geometry, mat, infl: Shape, settings, p_i, v_r, n_poly):
         self.g, self.infl, self.st = geometry, infl, settings
         mer = Meridian(geometry)
+        kw = dict(wrinkling=settings.wrinkling)
         self.schemes = {
-            False: BoxScheme(mer, mat, settings.contact_intervals, settings.free_intervals),
+            False: BoxScheme(mer, mat, settings.contact_intervals, settings.free_intervals, **kw),
             True: BoxScheme(mer, mat, settings.contact_intervals, settings.free_intervals,
-                            slack=True)}
+                            slack=True, **kw)}
         self.slack = False
         self.gas = GasLaw(p_i, infl.volume_mm3, v_r, n_poly)
         self.apex = float(infl.eta[0])
@@ -124,7 +125,7 @@ class Press:
                                            sh2.T2[: sh2.gamma_index + 1].min()) >= 0.0:
                     self.slack, self.hist = False, []
                     sh, v, why = sh2, v2, ""
-        if not self.slack:
+        if not self.slack and self.st.wrinkling:  # the taut law carries the compression
             base = sh
             if base is None and self.hist:  # taut failed: the cap may need a slack core
                 bs = self.schemes[False]
@@ -143,7 +144,7 @@ class Press:
             return None, why
         notes = []
         nc = sh.gamma_index
-        if min(sh.T1[: nc + 1].min(), sh.T2[: nc + 1].min()) < -1e-9:
+        if self.st.wrinkling and min(sh.T1[: nc + 1].min(), sh.T2[: nc + 1].min()) < -1e-9:
             notes.append("warning: compressive tension in the contact region (min T1 = "
                          f"{sh.T1[:nc + 1].min():.3g}, T2 = {sh.T2[:nc + 1].min():.3g} N/mm)")
         if sh.eta.min() < -1e-3 * self.g.h:

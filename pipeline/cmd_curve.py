@@ -1,7 +1,7 @@
 """``spsc curve``: the one verb that computes a :class:`~spsc.core.curve.Curve` from a chamber
 and a setup, with any model — JSON, CSV and a plot.
 
-    spsc curve --model membrane|simplified|fem --type D --pressure 40 [--reservoir 40000]
+    spsc curve --model membrane|simplified|wall|fem --type D --pressure 40 [--reservoir 40000]
                [--stroke MM] [--points N] [--material tpu60a] [model options]
                [--json F] [--csv F] [--png F] [--quiet]
 
@@ -80,14 +80,19 @@ class Model:
 def _membrane_options(g) -> None:
     g.add_argument("--meridians", action="store_true", default=None,
                    help="add the deformed meridians (x, rho, eta per position) to the JSON")
+    g.add_argument("--wrinkling", choices=("on", "off"), default=None,
+                   help="on (default): tension-field membrane, it wrinkles instead of carrying "
+                   "compression; off: the paper's taut law (hoop compression carried; fails "
+                   "to converge on 8 of 17 3D-checked cases, README)")
 
 
 def _membrane(job: Job) -> Computed:
-    from spsc.membrane.solver import solve
+    from spsc.membrane.solver import SolverSettings, solve
 
     r = solve(job.geometry, job.material, pressure_kPa=job.pressure_kPa,
               reservoir_mm3=job.reservoir_mm3, stroke_mm=job.stroke_mm, points=job.points,
-              polytropic_n=job.polytropic_n)
+              polytropic_n=job.polytropic_n,
+              settings=SolverSettings(wrinkling=job.args.wrinkling != "off"))
     extra = {}
     if job.args.meridians:
         extra["meridians_mm"] = [None if sh is None else dict(zip(("x", "rho", "eta"), (
@@ -104,11 +109,16 @@ def _simplified(job: Job) -> Computed:
                                      material=job.material.name))
 
 
-def _fem_options(g) -> None:
+def _mesh_options(g) -> None:
+    """The discretisation of the solid models (fem, wall), each with its own defaults."""
     g.add_argument("--mesh-size", type=number("mesh size", "mm"), default=None, metavar="MM",
-                   help="element edge along the wall surfaces, mm (default 1.0)")
+                   help="element edge along the wall, mm (default: fem 1.0, wall 0.5)")
     g.add_argument("--layers", type=integer("layers"), default=None, metavar="N",
-                   help="quadratic elements through the wall thickness (default 2)")
+                   help="quadratic elements through the wall thickness (default: fem 2, "
+                   "wall 2)")
+
+
+def _fem_options(g) -> None:
     g.add_argument("--full", action="store_true", default=None,
                    help="full model instead of the quarter on the symmetry planes")
     g.add_argument("--solver", default=None,
@@ -148,14 +158,37 @@ def _fem(job: Job) -> Computed:
     return Computed(curve, extra)
 
 
+def _wall(job: Job) -> Computed:
+    from tqdm import tqdm
+
+    from spsc.fem.wall import WallSettings, wall_curve
+
+    a = job.args
+    settings = WallSettings(mesh_size_mm=a.mesh_size, layers=a.layers)
+    total = job.points - 1 + (settings.inflate_increments if job.pressure_kPa > 0 else 0)
+    bar = tqdm(total=total, desc=f"spsc {job.verb}", unit="step", disable=job.quiet,
+               file=sys.stderr)
+    try:
+        curve = wall_curve(job.geometry, job.material, pressure_kPa=job.pressure_kPa,
+                           reservoir_mm3=job.reservoir_mm3, stroke_mm=job.stroke_mm,
+                           points=job.points, polytropic_n=job.polytropic_n,
+                           settings=settings, progress=lambda: bar.update(1))
+    finally:
+        bar.close()
+    return Computed(curve)
+
+
 #: The models behind ``spsc curve --model``. Adding one (e.g. the axisymmetric ``wall`` model
 #: of spsc.fem, a function of the same setup returning a Curve) is one entry here: a compute
 #: function Job -> Computed, its defaults and, if it has any, its options.
 MODELS: dict[str, Model] = {m.name: m for m in (
     Model("membrane", "axisymmetric membrane: inflation and plate contact (fast)", 6.0, 41,
-          _membrane_options, {"meridians": False}, _membrane),
+          _membrane_options, {"meridians": False, "wrinkling": "on"}, _membrane),
     Model("simplified", "the nominal chamber cut by the plate, with the air spring", 6.0, 41,
           None, {}, _simplified),
+    Model("wall", "the thick wall as an axisymmetric solid (+ the stadium's middle) with gas "
+          "and plate: pressure and bending in one solve (seconds)", 6.0, 25,
+          None, {"mesh_size": 0.5, "layers": 2}, _wall),
     Model("fem", "3D hyperelastic FEM of the printed wall (quarter model by default)", 4.0, 11,
           _fem_options, {"mesh_size": 1.0, "layers": 2, "full": False, "solver": "auto",
                          "vtu": None}, _fem),
@@ -183,6 +216,9 @@ def add_curve_parser(subparsers, verb: str, *, models: tuple[str, ...], help: st
                        + f" (default {models[0]})")
     else:
         p.set_defaults(model=models[0])
+    solids = [m for m in models if "mesh_size" in MODELS[m].defaults]
+    if solids:
+        _mesh_options(p.add_argument_group(f"{' and '.join(solids)} discretisation"))
     for m in models:
         if MODELS[m].add_options is not None:
             MODELS[m].add_options(p.add_argument_group(f"{m} model options"))

@@ -1,0 +1,157 @@
+"""The wall model against the converged 3D FEM, its mesh convergence, its speed, and the
+membrane's wrinkling on/off table (issue 11).
+
+    python bench/bench_wall.py errors      # wall vs 3D FEM, every reference curve
+    python bench/bench_wall.py wrinkling   # membrane tension-field vs taut law vs 3D FEM
+    python bench/bench_wall.py convergence # wall mesh refinement, observed order
+    python bench/bench_wall.py speed       # one curve: inflation + 17 plate positions, 4 mm
+
+The 3D references are written by ``bench/fem_reference.py`` into build/reference/ (about
+40 min from nothing; each case is cached). Errors: max over the plate positions y ≥ 1 mm of
+|model/FEM − 1| for the force F and the pressure rise P − p_i (the open chamber: F only).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from spsc.cad.geometry import preset
+from spsc.core.curve import Curve
+from spsc.fem.wall import WallSettings, wall_curve
+from spsc.membrane.materials import material
+from spsc.membrane.solver import SolverSettings, solve
+
+REF = Path("build/reference")
+
+
+def _geometry(ref: Curve):
+    g = ref.geometry
+    return preset("A", **{k: g[k] for k in ("w", "h", "l", "t0", "n1", "n2", "cy")})
+
+
+def _setup(ref: Curve) -> dict:
+    s = ref.setup
+    return dict(pressure_kPa=s["p_i_kPa"], reservoir_mm3=s["reservoir_mm3"],
+                stroke_mm=float(ref.y_mm[-1]), points=len(ref))
+
+
+def errors(model: Curve, ref: Curve, y_min: float = 1.0) -> tuple[float, float]:
+    """(max |F/F_ref − 1|, max |ΔP/ΔP_ref − 1|) over y ≥ y_min (NaN where not computed)."""
+    k = ref.y_mm >= y_min - 1e-9
+    eF = np.abs(model.force_N[k] / ref.force_N[k] - 1.0)
+    dp_ref = ref.pressure_kPa[k] - ref.pressure_kPa[0]
+    dp = model.pressure_kPa[k] - model.pressure_kPa[0]
+    eP = np.abs(dp / dp_ref - 1.0) if np.all(dp_ref > 0) else np.full(k.sum(), np.nan)
+    return (float(np.max(eF)) if np.all(np.isfinite(eF)) else float("nan"),
+            float(np.max(eP)) if np.all(np.isfinite(eP)) else float("nan"))
+
+
+def _refs(pattern: str = "*"):
+    return sorted(REF.glob(f"{pattern}.json"))
+
+
+def run_errors(args) -> None:
+    print(f"{'case':24} {'F err %':>8} {'dP err %':>9} {'time s':>7}  wall message")
+    for path in _refs(args.only or "*"):
+        ref = Curve.from_json(path)
+        t0 = time.perf_counter()
+        c = wall_curve(_geometry(ref), material(ref.material or "tpu60a"), **_setup(ref),
+                       settings=WallSettings(mesh_size_mm=args.mesh_size, layers=args.layers))
+        dt = time.perf_counter() - t0
+        eF, eP = errors(c, ref)
+        print(f"{path.stem:24} {100 * eF:8.2f} {100 * eP:9.2f} {dt:7.2f}  {c.solver.message}",
+              flush=True)
+
+
+def run_wrinkling(args) -> None:
+    print(f"{'case':24} {'F err % on':>11} {'F err % off':>12} {'dP err % on':>12} "
+          f"{'dP err % off':>13}")
+    tot = {True: [], False: []}
+    for path in _refs(args.only or "*"):
+        ref = Curve.from_json(path)
+        if ref.setup["p_i_kPa"] == 0:
+            continue  # the membrane has no open-chamber force
+        row = {}
+        for wr in (True, False):
+            r = solve(_geometry(ref), material(ref.material or "tpu60a"), **_setup(ref),
+                      settings=SolverSettings(wrinkling=wr))
+            row[wr] = errors(r.curve, ref)
+            tot[wr].append(row[wr])
+        print(f"{path.stem:24} {100 * row[True][0]:11.2f} {100 * row[False][0]:12.2f} "
+              f"{100 * row[True][1]:12.2f} {100 * row[False][1]:13.2f}", flush=True)
+    for wr in (True, False):
+        a = np.array(tot[wr], float)
+        print(f"wrinkling {'on ' if wr else 'off'}: mean F err {100 * np.nanmean(a[:, 0]):.2f} %, "
+              f"mean dP err {100 * np.nanmean(a[:, 1]):.2f} %, cases not converged "
+              f"{int(np.sum(~np.isfinite(a).all(axis=1)))}")
+
+
+def run_convergence(args) -> None:
+    g = preset(args.type, l=0.0) if args.dome else preset(args.type)
+    sizes = [(2.0, 1), (1.0, 2), (0.5, 2), (0.5, 4), (0.25, 4), (0.125, 8)]
+    out = []
+    for size, layers in sizes:
+        t0 = time.perf_counter()
+        c = wall_curve(g, material("tpu60a"), pressure_kPa=40, stroke_mm=4, points=9,
+                       settings=WallSettings(mesh_size_mm=size, layers=layers))
+        out.append((size, layers, c.force_N[-1], c.pressure_kPa[-1],
+                    c.inflated_volume_mm3, time.perf_counter() - t0,
+                    c.solver.details["unknowns"]))
+    F_ref, P_ref, V_ref = out[-1][2], out[-1][3] - 40, out[-1][4]
+    print(f"Type {args.type} {'dome' if args.dome else 'Table 1'}, 40 kPa high, y = 4 mm; "
+          f"reference: the finest mesh")
+    print(f"{'size mm':>8} {'layers':>6} {'unknowns':>8} {'F(4) N':>9} {'F err':>9} "
+          f"{'dP err':>9} {'V_inf err':>9} {'s':>6}")
+    prev = None
+    for size, layers, F, P, V, dt, n in out:
+        eF, eP, eV = abs(F / F_ref - 1), abs((P - 40) / P_ref - 1), abs(V / V_ref - 1)
+        order = ""
+        if prev is not None and eV > 0 and prev > 0:
+            order = f"  order(V) {np.log(prev / eV) / np.log(2):.2f}"
+        print(f"{size:8.3f} {layers:6d} {n:8d} {F:9.4f} {eF:9.2e} {eP:9.2e} {eV:9.2e} "
+              f"{dt:6.2f}{order}")
+        prev = eV
+
+
+def run_speed(args) -> None:
+    g = preset(args.type) if not args.dome else preset(args.type, l=0.0)
+    kw = dict(pressure_kPa=40, stroke_mm=4, points=18)
+    wall_curve(g, material("tpu60a"), **kw)  # warm: imports, first BLAS calls
+    times = []
+    for _ in range(args.repeat):
+        t0 = time.perf_counter()
+        c = wall_curve(g, material("tpu60a"), **kw)
+        times.append(time.perf_counter() - t0)
+    t_mem = []
+    for _ in range(args.repeat):
+        t0 = time.perf_counter()
+        solve(g, material("tpu60a"), **kw)
+        t_mem.append(time.perf_counter() - t0)
+    print(f"Type {args.type} {'dome' if args.dome else 'Table 1'}, 40 kPa, inflation + 17 plate "
+          f"positions over 4 mm: wall {min(times):.3f} s (best of {args.repeat}, "
+          f"{c.solver.iterations} Newton iterations, {c.solver.details['unknowns']} unknowns), "
+          f"membrane {min(t_mem):.3f} s")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("what", choices=("errors", "wrinkling", "convergence", "speed"))
+    ap.add_argument("--only", default="", help="glob on the reference names, e.g. 'dome-*'")
+    ap.add_argument("--mesh-size", type=float, default=WallSettings().mesh_size_mm)
+    ap.add_argument("--layers", type=int, default=WallSettings().layers)
+    ap.add_argument("--type", default="B")
+    ap.add_argument("--dome", action="store_true", help="l = 0 instead of Table 1's l")
+    ap.add_argument("--repeat", type=int, default=3)
+    args = ap.parse_args(argv)
+    {"errors": run_errors, "wrinkling": run_wrinkling, "convergence": run_convergence,
+     "speed": run_speed}[args.what](args)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
