@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder fingertip gate test test-slow bench bench-compare clean
+.PHONY: help venv bladder fingertip gate test test-slow bench bench-compare bench-wall clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -51,6 +51,16 @@ test-slow: $(STAMP)
 bench: $(STAMP)
 	@set -e; for f in bench_cad bench_membrane bench_fem bench_gate_broken; do \
 	  echo "== bench/$$f.py"; $(BIN)/python bench/$$f.py; done
+	@echo "== bench/bench_wall.py speed (wall vs membrane; the 3D FEM figure is bench_fem's)"
+	@$(BIN)/python bench/bench_wall.py speed --type B
+	@$(BIN)/python bench/bench_wall.py speed --type B --dome
+
+# the wall model against the 3D FEM (references: about 40 min the first time, then cached)
+bench-wall: $(STAMP)
+	$(BIN)/python bench/fem_reference.py
+	$(BIN)/python bench/bench_wall.py errors
+	$(BIN)/python bench/bench_wall.py wrinkling
+	$(BIN)/python bench/bench_wall.py convergence --type B --dome
 
 bench-compare: $(STAMP)
 	$(BIN)/python bench/bench_fem_compare.py
