@@ -1,9 +1,9 @@
 """The report's sections as data: each function takes the study and its outcomes and returns
 what the template shows (numbers, not HTML) and what ``summary.json`` keeps.
 
-The models are :data:`~.study.MODELS`: every sweep model (membrane, simplified, …) is drawn,
-compared with the FEM, and enters the headline and the JND table, with the FEM's open-chamber
-F_el(y) added to its force when it has no bending (DESIGN.md).
+The models are the study's (:data:`~.study.MODELS`): every sweep model (membrane, simplified,
+…) is drawn, compared with the FEM, and enters the headline and the JND table, with the FEM's
+open-chamber F_el(y) added to its force when it has no bending (DESIGN.md).
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import numpy as np
 
 from . import figures
 from .metrics import Jnd, headline, headline_row, jnd, model_errors, with_f_el
-from .study import MODELS, Study
+from .study import Study
 
 __all__ = ["FigureOutput", "Results", "runs_section", "comparison_section", "headline_section",
            "jnd_section", "convergence_section"]
@@ -104,7 +104,7 @@ def comparison_section(study: Study, res: Results, figs: FigureOutput) -> dict:
                          f"{study.reservoir(mode) / 1000:g} cm³), p_i = {p_c:g} kPa")
                 fem_run = study.fem_run(t, mat, mode) if study.fem else None
                 runs = [(m, study.membrane(m.name, t, mat, p_c, mode) if m.sweep else fem_run)
-                        for m in MODELS if m.sweep or study.fem]
+                        for m in study.models]
                 images = [_curves_png(figs, res, tag, title, runs, f_el_run)]
                 if figs.render and fem_run is not None:
                     images.append(_shapes_png(figs, res, tag, title, runs[0][1], fem_run))
@@ -192,9 +192,7 @@ def jnd_section(study: Study, res: Results) -> dict:
     for mat in study.materials:
         for t in study.types:
             f_el = res.f_el(study, t, mat)
-            for m in MODELS:
-                if not m.sweep and not study.fem:
-                    continue
+            for m in study.models:
                 fel = f_el is not None and not m.bending
                 cells = [_jnd_cell(study, res, m, t, mat, p, f_el if fel else None)
                          for p in pressures]

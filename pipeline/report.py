@@ -22,7 +22,7 @@ from .provenance import Provenance, provenance, versions
 from .render import render_page
 from .render_sections import (FigureOutput, Results, comparison_section, convergence_section,
                               headline_section, jnd_section, runs_section)
-from .study import MODELS, Study, code_version
+from .study import Study, code_version
 
 __all__ = ["build_report", "write_run_data"]
 
@@ -53,7 +53,7 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
            "headline": headline_section(study, res), "jnd": jnd_section(study, res),
            "comparison": comparison_section(study, res, fig_out),
            "convergence": convergence_section(study, res, fig_out),
-           "versions": versions({m.name: code_version(m.name) for m in MODELS})}
+           "versions": versions({m.name: code_version(m.name) for m in study.models})}
     write_json(out / "summary.json", _summary(ctx))
     path = out / "index.html"
     path.write_text(render_page(ctx), encoding="utf-8")
@@ -82,7 +82,7 @@ def _summary(ctx: dict) -> dict:
 
 def _study_rows(study: Study) -> list[tuple[str, str]]:
     return [("types", ", ".join(study.types)), ("materials", ", ".join(study.materials)),
-            ("models", ", ".join(m.name for m in MODELS if m.sweep or study.fem)),
+            ("models", ", ".join(m.name for m in study.models)),
             ("setup pressures (kPa)", ", ".join(f"{p:g}" for p in study.pressures_kPa)),
             ("FEM comparison pressure (kPa)", f"{study.compare_pressure_kPa:g}"),
             ("modes (reservoir, mm³)", ", ".join(f"{n} ({v:g})" for n, v in study.modes)),

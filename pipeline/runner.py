@@ -77,14 +77,19 @@ def _membrane(run: Run, directory: Path, progress, mesh_dir) -> dict:
                           "pressed_y_mm": float(r.curve.y_mm[last]) if last else None}}
 
 
-def curve_model(module: str, function: str):
+def curve_model(module: str, function: str, *, material_object: bool = False):
     """The compute entry of a model that is a function returning a :class:`Curve` from a
     geometry and the membrane's setup arguments (``material``, ``pressure_kPa``,
-    ``reservoir_mm3``, ``stroke_mm``, ``points``): the simplified model, the wall model."""
+    ``reservoir_mm3``, ``stroke_mm``, ``points``): the simplified model, the wall model.
+    ``material_object``: pass the catalogue :class:`~spsc.membrane.materials.Material`, not its
+    name."""
 
     def compute(run: Run, directory: Path, progress, mesh_dir) -> dict:
+        from spsc.membrane.materials import material
+
         fn = getattr(importlib.import_module(module), function)
-        c = fn(run.geometry(), material=run.material, pressure_kPa=run.pressure_kPa,
+        mat = material(run.material) if material_object else run.material
+        c = fn(run.geometry(), material=mat, pressure_kPa=run.pressure_kPa,
                reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm, points=run.points)
         return {"curve": c.to_dict()}
 
@@ -130,7 +135,8 @@ def _fem(run: Run, directory: Path, progress, mesh_dir) -> dict:
 
 
 #: model name -> compute(run, directory, progress, mesh_dir) -> payload; one entry per model
-#: of :data:`~.study.MODELS`
+#: of :data:`~.study.MODELS` (the wall model: ``"wall": curve_model("spsc.fem.wall",
+#: "wall_curve", material_object=True)`` with ``Model("wall", "spsc.fem.wall", bending=True)``)
 _COMPUTE = {
     "membrane": _membrane,
     "simplified": curve_model("spsc.membrane.simplified", "simplified_curve"),

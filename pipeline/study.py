@@ -236,6 +236,12 @@ class Study:
 
     # -- the runs ---------------------------------------------------------------------------
     @property
+    def models(self) -> tuple[Model, ...]:
+        """The models this study runs: every model of :data:`MODELS`, the FEM only with
+        ``fem``."""
+        return tuple(m for m in MODELS if m.sweep or self.fem)
+
+    @property
     def sweep_models(self) -> tuple[Model, ...]:
         """The models run at every setup pressure (membrane, simplified, …)."""
         return tuple(m for m in MODELS if m.sweep)

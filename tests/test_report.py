@@ -120,6 +120,27 @@ def test_spsc_report_refuses_the_committed_report_from_a_dirty_tree(tmp_path, mo
     assert cmd_report.DEFAULT_OUT[True] == Path("build/report-quick")
 
 
+def test_a_new_model_plugs_in_with_a_model_entry_and_a_compute_entry(tmp_path, monkeypatch):
+    """A model with bending (like the wall model) added to the list is run at every setup
+    pressure, drawn, and enters the headline and the JND table without F_el."""
+    from spsc.pipeline import runner, study
+
+    toy = study.Model("toy", "spsc.membrane.simplified", bending=True)
+    monkeypatch.setattr(study, "MODELS", study.MODELS + (toy,))
+    monkeypatch.setitem(runner._COMPUTE, "toy",
+                        runner.curve_model("spsc.membrane.simplified", "simplified_curve"))
+    outcomes = run_all(SMALL.runs(), Cache(tmp_path / "cache"), progress=False)
+    assert sum(r.model == "toy" for r in outcomes) == len(SMALL.all_pressures) * 2
+    path = build_report(SMALL, outcomes, tmp_path / "r", source=CLEAN)
+    summary = json.loads((path.parent / "summary.json").read_text(encoding="utf-8"))
+    h = summary["headline"]["tpu60a"]
+    # the same function as the simplified model: the same means, and no F_el added
+    assert h["toy"]["high"]["stiffness"] == pytest.approx(h["simplified p·A"]["high"]["stiffness"],
+                                                          rel=1e-12)
+    assert "toy" in _headline_section(path.read_text(encoding="utf-8"))
+    assert "toy p10" in summary["jnd_mm"]["B-tpu60a"]
+
+
 def test_spsc_report_verb_membrane_only(tmp_path, capsys):
     out, cache = tmp_path / "r", tmp_path / "c"
     args = ["report", "--quick", "--no-fem", "--types", "C", "--out", str(out),
