@@ -176,8 +176,9 @@ class AxisymmetricDome:
 
     def _newton(self, x, load, active, *, tol=1e-9, max_it=30):
         """Solve for the load ``(p, gas, plate)``; gas: None (``p`` prescribed) or the
-        :class:`~spsc.core.GasLaw` of the closed cavity. Returns x, the active contact points, the gauge pressure
-        (MPa) and the residual (whose −z components at active points are their ring forces)."""
+        :class:`~spsc.core.GasLaw` of the closed cavity. Returns x, the active contact points,
+        the gauge pressure (MPa) and the residual (whose −z components at active points are
+        their ring forces)."""
         p_pres, gas, plate = load
         x = x.copy()
         active = np.asarray(active, int)
