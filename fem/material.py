@@ -102,25 +102,39 @@ class NearlyIncompressible:
         return P, (C, I1, I2, J, G, j23, j43, H, d1, d2, W1, W2)
 
     def stress_tangent(self, F, p):
-        """P (..., 3, 3) and 𝔸 = ∂P/∂F (..., 3, 3, 3, 3) with index order [i, J, k, L]."""
+        """P (..., 3, 3) and 𝔸 = ∂P/∂F (..., 3, 3, 3, 3) with index order [i, J, k, L].
+
+        Built on flattened components (iJ, kL) = (3i + J, 3k + L): the outer-product terms
+        as one small matrix product Uᵀ M U over U = (d1, d2, G, F, H), the δ-terms as 3×3
+        blocks and the two swapped products X_iL Y_kJ by broadcasting."""
         P, (C, I1, I2, J, G, j23, j43, H, d1, d2, W1, W2) = self._stress(F, p)
         W11, W12, W22 = self.material.d2W(j23 * I1, j43 * I2)
-        x = lambda a: a[..., None, None, None, None]  # noqa: E731 (broadcast a scalar field)
-        o = lambda a, b: np.einsum("...ij,...kl->...ijkl", a, b)  # noqa: E731
-        GG = np.einsum("...il,...kj->...ijkl", G, G)  # G_iL G_kJ
-        II = np.einsum("ik,jl->ijkl", _I3, _I3)  # δ_ik δ_JL
-        b = F @ np.swapaxes(F, -1, -2)
-        # ∂d1/∂F
-        dd1 = (-(2 / 3) * o(d1, G)
-               + x(j23) * (2.0 * II - (4 / 3) * o(G, F) + (2 / 3) * x(I1) * GG))
-        # ∂H/∂F = 2 F⊗F + I1 δ_ik δ_JL − δ_ik C_LJ − F_iL F_kJ − b_ik δ_JL
-        dH = (2.0 * o(F, F) + x(I1) * II
-              - np.einsum("ik,...lj->...ijkl", _I3, C)
-              - np.einsum("...il,...kj->...ijkl", F, F)
-              - np.einsum("...ik,jl->...ijkl", b, _I3))
-        dd2 = (-(4 / 3) * o(d2, G)
-               + x(j43) * (2.0 * dH - (8 / 3) * o(G, H) + (4 / 3) * x(I2) * GG))
-        A = (x(W11) * o(d1, d1) + x(W12) * (o(d1, d2) + o(d2, d1)) + x(W22) * o(d2, d2)
-             + x(W1) * dd1 + x(W2) * dd2
-             + x(np.asarray(p) * J) * (o(G, G) - GG))
-        return P, A
+        shape = F.shape[:-2]
+        pJ = np.asarray(p) * J
+        a1, a2 = W1 * j23, W2 * j43
+        U = np.stack([d1, d2, G, F, H], axis=-3).reshape(shape + (5, 9))
+        M = np.zeros(shape + (5, 5))
+        M[..., 0, 0], M[..., 1, 1] = W11, W22
+        M[..., 0, 1] = M[..., 1, 0] = W12
+        M[..., 0, 2] = -(2 / 3) * W1  # ∂d1/∂F ∋ −⅔ d1⊗G
+        M[..., 1, 2] = -(4 / 3) * W2  # ∂d2/∂F ∋ −⁴⁄₃ d2⊗G
+        M[..., 2, 3] = -(4 / 3) * a1  # −⁴⁄₃ j23 G⊗F
+        M[..., 3, 3] = 4.0 * a2  # 2 j43 · 2 F⊗F
+        M[..., 2, 4] = -(8 / 3) * a2  # −⁸⁄₃ j43 G⊗H
+        M[..., 2, 2] = pJ  # p J G⊗G
+        A = np.swapaxes(U, -1, -2) @ (M @ U)
+        # δ_ik δ_JL (the diagonal), δ_ik C_LJ and b_ik δ_JL (C, b symmetric): 3×3 blocks
+        A.reshape(shape + (81,))[..., ::10] += (2.0 * a1 + 2.0 * a2 * I1)[..., None]
+        A4 = A.reshape(shape + (3, 3, 3, 3))
+        two_a2 = (2.0 * a2)[..., None, None]
+        C2, b2 = two_a2 * C, two_a2 * (F @ np.swapaxes(F, -1, -2))
+        for i in range(3):
+            A4[..., i, :, i, :] -= C2
+            A4[..., :, i, :, i] -= b2
+        # swapped products G_iL G_kJ and F_iL F_kJ
+        cG = ((2 / 3) * a1 * I1 + (4 / 3) * a2 * I2 - pJ)[..., None, None]
+        Gt, Ft = np.swapaxes(cG * G, -1, -2), np.swapaxes(two_a2 * F, -1, -2)
+        A4 += (G[..., :, None, None, :] * Gt[..., None, :, :, None]
+               - F[..., :, None, None, :] * Ft[..., None, :, :, None])
+        return P, A4
+
