@@ -23,7 +23,7 @@ from spsc.core.curve import Curve, SolveInfo
 from .materials import Material, material as catalogue_material
 from .meridian import Meridian
 from .shape import Shape, make_shape
-from .stroke import Press
+from .stroke import StrokeContinuation
 
 __all__ = ["SolverSettings", "MembraneResult", "Inflation", "solve", "inflate"]
 
@@ -221,7 +221,7 @@ def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm
                              f"< inflated chamber height {apex:.4g} mm (the plate would reach "
                              "the base)")
 
-    press = Press(geometry, mat, infl, settings, p_i * 1e-3, v_r, n_poly)
+    press = StrokeContinuation(geometry, mat, infl, settings, p_i * 1e-3, v_r, n_poly)
     F, P, A, DV = (nan.copy() for _ in range(4))
     F[0], P[0], A[0], DV[0] = 0.0, p_i, 0.0, 0.0
     conv = np.zeros(npts, bool)

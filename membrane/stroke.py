@@ -17,10 +17,10 @@ from .bvp import BoxScheme
 from .meridian import Meridian
 from .shape import Shape, make_shape
 
-__all__ = ["Press"]
+__all__ = ["StrokeContinuation"]
 
 
-class Press:
+class StrokeContinuation:
     """Continuation along the plate travel: secant predictor, step halving, and the switch to a
     slack core when the flattened cap would go into compression (tension-field theory: a
     membrane carries no compression; the core lies wrinkled on the plate, T1 = T2 = 0, and the
