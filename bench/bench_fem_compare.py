@@ -53,7 +53,7 @@ def _reached(curve) -> float:
 def compare_type(name, *, mat, pressure, stroke, points, size, layers, at, cache=None):
     """One row per type: FEM (pressurised and open), membrane; FEM F vs p·A + F_el."""
     g = preset(name)
-    common = dict(stroke_mm=stroke, points=points, size_mm=size, layers=layers)
+    common = dict(stroke_mm=stroke, points=points, mesh_size_mm=size, layers=layers)
     t0 = time.perf_counter()
     fem, res, model = run_chamber(ChamberRun(g, mat, pressure_kPa=pressure, **common),
                                   cache_dir=cache)
@@ -131,7 +131,7 @@ def thin_wall(*, mat, type_name="B", thicknesses=(1.0, 0.5, 0.25), pressure_per_
         secs = time.perf_counter() - t0
         inf = membrane_inflate(g, mat, p)
         V0 = g.cavity_volume()
-        V_fem = res.records[-1].volume if res.ok else math.nan
+        V_fem = res.records[-1].volume if res.converged else math.nan
         X = model.disc.X
         cav = model.mesh.nodes_on("cavity")
         axis = cav[(np.abs(X[cav, 0]) < 1e-9) & (np.abs(X[cav, 1]) < 1e-9)]
@@ -139,7 +139,7 @@ def thin_wall(*, mat, type_name="B", thicknesses=(1.0, 0.5, 0.25), pressure_per_
         dv_fem = V_fem - res.records[0].volume
         dv_mem = inf.shape.volume_mm3 - V0
         apex_mem = float(inf.shape.eta[0])
-        rows.append({"t0_mm": t, "pressure_kPa": p, "dofs": model.disc.n, "ok": res.ok,
+        rows.append({"t0_mm": t, "pressure_kPa": p, "dofs": model.disc.n, "ok": res.converged,
                      "seconds": round(secs, 1),
                      "dV_fem_mm3": dv_fem, "dV_membrane_mm3": dv_mem,
                      "dV_diff_pct": 100 * (dv_fem / dv_mem - 1),
@@ -175,7 +175,7 @@ def quarter_vs_full(*, mat, type_name="B", stroke=4.0, points=9, size=2.0, layer
     for label, full, lean in (("quarter", False, 0.0), ("full", True, 0.0),
                               ("full+imperfection", True, imperfection)):
         run = ChamberRun(g, mat, pressure_kPa=0.0, stroke_mm=stroke, points=points,
-                         size_mm=size, layers=layers, full=full)
+                         mesh_size_mm=size, layers=layers, full=full)
         t0 = time.perf_counter()
         if lean:
             mesh = cached_mesh(spsc_wall, cache_dir=cache, g=g, size=size, layers=layers,
@@ -192,7 +192,7 @@ def quarter_vs_full(*, mat, type_name="B", stroke=4.0, points=9, size=2.0, layer
             curve, res, model = run_chamber(run, cache_dir=cache)
             force = curve.force_N
         rows.append({"part": label, "dofs": model.disc.n,
-                     "seconds": round(time.perf_counter() - t0, 1), "ok": res.ok,
+                     "seconds": round(time.perf_counter() - t0, 1), "ok": res.converged,
                      "message": res.message, "instability": res.instability,
                      "y_mm": np.linspace(0.0, stroke, points).tolist(),
                      "force_N": np.asarray(force, float).tolist()})
@@ -239,10 +239,10 @@ def axisymmetric(*, mat, type_name="B", pressure=40.0, stroke=4.0, size=1.0, lay
                      "pressure_kPa": [r.pressure * 1e3 for r in out]})
     t0 = time.perf_counter()
     curve, res, model = run_chamber(ChamberRun(g, mat, pressure_kPa=pressure, stroke_mm=float(n),
-                                               points=n + 1, size_mm=size, layers=layers),
+                                               points=n + 1, mesh_size_mm=size, layers=layers),
                                     cache_dir=cache)
     rows.append({"model": f"3D quarter {size:g} mm/{layers}", "dofs": model.disc.n,
-                 "seconds": round(time.perf_counter() - t0, 1), "ok": res.ok,
+                 "seconds": round(time.perf_counter() - t0, 1), "ok": res.converged,
                  "dV_mm3": curve.inflated_volume_mm3 - curve.nominal_volume_mm3,
                  "force_N": curve.force_N[1:].tolist(),
                  "pressure_kPa": curve.pressure_kPa[1:].tolist()})

@@ -61,7 +61,7 @@ def main(argv=None) -> None:
                 k = mean_stiffness(c) if r.converged else float("nan")
                 s = mean_sensitivity(c) if r.converged else float("nan")
                 print(f"{t:4} {p:4.0f} {mode:5} {ok:9} {k:10.3f} {s:11.3f} {c.force_N[-1]:7.2f} "
-                      f"{c.pressure_kPa[-1]:8.2f} {dt:7.3f} {r.newton_iterations:6d}")
+                      f"{c.pressure_kPa[-1]:8.2f} {dt:7.3f} {r.iterations:6d}")
     print(f"time per curve: median {np.median(times):.3f} s, max {np.max(times):.3f} s")
     if not args.full:
         return

@@ -54,7 +54,7 @@ def main(argv=None) -> int:
             continue
         g = preset(geo["type"], **{k: v for k, v in geo.items() if k != "type"})
         run = ChamberRun(g, material("tpu60a"), pressure_kPa=p, reservoir_mm3=vr,
-                         stroke_mm=stroke, points=points, size_mm=args.mesh_size,
+                         stroke_mm=stroke, points=points, mesh_size_mm=args.mesh_size,
                          layers=args.layers)
         t0 = time.perf_counter()
         curve, result, model = run_chamber(run)

@@ -109,12 +109,6 @@ class Result:
         """Newton iterations over the converged load points."""
         return sum(r.iterations for r in self.records)
 
-    @property
-    def ok(self) -> bool:
-        """Deprecated name of :attr:`converged` (the one protocol is
-        :class:`spsc.core.curve.SolveInfo`); kept until the tests that read it move."""
-        return self.converged
-
 
 _log = logging.getLogger(__name__)
 

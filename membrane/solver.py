@@ -105,11 +105,6 @@ class MembraneResult:
     def notes(self) -> tuple:
         return self.curve.solver.notes
 
-    @property
-    def newton_iterations(self) -> int:
-        """Deprecated name of :attr:`iterations` (kept for pipeline/runner.py)."""
-        return self.curve.solver.iterations
-
 
 @dataclass(frozen=True, eq=False)
 class Inflation:

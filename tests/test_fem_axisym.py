@@ -150,9 +150,9 @@ def test_3d_fem_agrees_with_the_axisymmetric_model(tmp_path):
     x, recs = m.inflate(0.04, 4)
     out = m.press(x, 0.04, 4.0, 4)
     curve, result, _ = run_chamber(ChamberRun(g, MAT, pressure_kPa=40.0, stroke_mm=4.0,
-                                              points=5, size_mm=1.0, layers=2),
+                                              points=5, mesh_size_mm=1.0, layers=2),
                                    cache_dir=tmp_path)
-    assert result.ok, result.message
+    assert result.converged, result.message
     dv_axi = recs[-1].volume - recs[0].volume
     dv_3d = curve.inflated_volume_mm3 - curve.nominal_volume_mm3
     np.testing.assert_allclose(dv_3d, dv_axi, rtol=1e-2)

@@ -22,7 +22,7 @@ def test_structured_and_tetwild_meshes_inflate_alike():
     changes = []
     for mesh in (spsc_wall_tetwild(g, 2.0, epsilon=1e-3), spsc_wall(g, 1.0, layers=2)):
         res = solve(FEMModel.build(mesh, MAT), [Inflate(0.04, 4)])
-        assert res.ok, res.message
+        assert res.converged, res.message
         changes.append(res.records[-1].volume / res.records[0].volume - 1)
     np.testing.assert_allclose(changes[0], changes[1], rtol=1e-2)
 
@@ -33,9 +33,9 @@ def test_halving_the_mesh_changes_the_force_by_less_than_2_percent(tmp_path):
     forces = []
     for size, layers in ((2.0, 1), (1.0, 2)):
         run = ChamberRun(preset("B"), MAT, pressure_kPa=40.0, stroke_mm=2.0, points=5,
-                         size_mm=size, layers=layers)
+                         mesh_size_mm=size, layers=layers)
         curve, result, _ = run_chamber(run, cache_dir=tmp_path)
-        assert result.ok, result.message
+        assert result.converged, result.message
         forces.append(curve.force_N[1:])
     np.testing.assert_allclose(forces[0], forces[1], rtol=2e-2)
 
@@ -44,7 +44,7 @@ def test_open_chamber_softening_is_reported(tmp_path):
     """Type B open to the atmosphere: the dome inverts under the plate (the paper's central
     nearly-zero-slope phase); the run says so instead of passing it off silently."""
     run = ChamberRun(preset("B"), MAT, pressure_kPa=0.0, stroke_mm=6.0, points=13,
-                     size_mm=2.0, layers=1)
+                     mesh_size_mm=2.0, layers=1)
     curve, result, _ = run_chamber(run, cache_dir=tmp_path)
     assert result.instability, result.message
     assert "negative" in result.instability or "snap" in result.instability

@@ -21,7 +21,7 @@ MAT = material("tpu60a")
 
 
 def _run(tmp_path, **kw):
-    args = dict(pressure_kPa=40.0, stroke_mm=2.0, points=5, size_mm=3.0, layers=1)
+    args = dict(pressure_kPa=40.0, stroke_mm=2.0, points=5, mesh_size_mm=3.0, layers=1)
     args.update(kw)
     return run_chamber(ChamberRun(G, MAT, **args), cache_dir=tmp_path)
 
@@ -34,7 +34,7 @@ def test_gas_law_held_along_the_stroke(tmp_path, reservoir, n):
     (``GasLaw.volume``) gives the measured volume back from the reported pressure. All hold to
     round-off and the Newton tolerance (observed < 1e-14 relative on the invariant)."""
     curve, result, model = _run(tmp_path, reservoir_mm3=reservoir, polytropic_index=n)
-    assert result.ok, result.message
+    assert result.converged, result.message
     assert curve.all_converged
     np.testing.assert_allclose(curve.pressure_kPa[0], 40.0, rtol=1e-12)
     p_i = curve.pressure_kPa[0] / KPA_PER_MPA
@@ -111,7 +111,7 @@ def test_reduced_tangent_is_symmetric():
 
 def test_open_chamber_and_curve_json(tmp_path):
     curve, result, model = _run(tmp_path, pressure_kPa=0.0, stroke_mm=1.0, points=3)
-    assert result.ok, result.message
+    assert result.converged, result.message
     assert curve.model == "fem" and curve.setup["p_i_kPa"] == 0.0
     np.testing.assert_array_equal(curve.pressure_kPa, 0.0)
     np.testing.assert_array_equal(curve.volume_change_mm3 > 0, [False, True, True])
@@ -128,7 +128,7 @@ def test_failure_keeps_converged_points_and_says_why(tmp_path):
     model = FEMModel.build(m, MAT)
     res = solve(model, [Inflate(0.04, 2), Press(2.0, 2)],
                 settings=Settings(max_iterations=6, min_fraction=0.25))
-    assert not res.ok
+    assert not res.converged
     assert "step 1 (press)" in res.message and "no convergence" in res.message
     assert [r.kind for r in res.records] == ["start", "inflate", "inflate"]
 
@@ -141,7 +141,7 @@ def test_solvers_agree_and_stable_inertia():
     steps = [Inflate(0.04, 2), Press(0.5, 1)]
     a = solve(model, steps, settings=Settings(solver="pardiso"))
     b = solve(model, steps, settings=Settings(solver="superlu"))
-    assert a.ok and b.ok
+    assert a.converged and b.converged
     for ra, rb in zip(a.records[1:], b.records[1:]):
         # both converge to rtol 1e-8 of the force scale; states agree far below the mesh error
         np.testing.assert_allclose(ra.x[: model.disc.n_u], rb.x[: model.disc.n_u], rtol=0,
@@ -158,7 +158,7 @@ def test_full_model_inflates_like_the_quarter():
         model = FEMModel.build(m, MAT, supports={"base": (0, 1, 2), "sym_x": (0,),
                                                  "sym_y": (1,)})
         res = solve(model, [Inflate(0.04, 2)])
-        assert res.ok, res.message
+        assert res.converged, res.message
         volumes.append(res.records[-1].volume)
     # same discrete problem, both converged to rtol 1e-8
     np.testing.assert_allclose(volumes[1], volumes[0], rtol=1e-9)
@@ -179,7 +179,7 @@ def test_unstable_equilibrium_stops_the_run():
     model = FEMModel.build(mesh, MAT, supports={"base": (0, 1, 2)})
     res = solve(model, [Press(0.1, 4)])  # strain steps of 0.25 %
     eps_cr = math.pi**2 * a**2 / (12 * length**2)
-    assert not res.ok and "negative eigenvalue" in res.instability
+    assert not res.converged and "negative eigenvalue" in res.instability
     assert "2 negative eigenvalue(s)" in res.instability
     stable = [length - r.plate for r in res.of("press")]
     assert stable[-1] / length < eps_cr < (stable[-1] + 0.025) / length

@@ -76,7 +76,7 @@ def test_exact_thick_sphere_inflation():
     model = _model()
     p = 0.45 * MU
     res = solve(model, [Inflate(p, increments=4)])
-    assert res.ok, res.message
+    assert res.converged, res.message
     for rec in res.of("inflate"):
         lam_a = (rec.volume / (4 / 3 * math.pi * A**3)) ** (1 / 3)
         lam_exact = brentq(lambda lam: _exact_pressure(lam) - rec.pressure, 1.0, 1.6)
