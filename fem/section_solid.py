@@ -36,7 +36,8 @@ import scipy.sparse as sp
 from .material import NearlyIncompressible
 from .section import DOME, Section
 
-__all__ = ["MixedSolid", "section_solid", "stadium_dome", "junction_mode", "InvertedSection"]
+__all__ = ["MixedSolid", "section_solid", "stadium_dome", "half_domes", "meridian_modes",
+           "meridian_angles", "theta_rule", "junction_mode", "InvertedSection"]
 
 
 class InvertedSection(ValueError):
@@ -184,10 +185,32 @@ def section_solid(section: Section, law: NearlyIncompressible) -> MixedSolid:
     return MixedSolid(law, B, section.dV, q, section.element_dofs, section.n_dofs)
 
 
-#: Gauss points and weights on θ ∈ [0, π/2] (weights sum to 1) for the stadium's half-domes
-_THETA, _THETA_W = np.polynomial.legendre.leggauss(4)
-_THETA = 0.25 * np.pi * (_THETA + 1.0)
-_THETA_W = 0.5 * _THETA_W
+def theta_rule(n: int):
+    """Gauss points and weights on θ ∈ [0, π/2] (weights sum to 1)."""
+    t, w = np.polynomial.legendre.leggauss(n)
+    return 0.25 * np.pi * (t + 1.0), 0.5 * w
+
+
+#: the θ-rule of the two-meridian stadium (exact for its energy's cos 2θ products to degree 7)
+_THETA, _THETA_W = theta_rule(4)
+
+
+def meridian_angles(K: int) -> np.ndarray:
+    """The K + 1 meridians of a half-dome, tip (θ = π/2) first, junction (θ = 0) last."""
+    return 0.5 * np.pi * (1.0 - np.arange(K + 1) / K)
+
+
+def meridian_modes(theta, K: int = 1):
+    """Weights L_k(θ) (…, K + 1) of the meridians :func:`meridian_angles` and dL_k/dθ: the
+    interpolation in cos 2mθ, m = 0…K (even about the tip meridian and the junction plane, the
+    symmetries of a stadium's quarter), L_k(θ_j) = δ_kj."""
+    theta = np.asarray(theta, float)[..., None]
+    m = np.arange(K + 1)
+    V = np.cos(2.0 * m[None, :] * meridian_angles(K)[:, None])  # V[k, m] = cos 2m θ_k
+    Vinv = np.linalg.inv(V)
+    L = np.cos(2.0 * m * theta) @ Vinv
+    dL = (-2.0 * m * np.sin(2.0 * m * theta)) @ Vinv
+    return L, dL
 
 
 def junction_mode(theta):
@@ -199,26 +222,37 @@ def junction_mode(theta):
 
 def stadium_dome(section: Section, law: NearlyIncompressible, dofs_tip, dofs_junction,
                  dofs_hoop, n_dofs: int) -> MixedSolid:
+    """The two-meridian stadium dome (:func:`half_domes` with K = 1)."""
+    return half_domes(section, law, [dofs_tip, dofs_junction], [dofs_hoop], n_dofs)
+
+
+def half_domes(section: Section, law: NearlyIncompressible, dofs_meridians, dofs_hoop,
+               n_dofs: int, n_theta: int | None = None) -> MixedSolid:
     """The two half-domes of a stadium (l > 0) as a 2.5D solid of revolution whose meridian
     varies around the axis, θ from the junction plane with the straight middle (θ = 0) to the
-    tip meridian (θ = π/2):
+    tip meridian (θ = π/2), K + 1 = len(dofs_meridians) meridians (tip first):
 
-        u_R, u_Z = (1 − c) u_tip + c u_j,   c(θ) = cos²θ = (1 + cos 2θ)/2,
-        u_θ = sin 2θ · v,
+        u_R, u_Z = Σ_k L_k(θ) u_k,   L_k ∈ span{cos 2mθ, m = 0…K} (:func:`meridian_modes`),
+        u_θ = Σ_m sin 2mθ · v_m,     m = 1…K,
 
-    the axisymmetric field plus the second harmonic, the hoop displacement v letting the
-    meridians differ without shearing the shell (the junction meridian u_j moves with the
-    middle; u_θ = 0 at the junction and the tip by symmetry). In physical cylindrical
-    components (R, Z, θ)
+    the axisymmetric field plus the harmonics 2m, the hoop displacements v_m letting the
+    meridians differ without shearing the shell (the junction meridian moves with the
+    middle; u_θ = 0 at the junction and the tip by symmetry). With K = 1, L = (sin²θ, cos²θ).
+    In physical cylindrical components (R, Z, θ)
 
         F = [[1 + u_R,R, u_R,Z, (u_R,θ − u_θ)/R],
              [u_Z,R, 1 + u_Z,Z, u_Z,θ/R],
              [u_θ,R, u_θ,Z, 1 + (u_R + u_θ,θ)/R]],
 
-    integrated over the four quarter-domes (4R dθ dA, θ ∈ [0, π/2], 4-point Gauss). With
-    u_j = u_tip and v = 0 it is the axisymmetric dome exactly. ``dofs_tip``,
-    ``dofs_junction`` (ne, 18) and ``dofs_hoop`` (ne, 9): global unknowns among ``n_dofs``.
+    integrated over the four quarter-domes (4R dθ dA, θ ∈ [0, π/2], Gauss in θ). With equal
+    meridians and v = 0 it is the axisymmetric dome exactly. ``dofs_meridians`` (K + 1 arrays
+    (ne, 18)) and ``dofs_hoop`` (K arrays (ne, 9)): global unknowns among ``n_dofs``. The
+    pressure has the divergence's K + 1 θ-modes L_k: one more would over-constrain J = 1 and lock.
     """
+    K = len(dofs_meridians) - 1
+    if len(dofs_hoop) != K or K < 1:
+        raise ValueError("K + 1 meridians and K hoop fields, K >= 1")
+    thetas, weights = theta_rule(n_theta or 2 * K + 2)
     ne, nq = section.dV.shape
     R = section.Xq[..., 0][..., None]
     Ba = _strain_operator(section)  # axisymmetric: (ne, nq, 9, 18), includes F_θθ
@@ -226,7 +260,7 @@ def stadium_dome(section: Section, law: NearlyIncompressible, dofs_tip, dofs_jun
     Bt[:, :, 0, 2, :, 0] = section.N / R  # u_R,θ / R
     Bt[:, :, 1, 2, :, 1] = section.N / R  # u_Z,θ / R
     Bt = Bt.reshape(ne, nq, 9, 18)
-    Bv = np.zeros((ne, nq, 3, 3, 9))  # per unit u_θ amplitude: sin 2θ and its θ-derivative
+    Bv = np.zeros((ne, nq, 3, 3, 9))  # per unit u_θ amplitude: sin 2mθ and its θ-derivative
     Bv_s = Bv.copy()
     Bv_s[:, :, 0, 2, :] = -section.N / R  # −u_θ/R
     Bv_s[:, :, 2, 0, :] = section.dNdX[..., 0]  # u_θ,R
@@ -236,15 +270,16 @@ def stadium_dome(section: Section, law: NearlyIncompressible, dofs_tip, dofs_jun
     Bv_s, Bv_d = Bv_s.reshape(ne, nq, 9, 9), Bv_d.reshape(ne, nq, 9, 9)
     Bs, dVs, qs = [], [], []
     q1 = _pressure_basis(section.dV, section.Xq, section.measure)
-    for th, w in zip(_THETA, _THETA_W):
-        c, dc = junction_mode(th)
-        sn, dsn = math.sin(2.0 * th), 2.0 * math.cos(2.0 * th)
-        Bs.append(np.concatenate([(1.0 - c) * Ba - dc * Bt, c * Ba + dc * Bt,
-                                  sn * Bv_s + dsn * Bv_d], -1))
+    L, dL = meridian_modes(thetas, K)
+    for i, w in enumerate(weights):
+        th = thetas[i]
+        blocks = [L[i, k] * Ba + dL[i, k] * Bt for k in range(K + 1)]
+        blocks += [math.sin(2 * m * th) * Bv_s + 2 * m * math.cos(2 * m * th) * Bv_d
+                   for m in range(1, K + 1)]
+        Bs.append(np.concatenate(blocks, -1))
         dVs.append(section.dV * w)  # 2πR dA × (weight of θ over the quarter, sum 1)
-        qs.append(np.concatenate([(1.0 - c) * q1, c * q1], -1))
-    # θ-points are quadrature points of the same element; the pressure has the
-    # divergence's two θ-modes (1 − c, c): one more would over-constrain J = 1 and lock
-    edofs = np.concatenate([dofs_tip, dofs_junction, dofs_hoop], axis=1)
+        qs.append(np.concatenate([L[i, k] * q1 for k in range(K + 1)], -1))
+    # θ-points are quadrature points of the same element
+    edofs = np.concatenate(list(dofs_meridians) + list(dofs_hoop), axis=1)
     return MixedSolid(law, np.concatenate(Bs, 1), np.concatenate(dVs, 1),
                       np.concatenate(qs, 1), edofs, n_dofs)

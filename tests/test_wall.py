@@ -174,3 +174,71 @@ def test_bad_input_is_a_one_line_error():
         wall_curve(g, material("tpu60a"), stroke_mm=20.0)
     with pytest.raises(ParameterError, match="mesh_size"):
         WallSettings(mesh_size_mm=0.0)
+
+
+@pytest.mark.parametrize("K", [1, 2, 3])
+def test_meridian_modes_interpolate_the_meridians(K):
+    from spsc.fem.section_solid import junction_mode, meridian_angles, meridian_modes
+
+    L, dL = meridian_modes(meridian_angles(K), K)
+    np.testing.assert_allclose(L, np.eye(K + 1), atol=1e-12)  # L_k(θ_j) = δ_kj
+    th = np.linspace(0, np.pi / 2, 7)
+    L, dL = meridian_modes(th, K)
+    np.testing.assert_allclose(L.sum(-1), 1.0, atol=1e-12)  # a rigid meridian shift is exact
+    np.testing.assert_allclose(dL.sum(-1), 0.0, atol=1e-12)
+    eps = 1e-6
+    fd = (meridian_modes(th + eps, K)[0] - meridian_modes(th - eps, K)[0]) / (2 * eps)
+    np.testing.assert_allclose(dL, fd, atol=1e-8)
+    if K == 1:  # the two-meridian stadium: junction weight cos²θ
+        np.testing.assert_allclose(L[:, 1], junction_mode(th)[0], atol=1e-12)
+
+
+def _three_meridian_dome(s, law):
+    from spsc.fem.section_solid import half_domes
+
+    nd, nn = s.n_dofs, len(s.nodes)
+    return half_domes(s, law, [s.element_dofs + k * nd for k in range(3)],
+                      [3 * nd + m * nn + s.elements for m in range(2)], 3 * nd + 2 * nn)
+
+
+def test_half_domes_with_equal_meridians_are_the_axisymmetric_dome():
+    s = section_mesh(preset("B"), DOME, size=1.0)
+    law = NearlyIncompressible(material("tpu60a"))
+    nd, nn = s.n_dofs, len(s.nodes)
+    axi = section_solid(s, law)
+    st = _three_meridian_dome(s, law)
+    rng = np.random.default_rng(2)
+    u = rng.normal(size=nd) * 0.02
+    pc = rng.normal(size=(len(s.elements), 3)) * 0.01
+    r1, rp1 = axi.residual(u, pc)
+    r2, rp2 = st.residual(np.concatenate([u, u, u, np.zeros(2 * nn)]),
+                          np.concatenate([pc, pc, pc], 1))
+    # Σ L_k = 1 at every θ: the meridians' shares add up to the axisymmetric forces exactly
+    np.testing.assert_allclose(r2[:nd] + r2[nd:2 * nd] + r2[2 * nd:3 * nd], r1, rtol=0,
+                               atol=1e-12 * abs(r1).max())
+    np.testing.assert_allclose(rp2[:, :3] + rp2[:, 3:6] + rp2[:, 6:], rp1, rtol=0, atol=1e-14)
+    # no hoop force at v = 0: ∫ cos 2mθ dθ = 0 over the quarter, to the θ-Gauss rule's error
+    # on it (measured 1e-8 relative with 6 points)
+    assert np.abs(r2[3 * nd:]).max() <= 1e-7 * abs(r1).max()
+
+
+def test_half_domes_tangent_is_the_derivative_of_the_residual():
+    s = section_mesh(preset("D"), DOME, size=1.5)
+    law = NearlyIncompressible(material("elastic50a"))
+    st = _three_meridian_dome(s, law)
+    axis = np.abs(s.nodes[:, 0]) < 1e-12
+    fixed = np.concatenate([s.fixed] * 3 + [s.fixed[1::2] | axis] * 2)
+    rng = np.random.default_rng(7)
+    U = rng.normal(size=st.n_dofs) * 0.02
+    U[fixed] = 0.0
+    pc = rng.normal(size=(len(s.elements), 9)) * 0.01
+    r, rp, K, G = st.residual_tangent(U, pc)
+    dU = rng.normal(size=st.n_dofs)
+    dU[fixed] = 0.0
+    dp = st.recover(G, np.zeros_like(rp), dU)
+    eps = 1e-6
+    fd = (st.residual(U + eps * dU, pc + eps * dp)[0]
+          - st.residual(U - eps * dU, pc - eps * dp)[0]) / (2 * eps)
+    # central differences: O(eps²) truncation, round-off ~1e-16/eps relative
+    np.testing.assert_allclose(K @ dU, fd, rtol=0, atol=1e-6 * np.abs(fd).max())
+    assert abs(K - K.T).max() <= 1e-10 * abs(K).max()
