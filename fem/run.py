@@ -9,7 +9,7 @@ open), whose force is the structural F_el(y).
 from __future__ import annotations
 
 import time
-from dataclasses import InitVar, dataclass
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -46,12 +46,8 @@ class ChamberRun:
     inflate_increments: int = 4
     full: bool = False
     bulk_ratio: float = 2000.0
-    #: deprecated keyword for ``mesh_size_mm`` (callers not yet renamed)
-    size_mm: InitVar[float | None] = None
 
-    def __post_init__(self, size_mm=None):
-        if size_mm is not None:
-            object.__setattr__(self, "mesh_size_mm", size_mm)
+    def __post_init__(self):
         require("pressure", self.pressure_kPa, ge=0, unit="kPa")
         require("reservoir", self.reservoir_mm3, ge=0, unit="mm³")
         require("stroke", self.stroke_mm, gt=0, unit="mm")

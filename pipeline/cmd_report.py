@@ -35,7 +35,8 @@ def register(subparsers) -> None:
     p.add_argument("--out", help="output directory (default reports/validation, or "
                                  "build/report-quick with --quick)")
     p.add_argument("--cache", default="build/cache", help="cache directory (default build/cache)")
-    p.add_argument("--no-fem", action="store_true", help="membrane and simplified models only")
+    p.add_argument("--no-fem", action="store_true",
+                   help="no 3D FEM: the membrane, simplified and wall models only")
     p.add_argument("--types", help="subset of the types, e.g. BD (default ABCD)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--allow-dirty", action="store_true",

@@ -77,20 +77,27 @@ def _membrane(run: Run, directory: Path, progress, mesh_dir) -> dict:
                           "pressed_y_mm": float(r.curve.y_mm[last]) if last else None}}
 
 
-def curve_model(module: str, function: str, *, material_object: bool = False):
+def curve_model(module: str, function: str, *, material_object: bool = False,
+                meshed: bool = False):
     """The compute entry of a model that is a function returning a :class:`Curve` from a
     geometry and the membrane's setup arguments (``material``, ``pressure_kPa``,
     ``reservoir_mm3``, ``stroke_mm``, ``points``): the simplified model, the wall model.
     ``material_object``: pass the catalogue :class:`~spsc.membrane.materials.Material`, not its
-    name."""
+    name. ``meshed``: the run's mesh size and layers go in as the model's ``settings``
+    (``<module>.WallSettings``-like: ``mesh_size_mm``, ``layers``)."""
 
     def compute(run: Run, directory: Path, progress, mesh_dir) -> dict:
         from spsc.membrane.materials import material
 
-        fn = getattr(importlib.import_module(module), function)
+        mod = importlib.import_module(module)
+        fn = getattr(mod, function)
         mat = material(run.material) if material_object else run.material
+        kw = {}
+        if meshed:
+            kw["settings"] = mod.WallSettings(mesh_size_mm=run.mesh_mm, layers=run.layers)
         c = fn(run.geometry(), material=mat, pressure_kPa=run.pressure_kPa,
-               reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm, points=run.points)
+               reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm, points=run.points,
+               **kw)
         return {"curve": c.to_dict()}
 
     return compute
@@ -115,7 +122,7 @@ def _fem(run: Run, directory: Path, progress, mesh_dir) -> dict:
 
     spec = ChamberRun(run.geometry(), material(run.material), pressure_kPa=run.pressure_kPa,
                       reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm,
-                      points=run.points, size_mm=run.mesh_mm, layers=run.layers)
+                      points=run.points, mesh_size_mm=run.mesh_mm, layers=run.layers)
     curve, result, model = run_chamber(spec, progress=progress, cache_dir=mesh_dir)
     infl, presses = result.of("inflate"), result.of("press")
     keep = {"inflated": infl[-1] if infl else result.records[0]}
@@ -140,6 +147,7 @@ def _fem(run: Run, directory: Path, progress, mesh_dir) -> dict:
 _COMPUTE = {
     "membrane": _membrane,
     "simplified": curve_model("spsc.membrane.simplified", "simplified_curve"),
+    "wall": curve_model("spsc.fem.wall", "wall_curve", material_object=True, meshed=True),
     "fem": _fem,
 }
 

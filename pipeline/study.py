@@ -36,6 +36,7 @@ class Model:
         and mesh, plus the open chamber (F_el).
     bending : the model's force includes the wall's own structural force; False: its force is
         p·A and the report adds the FEM's F_el(y) to it (DESIGN.md).
+    meshed : the model takes a mesh size and layers (the solid models: wall, fem).
     color, style : how its curves are drawn (matplotlib colour and format).
     """
 
@@ -43,6 +44,7 @@ class Model:
     module: str
     sweep: bool = True
     bending: bool = False
+    meshed: bool = False
     color: str = "C1"
     style: str = "-."
 
@@ -51,7 +53,9 @@ class Model:
 MODELS = (
     Model("membrane", "spsc.membrane.solver", color="C0", style="-"),
     Model("simplified", "spsc.membrane.simplified", color="C2", style="--"),
-    Model("fem", "spsc.fem.run", sweep=False, bending=True, color="C3", style="o"),
+    Model("wall", "spsc.fem.wall", bending=True, meshed=True, color="C1", style="-."),
+    Model("fem", "spsc.fem.run", sweep=False, bending=True, meshed=True, color="C3",
+          style="o"),
 )
 #: bump when the runner changes what it stores for a run (2: the curve's JSON with its solver)
 PAYLOAD_VERSION = 2
@@ -89,12 +93,12 @@ class Run:
         require("reservoir", self.reservoir_mm3, ge=0, unit="mm³")
         require("stroke", self.stroke_mm, gt=0, unit="mm")
         require("points", self.points, ge=2)
-        if not model(self.model).sweep:
+        if model(self.model).meshed:
             require("mesh size", self.mesh_mm, gt=0, unit="mm")
             require("layers", self.layers, ge=1)
         elif self.mesh_mm is not None or self.layers is not None:
             raise ParameterError("mesh_mm/layers", (self.mesh_mm, self.layers),
-                                 "None for a non-FEM run")
+                                 f"None for a {self.model} run (no mesh)")
 
     @property
     def mode(self) -> str:
@@ -208,6 +212,7 @@ class Study:
     stroke_mm: float = 6.0
     fem_points: int = 13
     mesh: tuple[float, int] = (1.0, 2)
+    wall_mesh: tuple[float, int] = (1.0, 2)
     convergence_type: str = "B"
     convergence_meshes: tuple[tuple[float, int], ...] = ((2.0, 1), (1.5, 2))
     fem: bool = True
@@ -247,9 +252,11 @@ class Study:
         return tuple(m for m in MODELS if m.sweep)
 
     def membrane(self, model: str, type_: str, material: str, pressure: float, mode: str) -> Run:
-        """The run of a sweep ``model`` (membrane, simplified, …) at one setup pressure."""
+        """The run of a sweep ``model`` (membrane, simplified, wall …) at one setup pressure."""
+        meshed = next(m for m in MODELS if m.name == model).meshed
+        mesh = (float(self.wall_mesh[0]), int(self.wall_mesh[1])) if meshed else (None, None)
         return Run(model, type_, material, float(pressure), self.reservoir(mode),
-                   self.stroke_mm, self.membrane_points)
+                   self.stroke_mm, self.membrane_points, *mesh)
 
     def fem_run(self, type_: str, material: str, mode: str, mesh=None) -> Run:
         """``mode`` ``open`` is the open chamber (p = 0), else the compare pressure."""
@@ -298,6 +305,7 @@ def full_study() -> Study:
 def quick_study() -> Study:
     """``make report QUICK=1``: coarse meshes, fewer points and pressures (CI smoke run)."""
     return Study(name="quick", pressures_kPa=(10.0, 40.0), fem_points=7, mesh=(2.0, 1),
+                 wall_mesh=(2.0, 1),
                  convergence_meshes=((3.0, 1),),
-                 note="QUICK: coarse FEM mesh (2 mm, 1 layer), 7 FEM points, p_i = 10 and "
-                      "40 kPa only — a pipeline check, not a validation.")
+                 note="QUICK: coarse FEM mesh (2 mm, 1 layer), wall mesh 2 mm, 7 FEM points, "
+                      "p_i = 10 and 40 kPa only — a pipeline check, not a validation.")

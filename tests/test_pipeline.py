@@ -12,7 +12,8 @@ from spsc.pipeline.runner import run_all
 from spsc.pipeline.study import (MODELS, Run, Study, code_version, full_study, quick_study,
                                  source_closure)
 
-SMALL = Study(name="small", types=("B",), pressures_kPa=(40.0,), fem_points=4, fem=False)
+SMALL = Study(name="small", types=("B",), pressures_kPa=(40.0,), fem_points=4, fem=False,
+              wall_mesh=(2.0, 1))
 
 
 def test_studies_expand_into_unique_runs_cheap_first():
@@ -72,7 +73,7 @@ def test_every_model_has_a_compute_entry_and_a_code_version():
 
 def test_rerun_with_nothing_changed_is_read_from_the_cache(tmp_path):
     runs = SMALL.runs()
-    assert len(runs) == 4  # membrane and simplified, high and low
+    assert len(runs) == 6  # membrane, simplified and wall, high and low
     first = run_all(runs, Cache(tmp_path), progress=False)
 
     def no_compute(*a, **k):
@@ -85,7 +86,7 @@ def test_rerun_with_nothing_changed_is_read_from_the_cache(tmp_path):
         assert second[r].payload["curve"] == first[r].payload["curve"]
         assert second[r].seconds == first[r].seconds  # the compute time is kept
     entries = sorted(p.name for p in (tmp_path / "runs").iterdir())
-    assert len(entries) == 4 and not any(e.startswith(".") for e in entries)
+    assert len(entries) == 6 and not any(e.startswith(".") for e in entries)
     m = second[runs[0]]
     assert m.curve.all_converged and m.payload["meridians"]["pressed"] is not None
     # the payload is the curve's JSON with its solver block; nothing duplicated beside it

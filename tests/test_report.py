@@ -36,7 +36,8 @@ def test_paper_figures_are_quoted_from_the_text():
             assert f.quote in text, f.key
 
 
-SMALL = Study(name="small", types=("B",), pressures_kPa=(10.0, 40.0), fem_points=4, fem=False)
+SMALL = Study(name="small", types=("B",), pressures_kPa=(10.0, 40.0), fem_points=4, fem=False,
+              wall_mesh=(2.0, 1))
 
 
 def test_report_is_offline_html_with_local_figures_and_lists_failures(tmp_path):
@@ -149,13 +150,15 @@ def test_spsc_report_verb_membrane_only(tmp_path, capsys):
     assert (out / "index.html").is_file()
     assert "0 from the cache" in capsys.readouterr().out
     assert main(args) == 0
-    assert "8 from the cache" in capsys.readouterr().out
+    # membrane, simplified and wall × 2 pressures × 2 modes
+    assert "12 from the cache" in capsys.readouterr().out
     from spsc.pipeline.cmd_report import DEFAULT_OUT
     assert DEFAULT_OUT == {False: Path("reports/validation"), True: Path("build/report-quick")}
 
 
 TINY = Study(name="tiny", types=("B",), pressures_kPa=(40.0,), modes=(("high", 0.0),),
-             stroke_mm=2.0, fem_points=3, mesh=(3.0, 1), convergence_meshes=())
+             stroke_mm=2.0, fem_points=3, mesh=(3.0, 1), wall_mesh=(2.0, 1),
+             convergence_meshes=())
 
 
 @pytest.fixture(scope="module")
@@ -192,7 +195,8 @@ def test_report_with_fem_renders_compares_and_reuses_its_figures(tiny, tmp_path,
     srcs = re.findall(r'src="([^"]+)"', page)
     assert all((path.parent / s).is_file() for s in srcs)
     comp = json.loads((path.parent / "summary.json").read_text(encoding="utf-8"))["comparison"]
-    assert set(comp["B-tpu60a-high"]) == {"membrane+F_el", "simplified+F_el"}
+    # models without bending get the FEM's F_el added; the wall carries its own
+    assert set(comp["B-tpu60a-high"]) == {"membrane+F_el", "simplified+F_el", "wall"}
     e = comp["B-tpu60a-high"]["membrane+F_el"]
     assert e["force_N"]["n"] == 3 and e["pressure_kPa"]["rms"] >= 0
     assert len(list(figs.iterdir())) == 3  # curves, shapes, convergence

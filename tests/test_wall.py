@@ -148,7 +148,7 @@ def test_plate_force_balances_pressure_and_base_reactions():
     st = W.inflate(m, 40.0)
     gas = W.GasLaw(0.04, st.volume)
     z0 = m.top(st.x)
-    s = W._newton(m, st.x, gas=gas, plate=z0 - 1.0, settings=m.settings)
+    s = W.newton(m, st.x, gas=gas, plate=z0 - 1.0, settings=m.settings)
     ev = m.evaluate(s.x, s.pressure, tangent=False)
     base_z = np.nonzero(m.fixed & (np.arange(m.n_u) % 2 == 1))[0]
     np.testing.assert_allclose(s.force, np.sum(ev.r[base_z]), rtol=1e-9)
