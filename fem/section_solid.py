@@ -66,11 +66,7 @@ def _pressure_basis(dV, Xq, measure):
 def _strain_operator(s: Section) -> np.ndarray:
     """B = ∂F/∂u_e, shape (ne, nq, 9, 18): F flattened row-major, element unknowns node-major."""
     ne, nq = s.dV.shape
-    B = np.zeros((ne, nq, 3, 3, 9, 2))
-    B[:, :, 0, 0, :, 0] = s.dNdX[..., 0]
-    B[:, :, 0, 1, :, 0] = s.dNdX[..., 1]
-    B[:, :, 1, 0, :, 1] = s.dNdX[..., 0]
-    B[:, :, 1, 1, :, 1] = s.dNdX[..., 1]
+    B = _hoop_free_operator(s)
     if s.kind == DOME:
         B[:, :, 2, 2, :, 0] = s.N / s.Xq[..., 0][..., None]
     return B.reshape(ne, nq, 9, 18)
