@@ -1,12 +1,13 @@
 """The ``wall`` model: the chamber wall as a thick, nearly incompressible hyperelastic solid,
 coupled in one Newton solve to the cavity pressure, the trapped gas and a rigid plate.
 
-The chamber is the axisymmetric **dome** (the body of revolution of the wall section: the two
-half-domes of the stadium together) plus, when l > 0, the straight **middle** of length l in
-plane strain (:mod:`spsc.fem.section`). Both sections share one cavity pressure and one plate:
+The chamber (:mod:`spsc.fem.wall_model`) is the axisymmetric **dome** when l = 0 (the body of
+revolution of the wall section, :mod:`spsc.fem.section`); when l > 0 the two **half-domes**
+carry θ-harmonics of the meridian (tip to junction) and the straight **middle** of length l is a
+plane-strain section on the junction meridian. All parts share one cavity pressure and one plate:
 
-* cavity volume V = V_dome(u₁) + V_middle(u₂) (the middle: l × cross-section area, eq. 37's
-  2l∫ρ dη term), follower pressure p ∂V/∂u with its consistent stiffness p ∂²V/∂u²;
+* cavity volume V = Σ parts (the middle: l × cross-section area, eq. 37's 2l∫ρ dη term),
+  follower pressure p ∂V/∂u with its consistent stiffness p ∂²V/∂u²;
 * after inflation the valve closes: p = p(V) of :class:`~spsc.core.gaslaw.GasLaw`
   (P (V + V_r)ⁿ = const, eqs. 2, 6–7), adding the rank-one stiffness −(dp/dV) g gᵀ, solved by
   Sherman–Morrison;
@@ -21,6 +22,10 @@ plane strain (:mod:`spsc.fem.section`). Both sections share one cavity pressure 
 
 ``pressure_kPa = 0`` is the vented chamber: gauge pressure held at zero, no gas; its force is
 the structural F_el(y) of the paper's open-chamber bench test (Fig. 5b).
+
+Accuracy against the converged 3D FEM (README, ``bench/bench_wall.py``): domes within 0.6 % in
+force and 1.7 % in pressure rise; stadium chambers (Table 1, l = 3) still 10–24 % high in
+force — use the 3D FEM for them when the numbers matter.
 
 Stability: every recorded point's tangent (with the active constraints and the gas) is
 factorised with its inertia; a negative eigenvalue is an unstable equilibrium (limit point,
