@@ -55,6 +55,10 @@ from .wall_newton import WallFailure, WallState, newton
 __all__ = ["WallSettings", "WallModel", "WallState", "WallFailure", "newton", "wall_curve",
            "inflate"]
 
+#: a plate-force drop between recorded points larger than this fraction is reported as negative
+#: stiffness (the 3D solver's threshold, :class:`spsc.fem.solver.Settings`)
+SOFTENING = 1e-2
+
 
 @dataclass
 class _Path:
@@ -205,10 +209,19 @@ def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reserv
         dV[k], conv[k] = v_inf - st.volume, True
     for k in range(len(pressed) + 1 if ok_start else 0, n):
         msg[k] = path.message
+    instability = path.instability
+    for k in range(2, len(pressed) + 1):
+        if F[k] < (1.0 - SOFTENING) * F[k - 1]:
+            # stable under displacement control, but the wall snaps (or the contact jumps)
+            # between the points: say so at the point and in the solve's record
+            msg[k] = (f"plate force falls from {F[k - 1]:.4g} N to {F[k]:.4g} N between "
+                      f"y = {y[k - 1]:.3g} and {y[k]:.3g} mm: negative stiffness (snap-through "
+                      "of the wall or a jump of the contact)")
+            instability = instability or msg[k]
     s = model.settings
     info = SolveInfo(converged=path.converged, message=path.message,
                      y_reached_mm=y[conv][-1] if conv.any() else float("nan"),
-                     instability=path.instability, seconds=seconds,
+                     instability=instability, seconds=seconds,
                      iterations=path.iterations,
                      details={"unknowns": model.n, "displacement_unknowns": model.n_u,
                               "parts": [type(pt).__name__.strip("_").lower()
