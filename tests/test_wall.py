@@ -255,3 +255,20 @@ def test_a_snapping_thin_vented_wall_is_reported_not_stepped_over():
     assert "negative stiffness" in c.solver.instability
     assert all("negative stiffness" in c.message[k] for k in drops)
     assert all(c.converged[k] for k in drops)  # valid points under displacement control
+
+
+@pytest.mark.parametrize("t", ["B", "C"])
+def test_wall_agrees_with_the_independent_felupe_axisymmetric_model(t):
+    from verify.axisym_felupe import AxisymmetricDome
+
+    g = preset(t, l=0.0)
+    ref = AxisymmetricDome(g, material("tpu60a"), n_profile=40, layers=4)
+    x, recs = ref.inflate(0.04, 4)
+    pressed = ref.press(x, 0.04, 2.0, 2)  # y = 1, 2 mm
+    c = wall_curve(g, material("tpu60a"), pressure_kPa=40, stroke_mm=2.0, points=3)
+    # two discretisations of the same solid (FElupe Q2 three-field 40 × 4 vs Q2/P1ᵈ 0.5 mm,
+    # 2 layers), each within ~0.3 % of its converged answer; measured ≤ 0.3 % (F), 0.4 % (ΔP)
+    np.testing.assert_allclose(c.inflated_volume_mm3, recs[-1].volume, rtol=5e-4)
+    np.testing.assert_allclose(c.force_N[1:], [r.force for r in pressed], rtol=1e-2)
+    np.testing.assert_allclose(c.pressure_kPa[1:] - 40, [1e3 * r.pressure - 40 for r in pressed],
+                               rtol=1e-2)
