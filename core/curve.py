@@ -14,6 +14,7 @@ newer versions fail with a one-line error.
 
 from __future__ import annotations
 
+import functools
 import io
 import json
 import math
@@ -316,6 +317,7 @@ def _fmt(x: float) -> str:
     return "nan" if not math.isfinite(x) else repr(float(x))
 
 
+@functools.lru_cache(maxsize=1)
 def _version() -> str:
     from importlib.metadata import PackageNotFoundError, version
 

@@ -96,14 +96,20 @@ def test_stadium_tangent_is_the_derivative_of_the_residual():
     U = rng.normal(size=st.n_dofs) * 0.02
     U[fixed] = 0.0
     pc = rng.normal(size=(len(s.elements), 6)) * 0.01
+    K, fd, dU = _tangent_and_differences(st, U, pc, fixed, rng)
+    np.testing.assert_allclose(K @ dU, fd, rtol=0, atol=1e-6 * np.abs(fd).max())
+
+
+def _tangent_and_differences(st, U, pc, fixed, rng, eps=1e-6):
+    """K and the central difference of r_u along a random free direction dU, with the pressure
+    variation slaved to it (r_p fixed): (K, fd, dU)."""
     r, rp, K, G = st.residual_tangent(U, pc)
     dU = rng.normal(size=st.n_dofs)
     dU[fixed] = 0.0
     dp = st.recover(G, np.zeros_like(rp), dU)
-    eps = 1e-6
     fd = (st.residual(U + eps * dU, pc + eps * dp)[0]
           - st.residual(U - eps * dU, pc - eps * dp)[0]) / (2 * eps)
-    np.testing.assert_allclose(K @ dU, fd, rtol=0, atol=1e-6 * np.abs(fd).max())
+    return K, fd, dU
 
 
 def _thick_sphere_pressure(la, inner, outer, mu):
@@ -232,13 +238,7 @@ def test_half_domes_tangent_is_the_derivative_of_the_residual():
     U = rng.normal(size=st.n_dofs) * 0.02
     U[fixed] = 0.0
     pc = rng.normal(size=(len(s.elements), 9)) * 0.01
-    r, rp, K, G = st.residual_tangent(U, pc)
-    dU = rng.normal(size=st.n_dofs)
-    dU[fixed] = 0.0
-    dp = st.recover(G, np.zeros_like(rp), dU)
-    eps = 1e-6
-    fd = (st.residual(U + eps * dU, pc + eps * dp)[0]
-          - st.residual(U - eps * dU, pc - eps * dp)[0]) / (2 * eps)
+    K, fd, dU = _tangent_and_differences(st, U, pc, fixed, rng)
     # central differences: O(eps²) truncation, round-off ~1e-16/eps relative
     np.testing.assert_allclose(K @ dU, fd, rtol=0, atol=1e-6 * np.abs(fd).max())
     assert abs(K - K.T).max() <= 1e-10 * abs(K).max()
