@@ -242,8 +242,9 @@ def _model_args(args, model: Model) -> None:
             continue
         for dest in MODELS[other].defaults:
             if dest not in model.defaults and getattr(args, dest, None) is not None:
+                owners = [m for m in args.models if dest in MODELS[m].defaults]
                 raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
-                                     f"only with --model {other}")
+                                     "only with --model " + " or ".join(owners))
     for dest, value in model.defaults.items():
         if getattr(args, dest, None) is None:
             setattr(args, dest, value)
