@@ -1,21 +1,17 @@
-"""The meridional section of the chamber wall as a 2D solid: mesh, basis and boundary sets.
+"""The meridional section of the chamber wall as a 2D solid of revolution: mesh, basis and
+boundary sets.
 
-The wall model (:mod:`spsc.fem.wall`) treats the chamber as two 2D solids sharing one gas:
+The wall model (:mod:`spsc.fem.wall`) solves a dome (l = 0) as the axisymmetric body of
+revolution of this section about the z axis, and sweeps the same section along a stadium
+(l > 0, :mod:`spsc.fem.swept`). It is the section of :func:`spsc.fem.mesh.wall_section` (the 3D
+model's structured section: cavity profile to outer profile, clamped on z = 0; DESIGN.md),
+meshed with 9-node biquadratic quadrilaterals (isoparametric, scikit-fem's
+``MeshQuad2``/``ElementQuad2``). Reference gradients, quadrature points and weights come from
+scikit-fem's ``CellBasis``; the weights carry the measure 2πR, so nodal forces are whole-ring
+forces (N).
 
-* the **dome**, an axisymmetric body of revolution of the section about the z axis (the two
-  half-domes of a stadium chamber together; the whole chamber when l = 0), and
-* the **middle**, the straight extruded part of length l in plane strain, whose cross-section is
-  the same section mirrored about x = 0.
-
-Both use the section of :func:`spsc.fem.mesh.wall_section` (the 3D model's structured section:
-cavity profile to outer profile, clamped on z = 0; DESIGN.md), meshed with 9-node biquadratic
-quadrilaterals (isoparametric, scikit-fem's ``MeshQuad2``/``ElementQuad2``). Reference
-gradients, quadrature points and weights come from scikit-fem's ``CellBasis``; the weights
-carry the section's measure: 2πR for the dome (so nodal forces are whole-ring forces, N) and 2l
-for the middle (both halves of the extrusion, N).
-
-Coordinates: (R, Z) in mm, R ≥ 0 the distance from the axis (dome) or the mid-plane x = 0
-(middle), Z the height above the cavity base plane.
+Coordinates: (R, Z) in mm, R ≥ 0 the distance from the axis, Z the height above the cavity base
+plane.
 """
 
 from __future__ import annotations
@@ -30,10 +26,7 @@ from spsc.core.errors import require
 
 from .mesh import wall_section
 
-__all__ = ["Section", "section_mesh", "DOME", "MIDDLE"]
-
-DOME = "axisymmetric"
-MIDDLE = "plane-strain"
+__all__ = ["Section", "section_mesh"]
 
 # 3-point Gauss rule on [0, 1] for the quadratic boundary edges (exact for r² z', degree 5)
 _GAUSS_T = 0.5 + 0.5 * np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)])
@@ -53,9 +46,6 @@ class Section:
 
     Attributes (n nodes, ne elements, nq quadrature points per element)
     ----------
-    kind : ``"axisymmetric"`` or ``"plane-strain"``
-    depth : float
-        Measure factor of the plane-strain section, 2l (mm); unused for the dome.
     nodes : (n, 2) reference (R, Z), mm
     elements : (ne, 9) node indices
     dNdX : (ne, nq, 9, 2) reference gradients; N : (ne, nq, 9) shape values
@@ -65,8 +55,6 @@ class Section:
     fixed : (2n,) bool, prescribed displacement components (clamped base, axis/mid-plane)
     """
 
-    kind: str
-    depth: float
     nodes: np.ndarray = field(repr=False)
     elements: np.ndarray = field(repr=False)
     N: np.ndarray = field(repr=False)
@@ -88,8 +76,8 @@ class Section:
         return (2 * self.elements[:, :, None] + np.arange(2)).reshape(len(self.elements), 18)
 
     def measure(self, r):
-        """Measure of a boundary or volume element at radius ``r``: 2πr (dome) or 2l (middle)."""
-        return 2.0 * math.pi * np.asarray(r) if self.kind == DOME else self.depth + 0.0 * r
+        """Measure of a boundary or volume element at radius ``r``: 2πr (mm)."""
+        return 2.0 * math.pi * np.asarray(r)
 
     def positions(self, u) -> np.ndarray:
         """Deformed (r, z) of the nodes (mm) for displacements ``u`` (2n,)."""
@@ -102,12 +90,12 @@ class Section:
 
     def volume(self, u) -> float:
         """Volume of the cavity this section encloses (mm³): dome −π∮ r² z' (the body of
-        revolution closed by the axis and the base plane), middle −l∮ 2r z' (area × l)."""
+        revolution closed by the axis and the base plane)."""
         e = self._cavity_edges(u)
         N, dN = _edge_shape(_GAUSS_T)
         r = np.einsum("qa,ea->eq", N, e[..., 0])
         dz = np.einsum("qa,ea->eq", dN, e[..., 1])
-        f = math.pi * r * r if self.kind == DOME else 0.5 * self.depth * 2.0 * r
+        f = math.pi * r * r
         return -float(np.einsum("eq,eq,q->", f, dz, _GAUSS_W))
 
     def volume_gradient(self, u, *, hessian: bool = True):
@@ -119,10 +107,7 @@ class Section:
         r = np.einsum("qa,ea->eq", N, e[..., 0])
         dz = np.einsum("qa,ea->eq", dN, e[..., 1])
         w = _GAUSS_W
-        if self.kind == DOME:
-            f, df, ddf = math.pi * r * r, 2.0 * math.pi * r, 2.0 * math.pi + 0.0 * r
-        else:
-            f, df, ddf = self.depth * r, self.depth + 0.0 * r, 0.0 * r
+        f, df, ddf = math.pi * r * r, 2.0 * math.pi * r, 2.0 * math.pi + 0.0 * r
         gr = -np.einsum("eq,qa,eq,q->ea", df, N, dz, w)  # ∂V/∂r_a
         gz = -np.einsum("eq,qb,q->eb", f, dN, w)  # ∂V/∂z_b
         ge = np.stack([gr, gz], axis=-1).reshape(len(e), 6)
@@ -166,7 +151,7 @@ def _coarse_cells(shape):
     return idx, i, j
 
 
-def section_mesh(g: SPSCGeometry, kind: str = DOME, *, size: float = 0.5,
+def section_mesh(g: SPSCGeometry, *, size: float = 0.5,
                  layers: int = 2, base: str = "clamped") -> Section:
     """The meshed wall section of ``g``: about ``size`` mm elements along the profile,
     ``layers`` quadratic elements through the thickness (defaults: the mesh-convergence study
@@ -177,8 +162,6 @@ def section_mesh(g: SPSCGeometry, kind: str = DOME, *, size: float = 0.5,
 
     size = require("mesh_size", size, gt=0, unit="mm")
     layers = int(require("layers", layers, ge=1))
-    if kind not in (DOME, MIDDLE):
-        raise ValueError(f"kind = {kind!r}: {DOME!r} or {MIDDLE!r}")
     if base not in ("clamped", "sliding"):
         raise ValueError(f"base = {base!r}: 'clamped' or 'sliding'")
     outer = g.outer_profile_points(2001)
@@ -211,9 +194,7 @@ def section_mesh(g: SPSCGeometry, kind: str = DOME, *, size: float = 0.5,
     dNdX = np.stack([basis.basis[a][0].grad for a in range(9)], axis=-1)  # (2, ne, nq, 9)
     dNdX = np.moveaxis(dNdX, 0, -1)  # (ne, nq, 9, 2)
     Xq = np.moveaxis(basis.mapping.F(basis.X), 0, -1)  # (ne, nq, 2)
-    depth = 2.0 * g.l
-    measure = 2.0 * math.pi * Xq[..., 0] if kind == DOME else depth
-    dV = basis.dx * measure
+    dV = basis.dx * 2.0 * math.pi * Xq[..., 0]
     cavity = global_of_fine[idx[:, 0]]
     outer_nodes = global_of_fine[idx[:, -1]]
     tol = 1e-9 * max(g.w, g.h)
@@ -223,8 +204,8 @@ def section_mesh(g: SPSCGeometry, kind: str = DOME, *, size: float = 0.5,
     if base == "clamped":
         fixed[2 * on_base] = True  # clamped on z = 0 (DESIGN.md)
     axis = np.nonzero(np.abs(nodes[:, 0]) < tol)[0]
-    fixed[2 * axis] = True  # u_R = 0 on the axis (dome) or the mid-plane x = 0 (middle)
+    fixed[2 * axis] = True  # u_R = 0 on the axis
     if np.any(basis.dx <= 0):
         raise ValueError("inverted element in the wall section")
-    return Section(kind, depth, nodes, elements, N, dNdX, Xq, dV, cavity, outer_nodes,
+    return Section(nodes, elements, N, dNdX, Xq, dV, cavity, outer_nodes,
                    fixed, shape)

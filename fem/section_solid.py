@@ -4,7 +4,7 @@ solid, mixed u–p with the pressure condensed element by element.
 Kinematics (total Lagrangian, reference coordinates R, Z): with u = (u_R, u_Z),
 
     F = [[1 + u_R,R,  u_R,Z,  0], [u_Z,R, 1 + u_Z,Z, 0], [0, 0, F_θθ]],
-    F_θθ = 1 + u_R/R (axisymmetric dome: the hoop stretch), F_θθ = 1 (plane-strain middle).
+    F_θθ = 1 + u_R/R (the hoop stretch of the axisymmetric dome).
 
 The energy is that of :class:`~spsc.fem.material.NearlyIncompressible`, the package's one law
 W(Ī1, Ī2) plus p(J − 1) − p²/(2κ), with p discontinuous and linear in each element
@@ -20,7 +20,7 @@ but is condensed out of each linear solve, element by element:
     (K + κ Gᵀ M⁻¹ G) Δu = −(r_u + κ Gᵀ M⁻¹ r_p),   Δp = κ M⁻¹ (r_p + G Δu),
     K = ∫ Bᵀ 𝔸(F, p) B dV,   G = ∫ q J (F⁻ᵀ : B) dV,
 
-𝔸 = ∂P/∂F at fixed p. The integrals carry the section's measure (2πR or 2l): residuals are
+𝔸 = ∂P/∂F at fixed p. The integrals carry the section's measure 2πR: residuals are
 forces in N.
 """
 
@@ -28,16 +28,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-import math
-
 import numpy as np
 import scipy.sparse as sp
 
 from .material import NearlyIncompressible
-from .section import DOME, Section
+from .section import Section
 
-__all__ = ["MixedSolid", "section_solid", "stadium_dome", "half_domes", "meridian_modes",
-           "meridian_angles", "theta_rule", "junction_mode", "InvertedSection"]
+__all__ = ["MixedSolid", "section_solid", "InvertedSection"]
 
 
 class InvertedSection(ValueError):
@@ -67,8 +64,7 @@ def _strain_operator(s: Section) -> np.ndarray:
     """B = ∂F/∂u_e, shape (ne, nq, 9, 18): F flattened row-major, element unknowns node-major."""
     ne, nq = s.dV.shape
     B = _hoop_free_operator(s)
-    if s.kind == DOME:
-        B[:, :, 2, 2, :, 0] = s.N / s.Xq[..., 0][..., None]
+    B[:, :, 2, 2, :, 0] = s.N / s.Xq[..., 0][..., None]
     return B.reshape(ne, nq, 9, 18)
 
 
@@ -138,7 +134,14 @@ class MixedSolid:
 
     def residual_tangent(self, u, pc):
         """(r_u, r_p, K, G): the residuals, the condensed tangent K + κ Gᵀ M⁻¹ G (N/mm, CSR)
-        and the element blocks G (ne, 3, 18) for :meth:`condensed_rhs` and :meth:`recover`."""
+        and the element blocks G (ne, k, nd) for :meth:`condensed_rhs` and :meth:`recover`."""
+        r, rp, Ke, G = self.element_tangent(u, pc)
+        K = sp.csr_matrix((Ke.ravel(), (self.rows, self.cols)), shape=(self.n_dofs,) * 2)
+        return r, rp, K, G
+
+    def element_tangent(self, u, pc):
+        """(r_u, r_p, K_e, G): as :meth:`residual_tangent` with the condensed tangent as its
+        element blocks K_e (ne, nd, nd) on :attr:`element_dofs`."""
         F, J, p, rp = self._fields(u, pc)
         P, A = self.law.stress_tangent(F, p)
         ne, nq = p.shape
@@ -158,8 +161,7 @@ class MixedSolid:
         Ke += self.law.kappa * (np.ascontiguousarray(np.swapaxes(G, 1, 2)) @ (self.Minv @ G))
         r = np.zeros(self.n_dofs)
         np.add.at(r, self.element_dofs, re)
-        K = sp.csr_matrix((Ke.ravel(), (self.rows, self.cols)), shape=(self.n_dofs,) * 2)
-        return r, rp, K, G
+        return r, rp, Ke, G
 
     def condensed_rhs(self, G, rp) -> np.ndarray:
         """κ Gᵀ M⁻¹ r_p as nodal forces (N), to add to r_u in the condensed solve."""
@@ -175,107 +177,7 @@ class MixedSolid:
 
 
 def section_solid(section: Section, law: NearlyIncompressible) -> MixedSolid:
-    """The solid of an axisymmetric dome or a plane-strain section (F_θθ = 1 + u_R/R or 1)."""
+    """The solid of the axisymmetric dome (F_θθ = 1 + u_R/R)."""
     B = _strain_operator(section)
     q = _pressure_basis(section.dV, section.Xq, section.measure)
     return MixedSolid(law, B, section.dV, q, section.element_dofs, section.n_dofs)
-
-
-def theta_rule(n: int):
-    """Gauss points and weights on θ ∈ [0, π/2] (weights sum to 1)."""
-    t, w = np.polynomial.legendre.leggauss(n)
-    return 0.25 * np.pi * (t + 1.0), 0.5 * w
-
-
-#: the θ-rule of the two-meridian stadium (exact for its energy's cos 2θ products to degree 7)
-_THETA, _THETA_W = theta_rule(4)
-
-
-def meridian_angles(K: int) -> np.ndarray:
-    """The K + 1 meridians of a half-dome, tip (θ = π/2) first, junction (θ = 0) last."""
-    return 0.5 * np.pi * (1.0 - np.arange(K + 1) / K)
-
-
-def meridian_modes(theta, K: int = 1):
-    """Weights L_k(θ) (…, K + 1) of the meridians :func:`meridian_angles` and dL_k/dθ: the
-    interpolation in cos 2mθ, m = 0…K (even about the tip meridian and the junction plane, the
-    symmetries of a stadium's quarter), L_k(θ_j) = δ_kj."""
-    theta = np.asarray(theta, float)[..., None]
-    m = np.arange(K + 1)
-    V = np.cos(2.0 * m[None, :] * meridian_angles(K)[:, None])  # V[k, m] = cos 2m θ_k
-    Vinv = np.linalg.inv(V)
-    L = np.cos(2.0 * m * theta) @ Vinv
-    dL = (-2.0 * m * np.sin(2.0 * m * theta)) @ Vinv
-    return L, dL
-
-
-def junction_mode(theta):
-    """c(θ) = cos²θ and dc/dθ: 1 in the junction plane with the middle (θ = 0), 0 at the
-    half-dome's tip meridian (θ = π/2)."""
-    theta = np.asarray(theta, float)
-    return np.cos(theta) ** 2, -np.sin(2.0 * theta)
-
-
-def stadium_dome(section: Section, law: NearlyIncompressible, dofs_tip, dofs_junction,
-                 dofs_hoop, n_dofs: int) -> MixedSolid:
-    """The two-meridian stadium dome (:func:`half_domes` with K = 1)."""
-    return half_domes(section, law, [dofs_tip, dofs_junction], [dofs_hoop], n_dofs)
-
-
-def half_domes(section: Section, law: NearlyIncompressible, dofs_meridians, dofs_hoop,
-               n_dofs: int, n_theta: int | None = None) -> MixedSolid:
-    """The two half-domes of a stadium (l > 0) as a 2.5D solid of revolution whose meridian
-    varies around the axis, θ from the junction plane with the straight middle (θ = 0) to the
-    tip meridian (θ = π/2), K + 1 = len(dofs_meridians) meridians (tip first):
-
-        u_R, u_Z = Σ_k L_k(θ) u_k,   L_k ∈ span{cos 2mθ, m = 0…K} (:func:`meridian_modes`),
-        u_θ = Σ_m sin 2mθ · v_m,     m = 1…K,
-
-    the axisymmetric field plus the harmonics 2m, the hoop displacements v_m letting the
-    meridians differ without shearing the shell (the junction meridian moves with the
-    middle; u_θ = 0 at the junction and the tip by symmetry). With K = 1, L = (sin²θ, cos²θ).
-    In physical cylindrical components (R, Z, θ)
-
-        F = [[1 + u_R,R, u_R,Z, (u_R,θ − u_θ)/R],
-             [u_Z,R, 1 + u_Z,Z, u_Z,θ/R],
-             [u_θ,R, u_θ,Z, 1 + (u_R + u_θ,θ)/R]],
-
-    integrated over the four quarter-domes (4R dθ dA, θ ∈ [0, π/2], Gauss in θ). With equal
-    meridians and v = 0 it is the axisymmetric dome exactly. ``dofs_meridians`` (K + 1 arrays
-    (ne, 18)) and ``dofs_hoop`` (K arrays (ne, 9)): global unknowns among ``n_dofs``. The
-    pressure has the divergence's K + 1 θ-modes L_k: one more would over-constrain J = 1 and lock.
-    """
-    K = len(dofs_meridians) - 1
-    if len(dofs_hoop) != K or K < 1:
-        raise ValueError("K + 1 meridians and K hoop fields, K >= 1")
-    thetas, weights = theta_rule(n_theta or 2 * K + 2)
-    ne, nq = section.dV.shape
-    R = section.Xq[..., 0][..., None]
-    Ba = _strain_operator(section)  # axisymmetric: (ne, nq, 9, 18), includes F_θθ
-    Bt = np.zeros((ne, nq, 3, 3, 9, 2))
-    Bt[:, :, 0, 2, :, 0] = section.N / R  # u_R,θ / R
-    Bt[:, :, 1, 2, :, 1] = section.N / R  # u_Z,θ / R
-    Bt = Bt.reshape(ne, nq, 9, 18)
-    Bv = np.zeros((ne, nq, 3, 3, 9))  # per unit u_θ amplitude: sin 2mθ and its θ-derivative
-    Bv_s = Bv.copy()
-    Bv_s[:, :, 0, 2, :] = -section.N / R  # −u_θ/R
-    Bv_s[:, :, 2, 0, :] = section.dNdX[..., 0]  # u_θ,R
-    Bv_s[:, :, 2, 1, :] = section.dNdX[..., 1]  # u_θ,Z
-    Bv_d = Bv.copy()
-    Bv_d[:, :, 2, 2, :] = section.N / R  # u_θ,θ / R
-    Bv_s, Bv_d = Bv_s.reshape(ne, nq, 9, 9), Bv_d.reshape(ne, nq, 9, 9)
-    Bs, dVs, qs = [], [], []
-    q1 = _pressure_basis(section.dV, section.Xq, section.measure)
-    L, dL = meridian_modes(thetas, K)
-    for i, w in enumerate(weights):
-        th = thetas[i]
-        blocks = [L[i, k] * Ba + dL[i, k] * Bt for k in range(K + 1)]
-        blocks += [math.sin(2 * m * th) * Bv_s + 2 * m * math.cos(2 * m * th) * Bv_d
-                   for m in range(1, K + 1)]
-        Bs.append(np.concatenate(blocks, -1))
-        dVs.append(section.dV * w)  # 2πR dA × (weight of θ over the quarter, sum 1)
-        qs.append(np.concatenate([L[i, k] * q1 for k in range(K + 1)], -1))
-    # θ-points are quadrature points of the same element
-    edofs = np.concatenate(list(dofs_meridians) + list(dofs_hoop), axis=1)
-    return MixedSolid(law, np.concatenate(Bs, 1), np.concatenate(dVs, 1),
-                      np.concatenate(qs, 1), edofs, n_dofs)

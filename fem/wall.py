@@ -2,12 +2,12 @@
 coupled in one Newton solve to the cavity pressure, the trapped gas and a rigid plate.
 
 The chamber (:mod:`spsc.fem.wall_model`) is the axisymmetric **dome** when l = 0 (the body of
-revolution of the wall section, :mod:`spsc.fem.section`); when l > 0 the two **half-domes**
-carry θ-harmonics of the meridian (tip to junction) and the straight **middle** of length l is a
-plane-strain section on the junction meridian. All parts share one cavity pressure and one plate:
+revolution of the wall section, :mod:`spsc.fem.section`); when l > 0 it is the **swept wall**
+(:mod:`spsc.fem.swept`): the same section extruded along the middle and revolved about the
+half-domes' axes, in 27-node hexahedra on the quarter model. The wall carries
 
-* cavity volume V = Σ parts (the middle: l × cross-section area, eq. 37's 2l∫ρ dη term),
-  follower pressure p ∂V/∂u with its consistent stiffness p ∂²V/∂u²;
+* the follower cavity pressure p ∂V/∂u with its consistent stiffness p ∂²V/∂u² (V the cavity
+  volume, eq. 37's V for the nominal shape);
 * after inflation the valve closes: p = p(V) of :class:`~spsc.core.gaslaw.GasLaw`
   (P (V + V_r)ⁿ = const, eqs. 2, 6–7), adding the rank-one stiffness −(dp/dV) g gᵀ, solved by
   Sherman–Morrison;
@@ -16,16 +16,15 @@ plane-strain section on the junction meridian. All parts share one cavity pressu
   prescribed at the plate and released when its reaction pulls), so the answer does not depend
   on a penalty factor and contact can open and close anywhere along the outer surface (the
   vented flat-topped chambers invert: the apex lifts off and the contact becomes a ring);
-* plate force F = Σ reactions of the active nodes (the section measures make them whole-ring
-  and whole-length forces, N), pressure and wall together; contact area as the 3D model
-  measures it (outer surface on the plate).
+* plate force F = Σ reactions of the active nodes (whole-chamber forces, N), pressure and wall
+  together; contact area as the 3D model measures it (outer surface on the plate).
 
 ``pressure_kPa = 0`` is the vented chamber: gauge pressure held at zero, no gas; its force is
 the structural F_el(y) of the paper's open-chamber bench test (Fig. 5b).
 
 Accuracy against the converged 3D FEM (README, ``bench/bench_wall.py``): domes within 0.6 % in
-force and 1.7 % in pressure rise; stadium chambers (Table 1, l = 3) still 10–24 % high in
-force — use the 3D FEM for them when the numbers matter.
+force and 1.7 % in pressure rise, in about a second per curve; stadium chambers (Table 1, l = 3
+and l = 10) within the README's table, in tens of seconds.
 
 Stability: every recorded point's tangent (with the active constraints and the gas) is
 factorised with its inertia; a negative eigenvalue is an unstable equilibrium (limit point,
@@ -224,10 +223,10 @@ def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reserv
                      instability=instability, seconds=seconds,
                      iterations=path.iterations,
                      details={"unknowns": model.n, "displacement_unknowns": model.n_u,
-                              "parts": [type(pt).__name__.strip("_").lower()
-                                        for pt in model.parts_],
-                              "elements": len(model.parts_[0].section.elements),
-                              "mesh_size_mm": s.mesh_size_mm, "layers": s.layers,
+                              "part": model.kind,
+                              "elements": len(model.solid.element_dofs),
+                              "mesh_size_mm": model.mesh_size_mm, "layers": s.layers,
+                              "sweep_size_mm": s.sweep_size_mm if model.stadium else None,
                               "bulk_ratio": s.bulk_ratio})
     setup = {"p_i_kPa": pressure_kPa, "reservoir_mm3": reservoir, "polytropic_n": n_poly}
     return Curve(y, F, P, A, dV, model="wall", geometry=model.geometry.as_dict(),

@@ -112,7 +112,8 @@ def _simplified(job: Job) -> Computed:
 def _mesh_options(g) -> None:
     """The discretisation of the solid models (fem, wall), each with its own defaults."""
     g.add_argument("--mesh-size", type=number("mesh size", "mm"), default=None, metavar="MM",
-                   help="element edge along the wall, mm (default: fem 1.0, wall 0.5)")
+                   help="element edge along the wall, mm (default: fem 1.0, wall 0.5 on a dome, 1.0 "
+                   "on a stadium)")
     g.add_argument("--layers", type=integer("layers"), default=None, metavar="N",
                    help="quadratic elements through the wall thickness (default: fem 2, "
                    "wall 2)")
@@ -186,9 +187,9 @@ MODELS: dict[str, Model] = {m.name: m for m in (
           _membrane_options, {"meridians": False, "wrinkling": "on"}, _membrane),
     Model("simplified", "the nominal chamber cut by the plate, with the air spring", 6.0, 41,
           None, {}, _simplified),
-    Model("wall", "the thick wall as an axisymmetric solid (+ the stadium's middle) with gas "
-          "and plate: pressure and bending in one solve (seconds)", 6.0, 25,
-          None, {"mesh_size": 0.5, "layers": 2}, _wall),
+    Model("wall", "the thick wall as a solid (axisymmetric dome; swept stadium) with gas and "
+          "plate: pressure and bending in one solve (seconds)", 6.0, 25,
+          None, {"mesh_size": None, "layers": 2}, _wall),
     Model("fem", "3D hyperelastic FEM of the printed wall (quarter model by default)", 4.0, 11,
           _fem_options, {"mesh_size": 1.0, "layers": 2, "full": False, "solver": "auto",
                          "vtu": None}, _fem),

@@ -10,26 +10,23 @@ from scipy.integrate import quad
 from spsc.cad.geometry import SPSCGeometry, preset
 from spsc.core.errors import ParameterError
 from spsc.fem.material import NearlyIncompressible
-from spsc.fem.section import DOME, MIDDLE, section_mesh
-from spsc.fem.section_solid import section_solid, stadium_dome
+from spsc.fem.section import section_mesh
+from spsc.fem.section_solid import section_solid
 from spsc.fem.wall import WallModel, WallSettings, inflate, wall_curve
 from spsc.membrane.materials import material, neo_hookean
 
 
 @pytest.mark.parametrize("t", "ABCD")
 def test_section_encloses_the_analytic_cavity(t):
-    g = preset(t)
-    dome = section_mesh(g, DOME)
-    middle = section_mesh(g, MIDDLE)
-    u = np.zeros(dome.n_dofs)
-    v = dome.volume(u) + middle.volume(np.zeros(middle.n_dofs))
+    g = preset(t, l=0.0)
+    dome = section_mesh(g)
+    v = dome.volume(np.zeros(dome.n_dofs))
     # quadratic isoparametric edges on the exact profile points: O(h⁴) volume error, ~1e-7 here
     np.testing.assert_allclose(v, g.cavity_volume(), rtol=2e-6)
 
 
-@pytest.mark.parametrize("kind", [DOME, MIDDLE])
-def test_volume_gradient_and_hessian_are_derivatives(kind):
-    s = section_mesh(preset("D"), kind, size=1.0)
+def test_volume_gradient_and_hessian_are_derivatives():
+    s = section_mesh(preset("D"), size=1.0)
     rng = np.random.default_rng(3)
     u = rng.normal(size=s.n_dofs) * 0.05
     du = rng.normal(size=s.n_dofs)
@@ -45,9 +42,9 @@ def test_volume_gradient_and_hessian_are_derivatives(kind):
     np.testing.assert_allclose(Hdu, fd, rtol=0, atol=1e-7 * np.abs(fd).max())
 
 
-@pytest.mark.parametrize("kind, law", [(DOME, "elastic50a"), (MIDDLE, "tpu60a")])
-def test_condensed_tangent_is_the_derivative_of_the_residuals(kind, law):
-    s = section_mesh(preset("B"), kind, size=1.0)
+@pytest.mark.parametrize("law", ["elastic50a", "tpu60a"])
+def test_condensed_tangent_is_the_derivative_of_the_residuals(law):
+    s = section_mesh(preset("B"), size=1.0)
     solid = section_solid(s, NearlyIncompressible(material(law)))
     rng = np.random.default_rng(1)
     u = rng.normal(size=s.n_dofs) * 0.03
@@ -66,50 +63,6 @@ def test_condensed_tangent_is_the_derivative_of_the_residuals(kind, law):
     # ... and r_p does not change along it (δr_p = G du − M dp/κ = 0 by construction)
     np.testing.assert_allclose((rpp - rpm) / (2 * eps), 0.0, atol=1e-8 * np.abs(G).max())
     assert abs(K - K.T).max() <= 1e-10 * abs(K).max()
-
-
-def test_stadium_dome_with_equal_meridians_is_the_axisymmetric_dome():
-    s = section_mesh(preset("A"), DOME, size=1.0)
-    law = NearlyIncompressible(material("tpu60a"))
-    nd, nn = s.n_dofs, len(s.nodes)
-    axi = section_solid(s, law)
-    st = stadium_dome(s, law, s.element_dofs, s.element_dofs + nd, 2 * nd + s.elements,
-                      2 * nd + nn)
-    rng = np.random.default_rng(0)
-    u = rng.normal(size=nd) * 0.02
-    pc = rng.normal(size=(len(s.elements), 3)) * 0.01
-    r1, rp1 = axi.residual(u, pc)
-    r2, rp2 = st.residual(np.concatenate([u, u, np.zeros(nn)]), np.concatenate([pc, pc], 1))
-    # the θ-modes split the axisymmetric energy exactly (c + (1 − c) = 1): round-off only
-    np.testing.assert_allclose(r2[:nd] + r2[nd:2 * nd], r1, rtol=0, atol=1e-12 * abs(r1).max())
-    np.testing.assert_allclose(rp2[:, :3] + rp2[:, 3:], rp1, rtol=0, atol=1e-14)
-
-
-def test_stadium_tangent_is_the_derivative_of_the_residual():
-    s = section_mesh(preset("C"), DOME, size=1.5)
-    law = NearlyIncompressible(material("elastic50a"))
-    nd, nn = s.n_dofs, len(s.nodes)
-    st = stadium_dome(s, law, s.element_dofs, s.element_dofs + nd, 2 * nd + s.elements,
-                      2 * nd + nn)
-    rng = np.random.default_rng(5)
-    fixed = np.concatenate([s.fixed, s.fixed, np.abs(s.nodes[:, 0]) < 1e-12])
-    U = rng.normal(size=st.n_dofs) * 0.02
-    U[fixed] = 0.0
-    pc = rng.normal(size=(len(s.elements), 6)) * 0.01
-    K, fd, dU = _tangent_and_differences(st, U, pc, fixed, rng)
-    np.testing.assert_allclose(K @ dU, fd, rtol=0, atol=1e-6 * np.abs(fd).max())
-
-
-def _tangent_and_differences(st, U, pc, fixed, rng, eps=1e-6):
-    """K and the central difference of r_u along a random free direction dU, with the pressure
-    variation slaved to it (r_p fixed): (K, fd, dU)."""
-    r, rp, K, G = st.residual_tangent(U, pc)
-    dU = rng.normal(size=st.n_dofs)
-    dU[fixed] = 0.0
-    dp = st.recover(G, np.zeros_like(rp), dU)
-    fd = (st.residual(U + eps * dU, pc + eps * dp)[0]
-          - st.residual(U - eps * dU, pc - eps * dp)[0]) / (2 * eps)
-    return K, fd, dU
 
 
 def _thick_sphere_pressure(la, inner, outer, mu):
@@ -180,68 +133,6 @@ def test_bad_input_is_a_one_line_error():
         wall_curve(g, material("tpu60a"), stroke_mm=20.0)
     with pytest.raises(ParameterError, match="mesh_size"):
         WallSettings(mesh_size_mm=0.0)
-
-
-@pytest.mark.parametrize("K", [1, 2, 3])
-def test_meridian_modes_interpolate_the_meridians(K):
-    from spsc.fem.section_solid import junction_mode, meridian_angles, meridian_modes
-
-    L, dL = meridian_modes(meridian_angles(K), K)
-    np.testing.assert_allclose(L, np.eye(K + 1), atol=1e-12)  # L_k(θ_j) = δ_kj
-    th = np.linspace(0, np.pi / 2, 7)
-    L, dL = meridian_modes(th, K)
-    np.testing.assert_allclose(L.sum(-1), 1.0, atol=1e-12)  # a rigid meridian shift is exact
-    np.testing.assert_allclose(dL.sum(-1), 0.0, atol=1e-12)
-    eps = 1e-6
-    fd = (meridian_modes(th + eps, K)[0] - meridian_modes(th - eps, K)[0]) / (2 * eps)
-    np.testing.assert_allclose(dL, fd, atol=1e-8)
-    if K == 1:  # the two-meridian stadium: junction weight cos²θ
-        np.testing.assert_allclose(L[:, 1], junction_mode(th)[0], atol=1e-12)
-
-
-def _three_meridian_dome(s, law):
-    from spsc.fem.section_solid import half_domes
-
-    nd, nn = s.n_dofs, len(s.nodes)
-    return half_domes(s, law, [s.element_dofs + k * nd for k in range(3)],
-                      [3 * nd + m * nn + s.elements for m in range(2)], 3 * nd + 2 * nn)
-
-
-def test_half_domes_with_equal_meridians_are_the_axisymmetric_dome():
-    s = section_mesh(preset("B"), DOME, size=1.0)
-    law = NearlyIncompressible(material("tpu60a"))
-    nd, nn = s.n_dofs, len(s.nodes)
-    axi = section_solid(s, law)
-    st = _three_meridian_dome(s, law)
-    rng = np.random.default_rng(2)
-    u = rng.normal(size=nd) * 0.02
-    pc = rng.normal(size=(len(s.elements), 3)) * 0.01
-    r1, rp1 = axi.residual(u, pc)
-    r2, rp2 = st.residual(np.concatenate([u, u, u, np.zeros(2 * nn)]),
-                          np.concatenate([pc, pc, pc], 1))
-    # Σ L_k = 1 at every θ: the meridians' shares add up to the axisymmetric forces exactly
-    np.testing.assert_allclose(r2[:nd] + r2[nd:2 * nd] + r2[2 * nd:3 * nd], r1, rtol=0,
-                               atol=1e-12 * abs(r1).max())
-    np.testing.assert_allclose(rp2[:, :3] + rp2[:, 3:6] + rp2[:, 6:], rp1, rtol=0, atol=1e-14)
-    # no hoop force at v = 0: ∫ cos 2mθ dθ = 0 over the quarter, to the θ-Gauss rule's error
-    # on it (measured 1e-8 relative with 6 points)
-    assert np.abs(r2[3 * nd:]).max() <= 1e-7 * abs(r1).max()
-
-
-def test_half_domes_tangent_is_the_derivative_of_the_residual():
-    s = section_mesh(preset("D"), DOME, size=1.5)
-    law = NearlyIncompressible(material("elastic50a"))
-    st = _three_meridian_dome(s, law)
-    axis = np.abs(s.nodes[:, 0]) < 1e-12
-    fixed = np.concatenate([s.fixed] * 3 + [s.fixed[1::2] | axis] * 2)
-    rng = np.random.default_rng(7)
-    U = rng.normal(size=st.n_dofs) * 0.02
-    U[fixed] = 0.0
-    pc = rng.normal(size=(len(s.elements), 9)) * 0.01
-    K, fd, dU = _tangent_and_differences(st, U, pc, fixed, rng)
-    # central differences: O(eps²) truncation, round-off ~1e-16/eps relative
-    np.testing.assert_allclose(K @ dU, fd, rtol=0, atol=1e-6 * np.abs(fd).max())
-    assert abs(K - K.T).max() <= 1e-10 * abs(K).max()
 
 
 def test_a_snapping_thin_vented_wall_is_reported_not_stepped_over():
