@@ -114,38 +114,49 @@ class CartesianSolid(MixedSolid):
 
     grad: np.ndarray = field(default=None, repr=False)
 
+    def __post_init__(self):
+        super().__post_init__()
+        ne, nq, nb, _ = self.grad.shape
+        GdV = self.grad * self.dV[..., None, None]
+        # constant operands in the layouts the products need (contiguous: no copy per call)
+        object.__setattr__(self, "_Gt", np.ascontiguousarray(  # [e, b, (q j)]
+            np.transpose(GdV, (0, 2, 1, 3))).reshape(ne, nb, nq * 3))
+        object.__setattr__(self, "_Gl", np.ascontiguousarray(  # [e, q, l, c]
+            np.swapaxes(self.grad, 2, 3)))
+
     def deformation(self, u) -> np.ndarray:
-        ue = np.asarray(u)[self.element_dofs].reshape(len(self.element_dofs), -1, 3)
-        return np.eye(3) + np.einsum("ebi,eqbj->eqij", ue, self.grad)
+        ue = np.asarray(u)[self.element_dofs].reshape(len(self.element_dofs), 1, -1, 3)
+        return np.eye(3) + np.swapaxes(self._Gl @ ue, -1, -2)
+
+    def _forces(self, P) -> np.ndarray:
+        """r_e[b, i] = ∫ P_ij ∂_j N_b dV, (ne, 3 nb)."""
+        ne, nq = P.shape[:2]
+        Pt = np.ascontiguousarray(np.swapaxes(P, -1, -2)).reshape(ne, nq * 3, 3)  # [(q j), i]
+        return (self._Gt @ Pt).reshape(ne, -1)
 
     def residual(self, u, pc):
         F, _, p, rp = self._fields(u, pc)
-        P = self.law.stress(F, p)
-        re = np.einsum("eqij,eqbj,eq->ebi", P, self.grad, self.dV)
         r = np.zeros(self.n_dofs)
-        np.add.at(r, self.element_dofs, re.reshape(len(re), -1))
+        np.add.at(r, self.element_dofs, self._forces(self.law.stress(F, p)))
         return r, rp
 
     def element_tangent(self, u, pc):
         F, J, p, rp = self._fields(u, pc)
         P, A = self.law.stress_tangent(F, p)  # A[i, j, k, l]
         ne, nq, nb, _ = self.grad.shape
-        GdV = self.grad * self.dV[..., None, None]
-        re = np.einsum("eqij,eqbj->ebi", P, GdV).reshape(ne, 3 * nb)
-        # T[e, q, b, (i k l)] = Σ_j ∂_j N_b dV A_ijkl, then K = Σ_(q, l) T ∂_l N_c
-        Aj = np.ascontiguousarray(np.transpose(A, (0, 1, 3, 2, 4, 5))).reshape(ne, nq, 3, 27)
-        T = (GdV @ Aj).reshape(ne, nq, nb, 3, 3, 3)
-        T = np.ascontiguousarray(np.transpose(T, (0, 2, 3, 4, 1, 5))).reshape(ne, nb * 9,
-                                                                               nq * 3)
-        Gc = np.ascontiguousarray(np.transpose(self.grad, (0, 1, 3, 2))).reshape(ne, nq * 3, nb)
-        Ke = (T @ Gc).reshape(ne, nb, 3, 3, nb)  # [b, i, k, c]
+        # U[e, q, j, (i k c)] = Σ_l A_ijkl ∂_l N_c, then K[b, (i k c)] = Σ_(q j) ∂_j N_b dV U
+        Aj = np.ascontiguousarray(np.transpose(A, (0, 1, 3, 2, 4, 5))).reshape(ne, nq, 27, 3)
+        U = (Aj @ self._Gl).reshape(ne, nq * 3, 9 * nb)
+        Ke = (self._Gt @ U).reshape(ne, nb, 3, 3, nb)  # [b, i, k, c]
         Ke = np.ascontiguousarray(np.transpose(Ke, (0, 1, 2, 4, 3))).reshape(ne, 3 * nb, 3 * nb)
-        JFt = J[..., None, None] * np.swapaxes(np.linalg.inv(F), -1, -2)
-        JGB = np.einsum("eqij,eqbj->eqbi", JFt, GdV).reshape(ne, nq, 3 * nb)
-        G = np.ascontiguousarray(np.swapaxes(self.q, 1, 2)) @ JGB  # (ne, k, nd)
+        # G[k, (b i)] = ∫ q_k J F⁻ᵀ_ij ∂_j N_b dV
+        nk = self.q.shape[-1]
+        Y = self.q[:, :, None, :, None] * (J[..., None, None] * np.linalg.inv(F))[:, :, :, None, :]
+        G = (self._Gt @ Y.reshape(ne, nq * 3, nk * 3)).reshape(ne, nb, nk, 3)
+        G = np.ascontiguousarray(np.transpose(G, (0, 2, 1, 3))).reshape(ne, nk, 3 * nb)
         Ke += self.law.kappa * (np.ascontiguousarray(np.swapaxes(G, 1, 2)) @ (self.Minv @ G))
         r = np.zeros(self.n_dofs)
-        np.add.at(r, self.element_dofs, re)
+        np.add.at(r, self.element_dofs, self._forces(P))
         return r, rp, Ke, G
 
 

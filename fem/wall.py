@@ -205,7 +205,10 @@ def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reserv
         F[0], P[0], A[0], dV[0], conv[0] = 0.0, pressure_kPa, 0.0, 0.0, True
     for k, st in enumerate(pressed, start=1):
         F[k], P[k], A[k] = st.force, st.pressure * KPA_PER_MPA, st.area
-        dV[k], conv[k] = v_inf - st.volume, True
+        # an unstable equilibrium is kept but not converged: the wall leaves it (DESIGN.md)
+        dV[k], conv[k] = v_inf - st.volume, not st.negative
+        if st.negative:
+            msg[k] = path.instability
     for k in range(len(pressed) + 1 if ok_start else 0, n):
         msg[k] = path.message
     instability = path.instability
