@@ -61,6 +61,7 @@ bench-wall: $(STAMP)
 	$(BIN)/python bench/bench_wall.py errors
 	$(BIN)/python bench/bench_wall.py wrinkling
 	$(BIN)/python bench/bench_wall.py convergence --type B --dome
+	$(BIN)/python bench/bench_wall.py convergence --type B
 
 bench-compare: $(STAMP)
 	$(BIN)/python bench/bench_fem_compare.py

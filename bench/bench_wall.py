@@ -42,9 +42,9 @@ def _setup(ref: Curve) -> dict:
 
 def errors(model: Curve, ref: Curve, y_min: float = 1.0) -> tuple[float, float, float]:
     """(max |F/F_ref − 1|, max |ΔP/ΔP_ref − 1|, last y compared) over the plate positions
-    y ≥ y_min both reached (a solve stopped at an instability is compared up to it; NaN if no
-    point is common; ΔP NaN for the open chamber)."""
-    k = (ref.y_mm >= y_min - 1e-9) & np.isfinite(ref.force_N) & np.isfinite(model.force_N)
+    y ≥ y_min both converged (a solve stopped at an instability is compared up to it, the
+    unstable point excluded; NaN if no point is common; ΔP NaN for the open chamber)."""
+    k = (ref.y_mm >= y_min - 1e-9) & ref.converged & model.converged
     if not k.any():
         return float("nan"), float("nan"), float("nan")
     eF = np.abs(model.force_N[k] / ref.force_N[k] - 1.0)
