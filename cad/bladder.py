@@ -77,12 +77,12 @@ class BladderSpec:
 
     def __post_init__(self):
         f, p = self.flange, self.port
-        need = p.barb_diameter / 2 + p.bore / 2
         if self.port_axis_z + p.bore / 2 >= 0:
-            raise ParameterError("flange.thickness", f.thickness,
-                                 f"> {need:g} mm for port.tube_id = {p.tube_id:g} mm (the barbs "
-                                 "rest on the build plane and the bore must pass under the "
-                                 "cavity floor)")
+            widest = 2 * (f.thickness - p.bore / 2) / p.barb_ratio
+            raise ParameterError("port.tube_id", p.tube_id,
+                                 f"< {widest:.4g} mm for flange.thickness = {f.thickness:g} mm "
+                                 "(the barbs rest on the build plane and the bore must pass "
+                                 "under the cavity floor)")
 
     @property
     def port_axis_z(self) -> float:

@@ -26,6 +26,8 @@ def load_design(path: str | os.PathLike) -> dict:
     """Read a design sidecar JSON and validate it (keys: see :mod:`spsc.cad.check`); returns the
     dict as written, which :func:`check_mesh` parses (parsing is not idempotent)."""
     p = Path(path)
+    if p.is_dir():
+        raise ParameterError("design", str(p), "a JSON file (this is a folder)")
     if not p.is_file():
         raise FileNotFoundError(2, "no such file", str(p))
     try:

@@ -43,7 +43,9 @@ class PocketSpec:
 
     def __post_init__(self):
         require("pocket.diameter", self.diameter, gt=0, unit="mm")
-        require("pocket.depth", self.depth, gt=0, unit="mm")
+        require("pocket.depth", self.depth, gt=0, le=self.diameter / 2,
+                unit="mm, at most half the pocket diameter: a recess for a flat sensor "
+                "(FSR05: 0.325 mm)")
         require("pocket.rim", self.rim, gt=0, unit="mm")
         require("pocket.clearance", self.clearance, ge=0, unit="mm")
         require("pocket.lead_width", self.lead_width, gt=0, le=self.diameter,

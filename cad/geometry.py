@@ -49,6 +49,20 @@ DESIGN_SPACE = {
 #: Lengths below this (mm) are zero: OCCT's Precision::Confusion.
 LENGTH_CONFUSION_MM = 1e-7
 
+#: Hard limits, refused with a ParameterError (the design space above only warns). Lengths in
+#: mm: 0.1 mm is under every process's resolution, 500 mm beyond any printer's build volume.
+#: Ratios: beyond them the profile, its offset and the solvers' meridians degenerate (h/w
+#: 1e-8 broke the membrane's spline, n1 = 1e9 the FEM's section). w̄/w, the widest half-width
+#: over the base half-width (eq. 14), bounds c_y → 1, where w̄ → ∞ (eq. 12: Δu → 0).
+LIMITS = {
+    "length_mm": (0.1, 500.0),
+    "n": (1.0, 20.0),
+    "h/w": (0.1, 10.0),
+    "l/w": (0.0, 20.0),
+    "t0/w": (1e-3, 1.0),
+    "w_bar/w": 5.0,
+}
+
 
 @dataclass(frozen=True)
 class SPSCGeometry:
@@ -79,15 +93,35 @@ class SPSCGeometry:
     cy: float
 
     def __post_init__(self):
-        for name, kw in (("w", dict(gt=0)), ("h", dict(gt=0)), ("l", dict(ge=0)),
-                         ("t0", dict(gt=0)), ("n1", dict(ge=1)), ("n2", dict(ge=1)),
-                         ("cy", dict(ge=0))):
+        lo, hi = LIMITS["length_mm"]
+        n_lo, n_hi = LIMITS["n"]
+        for name, kw in (("w", dict(ge=lo, le=hi)), ("h", dict(ge=lo, le=hi)),
+                         ("l", dict(ge=0, le=hi)), ("t0", dict(gt=0)),
+                         ("n1", dict(ge=n_lo, le=n_hi)), ("n2", dict(ge=n_lo, le=n_hi)),
+                         ("cy", dict(ge=0, lt=1))):
             unit = "mm" if name in "w h l t0" else ""
             object.__setattr__(self, name, require(name, getattr(self, name), unit=unit, **kw))
-        if self.t0 >= self.w:
-            raise ParameterError("t0", self.t0, f"< w = {self.w:g} (mm)")
         if self.l < LENGTH_CONFUSION_MM:  # no solid modeller can tell such a length from zero
             object.__setattr__(self, "l", 0.0)
+        self._check_ratios()
+
+    def _check_ratios(self) -> None:
+        """The hard limits of :data:`LIMITS` on h/w, l/w, t0/w and w̄/w, each error naming the
+        parameter over w, the ratio and the allowed range in mm."""
+        w = self.w
+        for key, num, name in (("h/w", self.h, "h"), ("l/w", self.l, "l"), ("t0/w", self.t0, "t0")):
+            lo, hi = LIMITS[key]
+            r = num / w
+            below_hi = r < hi if key == "t0/w" else r <= hi
+            if not (lo <= r and below_hi):
+                top = "<" if key == "t0/w" else "<="
+                raise ParameterError(name, num, f"{lo * w:.4g} to {hi * w:.4g} mm "
+                                     f"({lo:g} <= {key} {top} {hi:g} for w = {w:g} mm)")
+        ratio = self.w_bar / w
+        if not ratio <= LIMITS["w_bar/w"]:
+            raise ParameterError("cy", self.cy, f"a bulge whose widest half-width w̄ = w / "
+                                 f"sin(Δu)^(2/n1) (eqs. 12, 14) is <= {LIMITS['w_bar/w']:g} w "
+                                 f"(here {ratio:.3g} w with n1 = {self.n1:g}, n2 = {self.n2:g})")
 
     # -- derived quantities, eqs. 12–14 -------------------------------------------------------
     @property
@@ -103,7 +137,8 @@ class SPSCGeometry:
     @property
     def w_bar(self) -> float:
         """w̄ = w / sin(Δu)^(2/n1) (eq. 14), mm: the largest half-width of the cavity."""
-        return self.w / math.sin(self.delta_u) ** (2.0 / self.n1)
+        s = math.sin(self.delta_u)
+        return self.w / s ** (2.0 / self.n1) if s > 0 else math.inf
 
     @property
     def z_widest(self) -> float:

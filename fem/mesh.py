@@ -28,12 +28,12 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.core.errors import require
+from spsc.core.errors import ParameterError, require
 from spsc.cad.geometry import SPSCGeometry
 
 from .element import TET_EDGES, TET_FACES
 
-__all__ = ["TetMesh", "spsc_wall", "wall_section", "sphere_shell", "block", "tetwild_mesh", "spsc_wall_tetwild",
+__all__ = ["TetMesh", "check_mesh_size", "wall_mesh_counts", "spsc_wall", "wall_section", "sphere_shell", "block", "tetwild_mesh", "spsc_wall_tetwild",
            "boundary_facets", "p1_to_p2", "cached_mesh", "CACHE_DIR"]
 
 CACHE_DIR = Path("build/cache/fem")
@@ -212,6 +212,48 @@ def wall_section(g: SPSCGeometry, n_profile: int, layers: int) -> np.ndarray:
     return inner[:, None, :] + f * (outer - inner)[:, None, :]
 
 
+#: Most elements through the wall of the solid models (fem, wall).
+LAYERS_MAX = 32
+
+
+def check_mesh_size(g: SPSCGeometry, size, layers) -> tuple[float, int]:
+    """Validate a wall mesh request (mm, count) on chamber ``g``: 0 < size <= min(w, h)/2 (at
+    least two elements across the cavity's semi-width and height) and 1 <= layers <= 32.
+    Returns (size, layers); ParameterError naming ``mesh size`` or ``layers``. What it costs is
+    :func:`wall_mesh_counts`' business."""
+    top = min(g.w, g.h) / 2
+    size = require("mesh size", size, gt=0, le=top, unit=f"mm; at most min(w, h)/2 = {top:g} "
+                   "mm, two elements across the cavity")
+    lv = float(layers) if isinstance(layers, (int, float)) else math.nan
+    if not (math.isfinite(lv) and lv == int(lv) and 1 <= lv <= LAYERS_MAX):
+        raise ParameterError("layers", layers, f"an integer from 1 to {LAYERS_MAX}")
+    return size, int(lv)
+
+
+def wall_mesh_counts(g: SPSCGeometry, size: float, layers: int, *, full: bool = False) -> dict:
+    """Elements, nodes and unknowns of :func:`spsc_wall` (before merging the nodes on the axis,
+    so an upper bound within a few per cent), without building it: what a run costs is known
+    before it starts. ``unknowns``: three displacements per P2 node plus one pressure per
+    vertex (P2/P1)."""
+    n_profile, n_phi, n_y = _wall_cells(g, size)
+    cols = n_y + n_phi
+    copies = 4 if full else 1
+    nodes = (2 * n_profile + 1) * (2 * layers + 1) * (2 * cols + 1) * copies
+    vertices = (n_profile + 1) * (layers + 1) * (cols + 1) * copies
+    tets = 6 * n_profile * layers * cols * copies
+    return {"tetrahedra": tets, "nodes": nodes, "unknowns": 3 * nodes + vertices}
+
+
+def _wall_cells(g: SPSCGeometry, size: float) -> tuple[int, int, int]:
+    """Cells along the profile, around the quarter end cap and along the half middle."""
+    outer = g.outer_profile_points(2001)
+    length = float(np.sum(np.hypot(*np.diff(outer, axis=0).T)))
+    n_profile = max(2, math.ceil(length / size))
+    n_phi = max(2, math.ceil(math.pi / 2 * (g.w + g.t0) / size))
+    n_y = math.ceil(g.l / 2 / size) if g.l > 0 else 0
+    return n_profile, n_phi, n_y
+
+
 def spsc_wall(g: SPSCGeometry, size: float = 1.0, *, layers: int | None = None,
               full: bool = False) -> TetMesh:
     """Structured P2 mesh of the chamber wall, clamped-base model (DESIGN.md).
@@ -224,11 +266,7 @@ def spsc_wall(g: SPSCGeometry, size: float = 1.0, *, layers: int | None = None,
     if layers is None:
         layers = max(1, round(g.t0 / size))
     layers = int(require("layers", layers, ge=1))
-    outer = g.outer_profile_points(2001)
-    length = float(np.sum(np.hypot(*np.diff(outer, axis=0).T)))
-    n_profile = max(2, math.ceil(length / size))
-    n_phi = max(2, math.ceil(math.pi / 2 * (g.w + g.t0) / size))
-    n_y = math.ceil(g.l / 2 / size) if g.l > 0 else 0
+    n_profile, n_phi, n_y = _wall_cells(g, size)
     nodes, tets, layer = _swept(wall_section(g, n_profile, layers), g.l / 2, n_y, n_phi)
     tol = 1e-7 * max(g.w, g.h)
     if full:

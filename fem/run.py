@@ -14,13 +14,13 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.core.errors import require
+from spsc.core.loadcase import check_load
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.curve import Curve, SolveInfo
 from spsc.membrane.materials import Material
 
 from .element import TET_EDGES
-from .mesh import cached_mesh, spsc_wall
+from .mesh import cached_mesh, check_mesh_size, spsc_wall
 from .model import FEMModel
 from .solver import CloseValve, Inflate, Press, Result, Settings, solve
 
@@ -48,12 +48,10 @@ class ChamberRun:
     bulk_ratio: float = 2000.0
 
     def __post_init__(self):
-        require("pressure", self.pressure_kPa, ge=0, unit="kPa")
-        require("reservoir", self.reservoir_mm3, ge=0, unit="mm³")
-        require("stroke", self.stroke_mm, gt=0, unit="mm")
-        require("points", self.points, ge=2)
-        require("mesh size", self.mesh_size_mm, gt=0, unit="mm")
-        require("layers", self.layers, ge=1)
+        check_load(self.geometry, pressure_kPa=self.pressure_kPa,
+                   reservoir_mm3=self.reservoir_mm3, stroke_mm=self.stroke_mm,
+                   points=self.points, polytropic_n=self.polytropic_index)
+        check_mesh_size(self.geometry, self.mesh_size_mm, self.layers)
 
     def steps(self) -> list:
         out = []

@@ -71,13 +71,27 @@ def _header_check(header: list[str]) -> None:
                              "a header with " + ", ".join(REQUIRED) + " [, elastic_force_N]")
 
 
+def _read_text(path: Path) -> str:
+    """The text of a bench file: UTF-8 with or without a byte-order mark (a spreadsheet's
+    "CSV UTF-8"), else Latin-1 (every byte is a character: a comment typed in a Windows editor
+    reads, and a data field that is not a number is refused by its row and column)."""
+    if path.is_dir():
+        raise ParameterError("bench file", str(path), "a CSV file (this is a folder)")
+    raw = path.read_bytes()
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        return raw.decode("latin-1")
+
+
 def read_bench(source: str | Path) -> BenchData:
-    """Read a bench CSV (path, or the text itself if it contains a newline)."""
+    """Read a bench CSV (path, or the text itself if it contains a newline). Lines starting
+    with ``#`` are comments; UTF-8 (a byte-order mark is skipped) or Latin-1."""
     text = str(source)
     name = "<text>"
     if "\n" not in text:
         name = str(source)
-        text = Path(source).read_text(encoding="utf-8")
+        text = _read_text(Path(source))
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
     if not lines:
         raise ParameterError("bench file", name, "a CSV with a header line and data rows")

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from spsc.core.loadcase import PRESSURE_MAX_KPA
 from spsc.core.errors import ParameterError, require
 
 from spsc.core.constants import KPA_PER_MPA, P_AMB
@@ -56,7 +57,8 @@ class Setup:
     polytropic_n: float = 1.0
 
     def __post_init__(self):
-        object.__setattr__(self, "p_i_kPa", require("pressure", self.p_i_kPa, ge=0, unit="kPa gauge"))
+        object.__setattr__(self, "p_i_kPa", require("pressure", self.p_i_kPa, ge=0, le=PRESSURE_MAX_KPA,
+                                   unit="kPa gauge"))
         object.__setattr__(self, "bladder_volume_mm3",
                            require("bladder_volume", self.bladder_volume_mm3, gt=0, unit="mm³"))
         object.__setattr__(self, "reservoir_mm3",

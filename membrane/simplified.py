@@ -15,7 +15,7 @@ import time
 import numpy as np
 from scipy import integrate
 
-from spsc.core.errors import require
+from spsc.core.loadcase import check_load
 from spsc.cad.geometry import SPSCGeometry
 
 from spsc.core.curve import Curve, SolveInfo
@@ -54,8 +54,9 @@ def simplified_curve(geometry: SPSCGeometry, *, pressure_kPa: float, reservoir_m
 
     Closed form plus quadrature: trivially converged; ``curve.solver`` carries the time taken."""
     t_start = time.perf_counter()
-    stroke = require("stroke", stroke_mm, gt=0, lt=geometry.h, unit="mm, below the chamber height h")
-    n = int(require("points", points, ge=2))
+    load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
+                      stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
+    stroke, n = load.stroke_mm, load.points
     y = np.linspace(0.0, stroke, n)
     v0 = geometry.cavity_volume()
     setup = Setup(pressure_kPa, v0, reservoir_mm3, polytropic_n)

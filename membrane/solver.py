@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from spsc.core.loadcase import check_load
 from spsc.core.errors import ParameterError, require
 from spsc.cad.geometry import SPSCGeometry
 
@@ -186,16 +187,11 @@ def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm
     mat = _material(material)
     if not isinstance(geometry, SPSCGeometry):
         raise ParameterError("geometry", type(geometry).__name__, "an SPSCGeometry")
-    p_i = require("pressure", pressure_kPa, ge=0, le=1000, unit="kPa gauge")
-    v_r = require("reservoir", reservoir_mm3, ge=0, unit="mm³")
-    n_poly = require("polytropic_n", polytropic_n, ge=1, le=1.4)
-    stroke = require("stroke", stroke_mm, ge=0, lt=geometry.h,
-                     unit=f"mm, below the chamber height h = {geometry.h:g} mm")
-    npts = int(require("points", points, ge=1, le=10001))
-    if stroke == 0.0:
-        npts = 1
-    elif npts < 2:
-        raise ParameterError("points", points, ">= 2 for a stroke > 0")
+    load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
+                      stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n,
+                      allow_zero_stroke=True)
+    p_i, v_r, n_poly = load.pressure_kPa, load.reservoir_mm3, load.polytropic_n
+    stroke, npts = load.stroke_mm, load.points
 
     inf = inflate(geometry, mat, p_i, settings=settings)
     infl, ok, msg, iters = inf.shape, inf.converged, inf.message, inf.iterations

@@ -5,15 +5,18 @@ The error contract, in one place (:func:`main`): every invalid input — argpars
 missing input file, an output path that cannot be written — ends in one line on stderr,
 ``spsc <verb>: error: <message>``, and exit 2. Warnings are one line on stderr,
 ``spsc <verb>: warning: <message>``. A failed check or a non-converged solve exits 1 after
-writing what it computed, with the reason on stderr.
+writing what it computed, with the reason on stderr. Anything else is a bug: one line,
+``spsc <verb>: internal error: ...``, exit 3 (``SPSC_DEBUG=1`` shows the traceback).
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import re
 import sys
+from pathlib import Path
 
 from spsc.core.errors import ParameterError
 
@@ -28,6 +31,9 @@ COMMANDS = {
     "identify": "cmd_identify",
     "report": "cmd_report",
 }
+
+#: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.
+INTERNAL_ERROR = 3
 
 #: Numbers as option values: argparse takes ``-inf``, ``-1e5`` or ``-.5e-3`` for option names
 #: unless they match this (no spsc option looks like a number).
@@ -61,7 +67,7 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message):
         # a type function's message already names the parameter: drop argparse's prefix
-        m = re.match(r"^argument [^:]+: (\S+ = .*)$", message)
+        m = re.match(r"^argument [^:]+: ([^=:]+ = .*)$", message)
         if m:
             message = m.group(1)
         raise UsageError(self.prog, f"{message} (see {self.prog} --help)")
@@ -110,6 +116,20 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"{prog}: interrupted", file=sys.stderr)
         return 130
+    except MemoryError:
+        print(f"{prog}: error: out of memory (a coarser mesh or fewer points)", file=sys.stderr)
+        return 1
+    except Exception as exc:  # a bug, not bad input: one line, exit 3, the traceback on request
+        if os.environ.get("SPSC_DEBUG"):
+            raise
+        where = exc.__traceback__
+        while where.tb_next is not None:
+            where = where.tb_next
+        at = f"{Path(where.tb_frame.f_code.co_filename).name}:{where.tb_lineno}"
+        print(f"{prog}: internal error: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''} "
+              f"(at {at}; a bug, please report it with the command; SPSC_DEBUG=1 shows the "
+              "traceback)", file=sys.stderr)
+        return INTERNAL_ERROR
 
 
 if __name__ == "__main__":

@@ -29,6 +29,13 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+def bladder_spec(geom, flange_holes, tube_id):
+    """The BladderSpec of the CLI's options (validated: one-line ParameterError)."""
+    from spsc.cad.bladder import BladderSpec, FlangeSpec, PortSpec
+
+    return BladderSpec(geom, FlangeSpec(holes=flange_holes), PortSpec(tube_id=tube_id))
+
+
 def process_for(material_name: str) -> str:
     from spsc.membrane.materials import material
 
@@ -36,17 +43,18 @@ def process_for(material_name: str) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from spsc.cad.bladder import BladderSpec, FlangeSpec, PortSpec, build_bladder
-    from spsc.cad.export import export_part
-    from spsc.cad.meshbuild import bladder_mesh
-
+    # every check before the CAD kernel is even imported (2 s): a bad input fails at once
     geom = geometry_from_args(args)
     process = process_for(args.material)
+    name = f"bladder-{str(args.type).strip().upper()}" if args.type else "bladder"
+    outdir = check_output_dir("--out", args.out if args.out is not None else f"build/{name}")
+    spec = bladder_spec(geom, args.flange_holes, args.tube_id)
     for msg in geom.design_space_warnings():
         warn("bladder", msg)
-    spec = BladderSpec(geom, FlangeSpec(holes=args.flange_holes), PortSpec(tube_id=args.tube_id))
-    name = f"bladder-{args.type}" if args.type else "bladder"
-    outdir = check_output_dir("--out", args.out or f"build/{name}")
+
+    from spsc.cad.bladder import build_bladder
+    from spsc.cad.export import export_part
+    from spsc.cad.meshbuild import bladder_mesh
 
     t0 = time.perf_counter()
     bladder = build_bladder(spec)

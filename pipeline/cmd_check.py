@@ -8,11 +8,13 @@ names another. Exit 0 if every gating check passed, 1 with the failed checks nam
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 from pathlib import Path
 
 from spsc.cad.check import check_mesh, design_path_for, load_design
-from spsc.core.errors import require
+from spsc.cad.meshload import load_mesh
+from spsc.core.errors import ParameterError, require
 from spsc.cad.process import PROCESSES, process
 
 from .options import check_output_file
@@ -42,6 +44,10 @@ def run(args) -> int:
                                                           unit="mm")
     process(args.process)
     mesh = Path(args.file)
+    if not str(args.file).strip():
+        raise ParameterError("FILE", args.file, "a mesh file (.stl or .3mf)")
+    if mesh.is_dir():
+        raise ParameterError("FILE", args.file, "a mesh file (this is a folder)")
     if not mesh.is_file():
         raise FileNotFoundError(2, "no such file", str(mesh))
     if args.design is not None:
@@ -49,8 +55,11 @@ def run(args) -> int:
     else:
         sidecar = design_path_for(mesh)
         design = load_design(sidecar) if sidecar.is_file() else None
-    out = check_output_file("--json", args.json if args.json else mesh.with_name("check.json"))
-    report = check_mesh(mesh, design=design, process=args.process, min_wall=min_wall)
+    out = check_output_file("--json", args.json if args.json is not None
+                            else mesh.with_name("check.json"))
+    arrays = load_mesh(mesh)  # an unreadable mesh is bad input, refused before the checks
+    report = dataclasses.replace(check_mesh(arrays, design=design, process=args.process,
+                                            min_wall=min_wall), source=str(mesh))
     report.to_json(out)
     print(report.summary())
     if report.passed:

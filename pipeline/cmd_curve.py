@@ -65,6 +65,8 @@ class Model:
     add_options : registers the model's own options on an argparse group (dest default None)
     defaults : dest -> value of those options when the model runs and they are not given
     compute : Job -> Computed
+    check : Job -> None, the model's own limits and what the run will cost, before any work
+        (ParameterError when refused); None: the shared load case is all it needs
     """
 
     name: str
@@ -74,6 +76,7 @@ class Model:
     add_options: Callable | None
     defaults: dict
     compute: Callable
+    check: Callable | None = None
 
 
 # -- the models ----------------------------------------------------------------------------
@@ -117,6 +120,44 @@ def _mesh_options(g) -> None:
     g.add_argument("--layers", type=integer("layers"), default=None, metavar="N",
                    help="quadratic elements through the wall thickness (default: fem 2, "
                    "wall 2)")
+    g.add_argument("--force", action="store_true", default=None,
+                   help="run a model beyond the size limits (the estimate of unknowns, "
+                   "memory and load steps is printed and checked before the run)")
+
+
+def _check_solid(job: Job, limit: int, counts: dict, steps: int, gib: float | None) -> None:
+    """Refuse a solid model whose estimated size is beyond ``limit`` unknowns (or the memory
+    this machine has) unless --force; print the estimate on stderr unless --quiet."""
+    from .resources import check_size
+
+    check_size(job.verb, counts, steps, limit=limit, gib=gib, force=bool(job.args.force),
+               quiet=job.quiet, mesh_size=counts["mesh_size"], points=job.points)
+
+
+def _fem_check(job: Job) -> None:
+    from spsc.fem.mesh import check_mesh_size, wall_mesh_counts
+
+    from .resources import FEM_MAX_UNKNOWNS, fem_memory_gib
+
+    size, layers = check_mesh_size(job.geometry, job.args.mesh_size, job.args.layers)
+    counts = wall_mesh_counts(job.geometry, size, layers, full=bool(job.args.full))
+    counts["mesh_size"] = size
+    steps = job.points - 1 + (4 if job.pressure_kPa > 0 else 0)
+    _check_solid(job, FEM_MAX_UNKNOWNS, counts, steps, fem_memory_gib(counts["unknowns"]))
+
+
+def _wall_check(job: Job) -> None:
+    from spsc.fem.mesh import check_mesh_size
+    from spsc.fem.wall_model import WallSettings
+
+    from .resources import WALL_MAX_UNKNOWNS, wall_counts
+
+    given = job.args.mesh_size
+    size = given if given is not None else WallSettings().profile_size(job.geometry.l > 0)
+    size, layers = check_mesh_size(job.geometry, size, job.args.layers)
+    counts = wall_counts(job.geometry, size, layers, WallSettings().sweep_size_mm)
+    steps = job.points - 1 + (2 if job.pressure_kPa > 0 else 0)
+    _check_solid(job, WALL_MAX_UNKNOWNS, counts, steps, None)
 
 
 def _fem_options(g) -> None:
@@ -189,10 +230,10 @@ MODELS: dict[str, Model] = {m.name: m for m in (
           None, {}, _simplified),
     Model("wall", "the thick wall as a solid (axisymmetric dome; swept stadium) with gas and "
           "plate: pressure and bending in one solve (seconds)", 6.0, 25,
-          None, {"mesh_size": None, "layers": 2}, _wall),
+          None, {"mesh_size": None, "layers": 2, "force": False}, _wall, _wall_check),
     Model("fem", "3D hyperelastic FEM of the printed wall (quarter model by default)", 4.0, 11,
-          _fem_options, {"mesh_size": 1.0, "layers": 2, "full": False, "solver": "auto",
-                         "vtu": None}, _fem),
+          _fem_options, {"mesh_size": 1.0, "layers": 2, "force": False, "full": False,
+                         "solver": "auto", "vtu": None}, _fem, _fem_check),
 )}
 
 
@@ -256,29 +297,44 @@ def _model_args(args, model: Model) -> None:
 
 
 def _check_outputs(args) -> None:
-    if args.json:
+    if args.json is not None:
         check_output_file("--json", args.json)
-    if args.csv:
+    if args.csv is not None:
         check_output_file("--csv", args.csv)
-    if args.png:
+    if args.png is not None:
         check_output_file("--png", args.png, PLOT_SUFFIXES)
-    if getattr(args, "vtu", None):
+    if getattr(args, "vtu", None) is not None:
         check_output_dir("--vtu", args.vtu)
 
 
-def run(args) -> int:
+def prepare(args) -> Job:
+    """Every check of the invocation, before any work: the model's options, the outputs, the
+    chamber, the material, the load case (the same limits for every model) and the model's own
+    limits and size. ParameterError (one line) on the first problem."""
+    from spsc.core.loadcase import check_load
     from spsc.membrane.materials import material
 
-    verb = args.command
     model = MODELS[args.model]
     _model_args(args, model)
     _check_outputs(args)
     geom = geometry_from_args(args)
     mat = material(args.material)
-    for msg in geom.design_space_warnings():
+    load = check_load(geom, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
+                      stroke_mm=args.stroke, points=args.points, polytropic_n=args.polytropic_n,
+                      allow_zero_stroke=model.name == "membrane")
+    job = Job(geom, mat, load.pressure_kPa, load.reservoir_mm3, load.stroke_mm, load.points,
+              load.polytropic_n, args, bool(args.quiet), args.command)
+    if model.check is not None:
+        model.check(job)
+    return job
+
+
+def run(args) -> int:
+    verb = args.command
+    model = MODELS[args.model]
+    job = prepare(args)
+    for msg in job.geometry.design_space_warnings():
         warn(verb, msg)
-    job = Job(geom, mat, args.pressure, args.reservoir, args.stroke, args.points,
-              args.polytropic_n, args, bool(args.quiet), verb)
     out = model.compute(job)
     curve = out.curve
     if args.json:

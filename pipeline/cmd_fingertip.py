@@ -31,15 +31,15 @@ def register(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from spsc.cad.export import export_part, tessellate
-    from spsc.cad.fingertip import FingertipSpec, PocketSpec, build_fingertip, measure_pockets
-
     from spsc.cad.process import process
+
+    process(args.process)  # every check before the build (35 s), not after it
+    outdir = check_output_dir("--out", args.out)
+    from spsc.cad.fingertip import FingertipSpec, PocketSpec, build_fingertip, measure_pockets
 
     spec = FingertipSpec(angle=args.angle,
                          pocket=PocketSpec(diameter=args.pocket_diameter, depth=args.pocket_depth))
-    process(args.process)  # validated before the build, not after it
-    outdir = check_output_dir("--out", args.out)
+    from spsc.cad.export import export_part, tessellate
     t0 = time.perf_counter()
     tip = build_fingertip(spec)
     t_build = time.perf_counter() - t0

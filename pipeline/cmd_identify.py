@@ -10,18 +10,22 @@ V_b,i defaults to the nominal cavity volume of the named type (or of the seven p
 from __future__ import annotations
 
 from spsc.core.errors import ParameterError, require
+from spsc.core.loadcase import PRESSURE_MAX_KPA
 
 from .options import (add_gas_options, add_geometry_options, add_output_options,
                       check_output_file, geometry_from_args, geometry_given, number)
 
 
-def _floats(name: str, text: str) -> list[float]:
+def _floats(name: str, text: str, *, le: float | None = None, unit: str = "") -> list[float]:
+    """Comma-separated numbers, each finite, >= 0 and <= ``le``; at least one."""
     try:
         values = [float(v) for v in str(text).split(",") if v.strip()]
     except ValueError:
         raise ParameterError(name, text, "comma-separated numbers") from None
     if not values:
         raise ParameterError(name, text, "at least one number (comma-separated)")
+    for v in values:
+        require(name, v, ge=0, le=le, unit=unit)
     return values
 
 
@@ -47,10 +51,11 @@ def register(subparsers) -> None:
 
 def run(args) -> int:
     from spsc.membrane.identify import identify, predict, read_bench
+    from spsc.membrane.lumped import Setup
 
-    if args.json:
+    if args.json is not None:
         check_output_file("--json", args.json)
-    if args.csv:
+    if args.csv is not None:
         check_output_file("--csv", args.csv)
     geometry, name = {}, ""
     if geometry_given(args):
@@ -63,8 +68,11 @@ def run(args) -> int:
         raise ParameterError("bladder volume", None,
                              "--type, the seven parameters or --bladder-volume MM3")
     vb = require("bladder_volume", vb, gt=0, unit="mm³")
-    pressures = _floats("predict-pressures", args.predict_pressures)
-    reservoirs = _floats("predict-reservoirs", args.predict_reservoirs)
+    pressures = _floats("predict-pressures", args.predict_pressures, le=PRESSURE_MAX_KPA,
+                        unit="kPa gauge")
+    reservoirs = _floats("predict-reservoirs", args.predict_reservoirs, unit="mm³")
+    require("pressure", args.pressure, gt=0, le=PRESSURE_MAX_KPA, unit="kPa gauge")
+    Setup(args.pressure, vb, args.reservoir, args.polytropic_n)  # the gas, validated
     bench = read_bench(args.bench)
     ident = identify(bench, pressure_kPa=args.pressure, bladder_volume_mm3=vb,
                      reservoir_mm3=args.reservoir, polytropic_n=args.polytropic_n,

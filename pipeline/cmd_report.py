@@ -18,10 +18,15 @@ it is NOT REPRODUCIBLE.
 from __future__ import annotations
 
 import os
+import re
 import shlex
 import sys
 import time
 from pathlib import Path
+
+from spsc.core.errors import ParameterError
+
+from .options import check_output_dir
 
 DEFAULT_OUT = {False: Path("reports/validation"), True: Path("build/report-quick")}
 
@@ -53,12 +58,15 @@ def run(args) -> int:
     from .study import full_study, quick_study
 
     t0 = time.perf_counter()
+    types = _types(args.types)
+    out = check_output_dir("--out", args.out if args.out is not None
+                           else DEFAULT_OUT[bool(args.quick)])
+    check_output_dir("--cache", args.cache)
     study = quick_study() if args.quick else full_study()
     if args.no_fem:
         study = study.replace(fem=False)
-    if args.types:
-        study = study.replace(types=tuple(args.types.upper()))
-    out = Path(args.out) if args.out else DEFAULT_OUT[bool(args.quick)]
+    if types:
+        study = study.replace(types=types)
     committed = _same_dir(out, committed_report_dir())
     if committed and not args.allow_dirty and not _clean_or_say_why(provenance()):
         return 2
@@ -82,6 +90,16 @@ def run(args) -> int:
         print(f"spsc report: failed runs: {', '.join(failed)}", file=sys.stderr)
         return 1
     return 0
+
+
+def _types(text: str | None) -> tuple[str, ...] | None:
+    """``--types``: letters among A–D (spaces and commas ignored), e.g. ``BD`` or ``B,D``."""
+    if text is None:
+        return None
+    letters = re.sub(r"[\s,]", "", text).upper()
+    if not letters or any(c not in "ABCD" for c in letters):
+        raise ParameterError("types", text, "letters among A, B, C, D, e.g. BD")
+    return tuple(dict.fromkeys(letters))
 
 
 def _clean_or_say_why(source) -> bool:

@@ -152,38 +152,64 @@ def add_quiet_option(parser) -> None:
 
 
 def check_output_file(option: str, path, suffixes: tuple[str, ...] | None = None) -> Path:
-    """``path`` can be written as a file: its folder exists and is writable, it is not a
-    folder, and its suffix is one of ``suffixes`` (if given). Else a ParameterError naming
+    """``path`` can be written as a file: not empty, its folder exists, it is not a folder or a
+    device (except the null device), its suffix is one of ``suffixes`` (if given), and the
+    system lets us open it for writing (tried: a new file is created and removed again, an
+    existing one opened for appending, so nothing is changed). Else a ParameterError naming
     ``option``: cheap, so commands call it before the work."""
+    text = str(path)
     p = Path(path)
-    if str(path).strip() == "":
-        raise ParameterError(option, str(path), "a file path")
+    if text.strip() == "":
+        raise ParameterError(option, text, "a file path")
     if suffixes and p.suffix.lower() not in suffixes:
-        raise ParameterError(option, str(path), "a file ending in " + ", ".join(suffixes))
+        raise ParameterError(option, text, "a file ending in " + ", ".join(suffixes))
     if p.is_dir():
-        raise ParameterError(option, str(path), "a file path (this is a folder)")
+        raise ParameterError(option, text, "a file path (this is a folder)")
+    if text == os.devnull:
+        return p
+    if p.exists() and not p.is_file():
+        raise ParameterError(option, text, "a regular file (this is a device or a pipe)")
     parent = p.parent
     if not parent.is_dir():
-        raise ParameterError(option, str(path), f"a path in an existing folder ({parent} "
+        raise ParameterError(option, text, f"a path in an existing folder ({parent} "
                              "is not one)")
-    if not os.access(parent, os.W_OK) or (p.exists() and not os.access(p, os.W_OK)):
-        raise ParameterError(option, str(path), "a writable path")
+    _try_write(option, p)
     return p
 
 
+def _try_write(option: str, p: Path) -> None:
+    existed = p.exists()
+    try:
+        with open(p, "ab"):
+            pass
+    except OSError as exc:
+        raise ParameterError(option, str(p), f"a writable path ({exc.strerror})") from None
+    if not existed:
+        p.unlink()
+
+
 def check_output_dir(option: str, path) -> Path:
-    """``path`` is, or can be created as, a writable folder."""
+    """``path`` is, or can be created as, a writable folder (tried with a temporary file in it
+    or in its nearest existing parent, removed again)."""
+    import tempfile
+
+    text = str(path)
     p = Path(path)
-    if str(path).strip() == "":
-        raise ParameterError(option, str(path), "a folder path")
+    if text.strip() == "":
+        raise ParameterError(option, text, "a folder path")
     if p.exists() and not p.is_dir():
-        raise ParameterError(option, str(path), "a folder (this is a file)")
+        raise ParameterError(option, text, "a folder (this is a file)")
     anc = p
     while not anc.exists():
         anc = anc.parent
-    if not anc.is_dir() or not os.access(anc, os.W_OK):
-        raise ParameterError(option, str(path), f"a folder that can be created ({anc} is not "
-                             "a writable folder)")
+    if not anc.is_dir():
+        raise ParameterError(option, text, f"a folder that can be created ({anc} is a file)")
+    try:
+        with tempfile.TemporaryFile(dir=anc):
+            pass
+    except OSError as exc:
+        raise ParameterError(option, text, f"a folder that can be written ({anc}: "
+                             f"{exc.strerror})") from None
     return p
 
 

@@ -1,0 +1,327 @@
+"""Invalid invocations of every ``spsc`` verb, as a table: the fuzz test runs them in-process
+(``tests/test_fuzz_cli.py``) and ``bench/bench_badinput.py`` as subprocesses.
+
+Each :class:`Case` is an argv that must end in exactly one line on stderr naming ``names``
+(the option or parameter at fault), exit code 2, before any work starts. The cases are built
+on valid base invocations of each verb with one thing wrong: a bad number (text, empty,
+non-finite, out of range), a cross-parameter limit, a bad choice, an output path that cannot be
+written, a bad input file, or an argparse mistake. :func:`fixtures` writes the files they use.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["Case", "fixtures", "invalid_cases"]
+
+
+@dataclass(frozen=True)
+class Case:
+    """One invalid invocation: ``argv`` (without ``spsc``), what is wrong (``why``) and the
+    name the one-line error must contain (None: any)."""
+
+    argv: tuple[str, ...]
+    why: str
+    names: str | None = None
+
+    @property
+    def verb(self) -> str:
+        return self.argv[0] if self.argv else ""
+
+
+#: Values no number option accepts: text, empty, blank, non-finite, a decimal comma.
+NOT_A_NUMBER = ("abc", "", " ", "nan", "inf", "-inf", "1,5", "0x")
+
+#: Out-of-range values per number option (every one must be refused with the option named).
+#: Geometry ranges: w, h, l, t0 in mm, with the Type B preset (w = 11, h = 13, l = 3, t0 = 1).
+OUT_OF_RANGE = {
+    "w": ("0", "-1", "-1e5", "1e9", "1e-9"),
+    "h": ("0", "-1", "1e9", "1e-9"),
+    "l": ("-1", "1e9"),
+    "t0": ("0", "-1", "11", "1e3"),
+    "n1": ("0.5", "0", "1e9"),
+    "n2": ("0.5", "-2", "1e9"),
+    "cy": ("-1", "1", "1.5", "1e9"),
+    "pressure": ("-1", "-1e5", "1e5"),
+    "reservoir": ("-1", "-1e-3"),
+    "stroke": ("-1", "13", "100", "1e9"),
+    "points": ("0", "1", "-3", "2.5", "1e9"),
+    "polytropic-n": ("0.5", "0", "3"),
+    "mesh-size": ("0", "-1", "1e9", "1e-4"),
+    "layers": ("0", "-1", "2.5", "1000"),
+    "flange-holes": ("3", "2.5", "-2", "1"),
+    "tube-id": ("0", "-1", "1e9"),
+    "angle": ("10", "100", "-45"),
+    "pocket-diameter": ("0", "-1", "1e9"),
+    "pocket-depth": ("0", "-1", "100"),
+    "min-wall": ("0", "-1"),
+    "bladder-volume": ("0", "-1"),
+}
+
+GEOMETRY = ("w", "h", "l", "t0", "n1", "n2", "cy")
+SETUP = ("pressure", "reservoir", "stroke", "points", "polytropic-n")
+
+
+def fixtures(tmp: Path) -> dict[str, Path]:
+    """Write the files the cases use under ``tmp``; returns name -> path."""
+    tmp.mkdir(parents=True, exist_ok=True)
+    f = {
+        "dir": tmp / "a-folder",
+        "dir.json": tmp / "folder.json",
+        "dir.csv": tmp / "folder.csv",
+        "dir.stl": tmp / "folder.stl",
+        "file": tmp / "a-file.txt",
+        "stl": tmp / "tet.stl",
+        "empty.stl": tmp / "empty.stl",
+        "text.stl": tmp / "text.stl",
+        "obj": tmp / "tet.obj",
+        "csv": tmp / "bench.csv",
+        "empty.csv": tmp / "empty.csv",
+        "nocol.csv": tmp / "nocol.csv",
+        "badrow.csv": tmp / "badrow.csv",
+        "short.csv": tmp / "short.csv",
+        "bad.json": tmp / "bad.json",
+        "binary.csv": tmp / "binary.csv",
+    }
+    for k in ("dir", "dir.json", "dir.csv", "dir.stl"):
+        f[k].mkdir(exist_ok=True)
+    f["file"].write_text("not a folder\n", encoding="utf-8")
+    f["stl"].write_text(_TET_STL, encoding="ascii")
+    f["empty.stl"].write_bytes(b"")
+    f["text.stl"].write_text("this is not an STL mesh\n", encoding="utf-8")
+    f["obj"].write_text("v 0 0 0\n", encoding="ascii")
+    f["csv"].write_text(_BENCH_CSV, encoding="utf-8")
+    f["empty.csv"].write_text("", encoding="utf-8")
+    f["nocol.csv"].write_text("y_mm,force_N\n0,0\n1,1\n2,2\n", encoding="utf-8")
+    f["badrow.csv"].write_text(_BENCH_CSV + "3.0,abc,41\n", encoding="utf-8")
+    f["short.csv"].write_text("y_mm,force_N,pressure_kPa\n0,0,40\n", encoding="utf-8")
+    f["bad.json"].write_text("{not json", encoding="utf-8")
+    f["binary.csv"].write_bytes(b"\x00\xff\xfe\x89PNG\x00\x00")
+    return f
+
+
+_TET_STL = """solid tet
+facet normal 0 0 -1
+outer loop
+vertex 0 0 0
+vertex 0 1 0
+vertex 1 0 0
+endloop
+endfacet
+facet normal 0 -1 0
+outer loop
+vertex 0 0 0
+vertex 1 0 0
+vertex 0 0 1
+endloop
+endfacet
+facet normal -1 0 0
+outer loop
+vertex 0 0 0
+vertex 0 0 1
+vertex 0 1 0
+endloop
+endfacet
+facet normal 1 1 1
+outer loop
+vertex 1 0 0
+vertex 0 1 0
+vertex 0 0 1
+endloop
+endfacet
+endsolid tet
+"""
+
+_BENCH_CSV = """y_mm,force_N,pressure_kPa
+0.0,0.0,40.0
+0.5,1.0,40.6
+1.0,2.1,41.3
+1.5,3.3,42.1
+2.0,4.6,43.0
+"""
+
+
+def _bases(f: dict[str, Path], tmp: Path) -> dict[str, tuple[str, ...]]:
+    """A valid invocation of each verb (and model) that one change makes invalid. Their outputs
+    go under ``tmp`` so a case that slips through writes nowhere else."""
+    out = str(tmp / "out")
+    bases = {
+        "bladder": ("bladder", "--type", "B", "--out", out),
+        "fingertip": ("fingertip", "--out", out),
+        "check": ("check", str(f["stl"]), "--json", str(tmp / "check.json")),
+        "membrane": ("membrane", "--type", "B"),
+        "fem": ("fem", "--type", "B", "--quiet"),
+        "identify": ("identify", str(f["csv"]), "--pressure", "40", "--type", "B"),
+        "report": ("report", "--out", out, "--cache", str(tmp / "cache"), "--quiet"),
+    }
+    for model in ("membrane", "simplified", "wall", "fem"):
+        bases[f"curve-{model}"] = ("curve", "--model", model, "--type", "B", "--quiet")
+    return bases
+
+
+def _numbers(base, options, extra=()) -> list[Case]:
+    cases = []
+    for opt in options:
+        for v in NOT_A_NUMBER + OUT_OF_RANGE.get(opt, ()) + tuple(extra):
+            cases.append(Case(base + (f"--{opt}", v), f"--{opt} {v!r}", opt))
+    return cases
+
+
+def _outputs(base, option, f, tmp, suffix=".json") -> list[Case]:
+    """``option`` given a path that cannot be written as a file."""
+    bad = [(str(f["dir"]), "an existing folder"),
+           (str(f["dir.json"]) if suffix == ".json" else str(f["dir"]), "a folder with the suffix"),
+           (str(f["file"] / f"x{suffix}"), "a path under a file"),
+           (str(tmp / "no" / "such" / f"x{suffix}"), "a missing folder"),
+           ("/proc/spsc-fuzz" + suffix, "an unwritable place"),
+           ("", "empty")]
+    if Path("/dev/full").is_char_device():  # a full disk (not every sandbox has the device)
+        bad.append(("/dev/full", "a full device"))
+    return [Case(base + (option, p), f"{option} {why}", option.lstrip("-")) for p, why in bad]
+
+
+def _out_dirs(base, option, f) -> list[Case]:
+    """``option`` given a folder that cannot be written or created."""
+    bad = [(str(f["file"]), "an existing file"), (str(f["file"] / "sub"), "a folder under a file"),
+           ("/proc/spsc-fuzz", "an unwritable place"), ("", "empty")]
+    return [Case(base + (option, p), f"{option} {why}", option.lstrip("-")) for p, why in bad]
+
+
+def invalid_cases(tmp: Path) -> list[Case]:
+    """Every invalid invocation, with fixtures under ``tmp``."""
+    tmp = Path(tmp)
+    f = fixtures(tmp)
+    b = _bases(f, tmp)
+    cases: list[Case] = []
+    geometry_verbs = ("bladder", "membrane", "fem", "identify", "curve-membrane",
+                      "curve-simplified", "curve-wall", "curve-fem")
+    for verb in geometry_verbs:
+        cases += _numbers(b[verb], GEOMETRY)
+        cases += [Case(b[verb] + ("--type", "E"), "unknown type", "type"),
+                  Case(b[verb] + ("--type", ""), "empty type", "type"),
+                  Case(b[verb] + ("--footprint", "huge"), "unknown footprint", "footprint"),
+                  Case(b[verb][:1] + b[verb][1:] + ("--cy", "0.999999"), "cy too close to 1",
+                       "cy")]
+    # the seven parameters without --type: each one missing
+    full = ("--w", "11", "--h", "13", "--l", "3", "--t0", "1", "--n1", "2", "--n2", "2.2",
+            "--cy", "0")
+    for k in range(0, len(full), 2):
+        cut = full[:k] + full[k + 2:]
+        cases.append(Case(("membrane",) + cut, f"missing {full[k]}", full[k].lstrip("-")))
+    for verb in ("membrane", "fem", "curve-membrane", "curve-simplified", "curve-wall",
+                 "curve-fem"):
+        cases += _numbers(b[verb], SETUP)
+        cases += [Case(b[verb] + ("--material", "rubber"), "unknown material", "material"),
+                  Case(b[verb] + ("--material", ""), "empty material", "material")]
+        cases += _outputs(b[verb], "--json", f, tmp)
+        cases += _outputs(b[verb], "--csv", f, tmp, ".csv")
+        cases += _outputs(b[verb], "--png", f, tmp, ".png")
+        cases += [Case(b[verb] + ("--png", str(tmp / "plot.xyz")), "unknown image format",
+                       "png"),
+                  Case(b[verb] + ("--png", str(tmp / "plot")), "no image suffix", "png")]
+        # stroke against the chamber: above a smaller chamber's height
+        cases.append(Case(b[verb] + ("--h", "4", "--stroke", "5"), "stroke above h", "stroke"))
+    for verb in ("fem", "curve-wall", "curve-fem"):
+        cases += _numbers(b[verb], ("mesh-size", "layers"))
+    cases += [Case(b["fem"] + ("--points", "100000"), "100000 FEM positions", "points"),
+              Case(b["fem"] + ("--solver", "magic"), "unknown solver", "solver"),
+              Case(b["curve-membrane"] + ("--mesh-size", "1"), "option of another model",
+                   "mesh-size"),
+              Case(b["curve-simplified"] + ("--wrinkling", "on"), "option of another model",
+                   "wrinkling"),
+              Case(b["curve-membrane"] + ("--wrinkling", "maybe"), "bad choice", "wrinkling"),
+              Case(b["curve-fem"] + ("--vtu", str(f["file"])), "--vtu a file", "vtu"),
+              Case(b["curve-fem"] + ("--vtu", str(f["file"] / "v")), "--vtu under a file",
+                   "vtu"),
+              Case(b["curve-membrane"][:1] + ("--model", "nothing", "--type", "B"),
+                   "unknown model", "model")]
+    # bladder
+    cases += _numbers(b["bladder"], ("flange-holes", "tube-id"))
+    cases += _out_dirs(b["bladder"][:3], "--out", f)
+    cases += [Case(b["bladder"] + ("--material", "rubber"), "unknown material", "material"),
+              Case(b["bladder"] + ("--tube-id", "30"), "tube wider than the base", "tube-id")]
+    # fingertip
+    cases += _numbers(b["fingertip"], ("angle", "pocket-diameter", "pocket-depth"))
+    cases += _out_dirs(("fingertip",), "--out", f)
+    cases += [Case(b["fingertip"] + ("--process", "foo"), "unknown process", "process"),
+              Case(b["fingertip"] + ("--process", ""), "empty process", "process")]
+    # check
+    cases += _numbers(b["check"], ("min-wall",))
+    cases += _outputs(b["check"][:2], "--json", f, tmp)
+    cases += [Case(("check", str(tmp / "missing.stl")), "missing file", "missing.stl"),
+              Case(("check", str(f["dir.stl"])), "a folder named .stl", "folder.stl"),
+              Case(("check", str(f["empty.stl"])), "an empty STL", "empty.stl"),
+              Case(("check", str(f["text.stl"])), "text as STL", "text.stl"),
+              Case(("check", str(f["obj"])), "an unknown mesh format", "tet.obj"),
+              Case(("check", ""), "an empty path", "file"),
+              Case(b["check"] + ("--process", "foo"), "unknown process", "process"),
+              Case(b["check"] + ("--design", str(tmp / "missing.json")), "missing design",
+                   "missing.json"),
+              Case(b["check"] + ("--design", str(f["bad.json"])), "design not JSON", "design"),
+              Case(b["check"] + ("--design", str(f["dir"])), "design a folder", "design"),
+              Case(("check",), "no file", "FILE"),
+              Case(("check", str(f["stl"]), str(f["stl"])), "two files", "unrecognized")]
+    # identify
+    cases += _numbers(b["identify"], ("pressure", "reservoir", "polytropic-n",
+                                      "bladder-volume"))
+    cases += _outputs(b["identify"], "--json", f, tmp)
+    cases += _outputs(b["identify"], "--csv", f, tmp, ".csv")
+    ident = b["identify"][2:]
+    for v in ("", ",", "abc", "-5", "nan", "inf", "1e5"):
+        cases.append(Case(b["identify"] + ("--predict-pressures", v), "bad predict pressures",
+                          "predict-pressures"))
+    for v in ("", ",", "-1", "nan"):
+        cases.append(Case(b["identify"] + ("--predict-reservoirs", v),
+                          "bad predict reservoirs", "predict-reservoirs"))
+    for key, why in (("empty.csv", "an empty CSV"), ("nocol.csv", "a missing column"),
+                     ("badrow.csv", "a text value"), ("short.csv", "too few rows"),
+                     ("dir.csv", "a folder named .csv"), ("binary.csv", "binary data")):
+        cases.append(Case(("identify", str(f[key])) + ident, why, None))
+    cases += [Case(("identify", str(tmp / "missing.csv")) + ident, "missing CSV", "missing.csv"),
+              Case(("identify", str(f["csv"]), "--pressure", "40"), "no chamber", None),
+              Case(("identify", str(f["csv"]), "--type", "B"), "no pressure", "pressure")]
+    # report
+    cases += [Case(b["report"] + ("--types", v), f"--types {v!r}", "types")
+              for v in ("", "E", "AX", "A-B", "1")]
+    cases += _out_dirs(("report", "--cache", str(tmp / "cache")), "--out", f)
+    cases += _out_dirs(("report", "--out", str(tmp / "out")), "--cache", f)
+    # argparse's own mistakes, every verb
+    for verb, base in b.items():
+        cases += [Case(base + ("--no-such-option",), "unknown option", "no-such-option"),
+                  Case(base + ("--quiet=3",) if "--quiet" in base else base + ("--x=1",),
+                       "value to a flag or unknown", None)]
+    cases += [Case(("membrane", "--type"), "missing value", "type"),
+              Case(("nothing",), "unknown verb", None),
+              Case((), "no verb", None)]
+    return cases
+
+
+#: Minimum wall (mm) of each material's process (cad/process.py), for random designs that
+#: should pass the gate.
+_MATERIAL_MIN_WALL = {"tpu60a": 0.8, "elastic50a": 0.5, "silicone40a": 0.5, "as40": 1.0}
+
+
+def random_design(rng) -> list[str]:
+    """``spsc bladder`` options of a random valid design (numpy Generator ``rng``): one of the
+    types A–D with its form factors drawn in the paper's family (sec. 2.2) and the verified
+    design space (h/w 0.5–2, l/w 0–3, t0/w 0.02–0.2, n 1–8, c_y ≤ 0.9), a wall at or above
+    the material's process minimum, any flange holes and a tube that fits the flange."""
+    kind = str(rng.choice(list("ABCD")))
+    material = str(rng.choice(list(_MATERIAL_MIN_WALL)))
+    w = rng.uniform(5.0, 15.0)
+    h = w * rng.uniform(0.5, 2.0)
+    l = 0.0 if rng.random() < 0.25 else w * rng.uniform(0.0, 3.0)
+    t_min = max(_MATERIAL_MIN_WALL[material], 0.02 * w)
+    t0 = rng.uniform(t_min, max(t_min, 0.2 * w))
+    n1 = {"A": rng.uniform(3, 8), "B": 2.0, "C": rng.uniform(2, 8), "D": 2.0}[kind]
+    n2 = {"A": rng.uniform(2, 8), "B": rng.uniform(2, 8), "C": 1.0, "D": rng.uniform(2, 8)}[kind]
+    cy = rng.uniform(0.05, 0.9) if kind == "D" else 0.0
+    holes = int(rng.choice([0, 2, 4]))
+    tube = rng.uniform(1.6, 4.4)
+    values = dict(w=w, h=h, l=l, t0=t0, n1=n1, n2=n2, cy=cy)
+    argv = ["--type", kind]
+    for k, v in values.items():
+        argv += [f"--{k}", f"{v:.4g}"]
+    return argv + ["--material", material, "--flange-holes", str(holes),
+                   "--tube-id", f"{tube:.3g}"]

@@ -1,0 +1,119 @@
+"""Fuzz test of the error contract over every verb: each invalid invocation of
+``tests/fuzz_cases.py`` (a bad number, a cross-parameter limit, a bad choice, an output that
+cannot be written, a bad input file, an argparse mistake) ends in exit 2 and exactly one line on
+stderr that names the option at fault — no traceback, no usage dump, and no work started: every
+function that builds, solves or checks raises if it is called (and a case still running after
+20 s fails too).
+
+The whole table (about 1,450 cases) takes seconds in-process. ``bench/bench_badinput.py`` runs
+the same table as subprocesses and counts the outcomes.
+"""
+
+from __future__ import annotations
+
+import re
+import signal
+from pathlib import Path
+
+import pytest
+
+from fuzz_cases import Case, invalid_cases
+from spsc.pipeline.cli import main
+
+#: Seconds a case may take in-process: validation is milliseconds; importing the CAD kernel
+#: or the FEM the first time a verb runs is about 3 s.
+SECONDS = 20
+
+
+def _name_pattern(name: str) -> str:
+    return "".join("[-_ .]" if ch in "-_ ." else re.escape(ch) for ch in name)
+
+
+@pytest.fixture(scope="module")
+def tmp_cases(tmp_path_factory):
+    return tmp_path_factory.mktemp("fuzz")
+
+
+class WorkStarted(Exception):
+    """Raised by every entry point that does real work: an invalid input must be refused
+    before any of them is called."""
+
+
+#: module -> the functions that do the work (builds, solves, checks, studies); where a command
+#: module binds one at import, it is patched there too.
+WORK = {
+    "spsc.cad.bladder": ["build_bladder"],
+    "spsc.cad.fingertip": ["build_fingertip"],
+    "spsc.cad.check": ["check_mesh"],
+    "spsc.pipeline.cmd_check": ["check_mesh"],
+    "spsc.membrane.solver": ["solve"],
+    "spsc.membrane.simplified": ["simplified_curve"],
+    "spsc.membrane.identify": ["identify"],
+    "spsc.fem.run": ["run_chamber"],
+    "spsc.fem.wall": ["wall_curve"],
+    "spsc.pipeline.runner": ["run_all"],
+}
+
+
+@pytest.fixture
+def no_work(monkeypatch):
+    import importlib
+
+    def refuse(*args, **kwargs):
+        raise WorkStarted("work started before the input was refused")
+
+    modules = {m: importlib.import_module(m) for m in WORK}  # all bound before patching
+    for module, names in WORK.items():
+        for name in names:
+            monkeypatch.setattr(modules[module], name, refuse)
+
+
+class _Timeout(Exception):
+    pass
+
+
+def _run(case: Case, capsys) -> tuple[int, str, str]:
+    def alarm(*_):
+        raise _Timeout(f"still running after {SECONDS} s: work started before validation")
+
+    old = signal.signal(signal.SIGALRM, alarm)
+    signal.alarm(SECONDS)
+    try:
+        rc = main(list(case.argv))
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+def _check(case: Case, rc: int, out: str, err: str) -> None:
+    lines = err.strip().splitlines()
+    assert rc == 2, (case.why, rc, err[-500:])
+    assert len(lines) == 1, (case.why, err)
+    assert "Traceback" not in err and "usage:" not in err, (case.why, err)
+    verb = f"spsc {case.verb}" if case.verb in {"bladder", "fingertip", "check", "curve",
+                                                "membrane", "fem", "identify", "report"} else "spsc"
+    assert lines[0].startswith(f"{verb}: error: "), (case.why, lines[0])
+    if case.names:
+        message = lines[0].split(": error: ", 1)[1]
+        assert re.search(rf"(?<![A-Za-z_]){_name_pattern(case.names)}(?![A-Za-z_])", message), (
+            case.why, case.names, message)
+
+
+def test_the_table_covers_every_verb(tmp_cases):
+    cases = invalid_cases(tmp_cases)
+    assert {c.verb for c in cases} >= {"bladder", "fingertip", "check", "curve", "membrane",
+                                       "fem", "identify", "report"}
+    assert len(cases) >= 300
+
+
+def test_every_invalid_invocation_is_one_line_exit_2(tmp_cases, capsys, no_work):
+    failures = []
+    for case in invalid_cases(tmp_cases):
+        try:
+            rc, out, err = _run(case, capsys)
+            _check(case, rc, out, err)
+        except (AssertionError, WorkStarted, _Timeout) as exc:
+            failures.append(f"spsc {' '.join(map(repr, case.argv))}: {exc}")
+    assert not failures, f"{len(failures)} cases broke the contract:\n" + "\n".join(failures)
