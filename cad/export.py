@@ -32,6 +32,29 @@ class TriMesh:
     def to_trimesh(self) -> trimesh.Trimesh:
         return trimesh.Trimesh(self.vertices, self.faces, process=True)
 
+    def canonical(self) -> "TriMesh":
+        """The same mesh in a canonical order, so identical geometry gives identical files
+        whatever order a parallel mesher emitted it in: vertices sorted by (x, y, z), each
+        triangle rotated to start at its smallest vertex index (orientation kept), triangles
+        sorted by their three indices."""
+        v = np.asarray(self.vertices, float)
+        order = np.lexsort((v[:, 2], v[:, 1], v[:, 0]))
+        rank = np.empty_like(order)
+        rank[order] = np.arange(len(order))
+        f = rank[np.asarray(self.faces, np.int64)]
+        shift = np.argmin(f, axis=1)
+        rows = np.arange(len(f))[:, None]
+        f = f[rows, (shift[:, None] + np.arange(3)[None, :]) % 3]
+        f = f[np.lexsort((f[:, 2], f[:, 1], f[:, 0]))]
+        return TriMesh(v[order], f)
+
+    def digest(self) -> str:
+        """SHA-256 of the canonical mesh (hex): the same geometry, the same digest."""
+        import hashlib
+
+        c = self.canonical()
+        return hashlib.sha256(c.vertices.tobytes() + c.faces.tobytes()).hexdigest()
+
 
 def tessellate(solid: cq.Shape, tolerance: float = TOLERANCE_MM,
                angular_tolerance: float = ANGULAR_TOLERANCE) -> TriMesh:
@@ -60,24 +83,52 @@ def tessellate(solid: cq.Shape, tolerance: float = TOLERANCE_MM,
     return TriMesh(np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64))
 
 
+#: The STEP header's time stamp: a fixed one, so the same part gives the same bytes (OCCT
+#: writes the wall-clock time; the file's own mtime says when it was written).
+STEP_TIME_STAMP = "2000-01-01T00:00:00"
+
+
 def write_step(solid: cq.Shape, path: Path) -> Path:
-    cq.exporters.export(cq.Workplane().add(solid), str(path), exportType="STEP")
+    """STEP AP214 of the exact B-rep, with a fixed header time stamp. (OCCT names the product
+    after the count of files the process has written: the same part from two runs gives the
+    same bytes, two files from one run differ in that name.)"""
+    from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
+    from OCP.IFSelect import IFSelect_ReturnStatus
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+    from OCP.TCollection import TCollection_HAsciiString
+
+    writer = STEPControl_Writer()
+    writer.Transfer(solid.wrapped, STEPControl_AsIs)
+    APIHeaderSection_MakeHeader(writer.Model()).SetTimeStamp(
+        TCollection_HAsciiString(STEP_TIME_STAMP))
+    if writer.Write(str(path)) != IFSelect_ReturnStatus.IFSelect_RetDone:
+        raise OSError(5, "the STEP writer failed", str(path))
     return Path(path)
 
 
 def write_stl(mesh: TriMesh, path: Path) -> Path:
-    """Binary STL, millimetres."""
-    mesh.to_trimesh().export(str(path), file_type="stl")
+    """Binary STL, millimetres, triangles in the canonical order (:meth:`TriMesh.canonical`):
+    the same part gives the same bytes."""
+    c = mesh.canonical()
+    trimesh.Trimesh(c.vertices, c.faces, process=False).export(str(path), file_type="stl")
     return Path(path)
 
 
 def write_3mf(mesh: TriMesh, path: Path, name: str = "bladder") -> Path:
-    """3MF written with lib3mf (the 3MF Consortium's reference library), unit millimetre."""
+    """3MF written with lib3mf (the 3MF Consortium's reference library), unit millimetre; the
+    mesh in the canonical order and the production extension's UUIDs derived from it (lib3mf
+    draws random ones), so the same part gives the same bytes."""
+    import uuid
+
+    mesh = mesh.canonical()
+    seed = f"{name}:{mesh.digest()}"
     wrapper = lib3mf.get_wrapper()
     model = wrapper.CreateModel()
     model.SetUnit(lib3mf.ModelUnit.MilliMeter)
+    model.SetBuildUUID(str(uuid.uuid5(uuid.NAMESPACE_URL, f"spsc:build:{seed}")))
     obj = model.AddMeshObject()
     obj.SetName(name)
+    obj.SetUUID(str(uuid.uuid5(uuid.NAMESPACE_URL, f"spsc:object:{seed}")))
     positions = []
     for x, y, z in mesh.vertices.astype(float):
         p = lib3mf.Position()
@@ -91,7 +142,8 @@ def write_3mf(mesh: TriMesh, path: Path, name: str = "bladder") -> Path:
     obj.SetGeometry(positions, triangles)
     if not obj.IsManifoldAndOriented():
         raise RuntimeError(f"{name}: the tessellation is not manifold and oriented; 3MF not written")
-    model.AddBuildItem(obj, wrapper.GetIdentityTransform())
+    item = model.AddBuildItem(obj, wrapper.GetIdentityTransform())
+    item.SetUUID(str(uuid.uuid5(uuid.NAMESPACE_URL, f"spsc:item:{seed}")))
     model.QueryWriter("3mf").WriteToFile(str(path))
     return Path(path)
 
