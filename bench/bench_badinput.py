@@ -35,7 +35,7 @@ _TESTS = str(Path(__file__).resolve().parents[1] / "tests")
 if _TESTS not in sys.path:  # the case table lives beside the fuzz test that uses it
     sys.path.insert(0, _TESTS)
 
-from fuzz_cases import Case, invalid_cases, random_design  # noqa: E402
+from fuzz_cases import Case, design_argv, invalid_cases, random_design  # noqa: E402
 
 OUTCOMES = ("clean", "clean, not naming the option", "traceback", "internal error (exit 3)",
             "usage dump", "silent exit 0", "timeout", "other")
@@ -166,7 +166,7 @@ def designs(n: int, seed: int, timeout: float, jobs: int) -> None:
 
     rng = np.random.default_rng(seed)
     tmp = Path(tempfile.mkdtemp(prefix="spsc-designs-"))
-    argvs = [random_design(rng) for _ in range(n)]
+    argvs = [design_argv(random_design(rng)) for _ in range(n)]
 
     def one(k):
         argv = ["bladder", *argvs[k], "--out", str(tmp / f"d{k}")]

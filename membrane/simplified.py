@@ -20,6 +20,7 @@ from spsc.cad.geometry import SPSCGeometry
 
 from spsc.core.curve import Curve, SolveInfo
 from .lumped import Setup, lumped_curve
+from .solver import check_membrane_pressure
 
 __all__ = ["cut_area", "cut_volume", "simplified_curve"]
 
@@ -57,6 +58,7 @@ def simplified_curve(geometry: SPSCGeometry, *, pressure_kPa: float, reservoir_m
     load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
                       stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
     stroke, n = load.stroke_mm, load.points
+    check_membrane_pressure(load.pressure_kPa, stroke)
     y = np.linspace(0.0, stroke, n)
     v0 = geometry.cavity_volume()
     setup = Setup(pressure_kPa, v0, reservoir_mm3, polytropic_n)

@@ -72,7 +72,10 @@ class MembraneResult:
     """What :func:`solve` returns: the :class:`Curve` (whose ``solver`` is the
     :class:`~spsc.core.curve.SolveInfo` of the solve: converged, message, y reached, seconds,
     Newton iterations, notes), the inflated shape and the shape at each plate position (None
-    where not converged). The protocol fields are read through from ``curve.solver``."""
+    where not converged). When the inflation failed, ``inflated`` (and ``shapes[0]``) is the
+    last shape the pressure continuation reached (its ``pressure_kPa`` below the setup
+    pressure), and ``curve.solver.details["inflation_path"]`` lists every converged pressure
+    with its volume and apex. The protocol fields are read through from ``curve.solver``."""
 
     curve: Curve
     inflated: Shape | None
@@ -110,12 +113,17 @@ class MembraneResult:
 @dataclass(frozen=True, eq=False)
 class Inflation:
     """The inflation problem's outcome: the inflated :class:`Shape` (None if it failed),
-    whether it converged, why not, and the Newton iterations spent."""
+    whether it converged, why not, the Newton iterations spent, and the states the pressure
+    continuation reached: ``reached`` the last converged :class:`Shape` (the inflated one when
+    it converged), ``path`` (pressure kPa, cavity volume mm³, apex height mm) per converged
+    pressure."""
 
     shape: Shape | None
     converged: bool
     message: str
     iterations: int
+    reached: Shape | None = None
+    path: tuple = ()
 
 
 def _material(mat) -> Material:
@@ -152,6 +160,7 @@ def inflate(geometry: SPSCGeometry, material, pressure_kPa: float, *,
     r = bs.newton(_stress_guess(bs, p), p=p, tol=settings.rtol,
                   max_iter=settings.max_iterations)
     iters = r.iterations
+    path = []
     if not r.converged:  # continuation in pressure from a small one
         frac, v, done = 0.125, None, 0.0
         while done < 1.0 and frac > 1e-3:
@@ -162,13 +171,33 @@ def inflate(geometry: SPSCGeometry, material, pressure_kPa: float, *,
             iters += rr.iterations
             if rr.converged:
                 v, done, frac = rr.v, target, frac * 2.0
+                path.append(make_shape(bs, v, done * p))
             else:
                 frac *= 0.5
         if done < 1.0:
             return Inflation(None, False, f"inflation did not converge ({r.message}); pressure "
-                             f"continuation reached {done * pressure_kPa:.4g} kPa", iters)
+                             f"continuation reached {done * pressure_kPa:.4g} kPa", iters,
+                             path[-1] if path else None, _path(path))
         r.v = v
-    return Inflation(make_shape(bs, r.v, p), True, "", iters)
+    shape = make_shape(bs, r.v, p)
+    return Inflation(shape, True, "", iters, shape, _path(path or [shape]))
+
+
+def _path(shapes) -> tuple:
+    """(pressure kPa, cavity volume mm³, apex height mm) of each converged shape."""
+    return tuple((round(float(sh.pressure_kPa), 9), round(float(sh.volume_mm3), 6),
+                  round(float(sh.eta[0]), 6)) for sh in shapes)
+
+
+def check_membrane_pressure(pressure_kPa: float, stroke_mm: float) -> None:
+    """A membrane carries no force without pressure (eq. 38: F = p·A): pressing a vented
+    membrane has no equilibrium and the simplified model's force would be zero. Refused naming
+    the models that compute the vented chamber's structural force F_el."""
+    if float(pressure_kPa) == 0.0 and float(stroke_mm) > 0.0:
+        raise ParameterError("pressure", pressure_kPa, "> 0 kPa for the membrane models: a "
+                             "membrane carries no force without pressure; the vented "
+                             "chamber's F_el is `spsc curve --model wall --pressure 0` "
+                             "(or --model fem)")
 
 
 def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm3: float = 0.0,
@@ -192,6 +221,7 @@ def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm
                       allow_zero_stroke=True)
     p_i, v_r, n_poly = load.pressure_kPa, load.reservoir_mm3, load.polytropic_n
     stroke, npts = load.stroke_mm, load.points
+    check_membrane_pressure(p_i, stroke)
 
     inf = inflate(geometry, mat, p_i, settings=settings)
     infl, ok, msg, iters = inf.shape, inf.converged, inf.message, inf.iterations
@@ -200,12 +230,18 @@ def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm
                 setup={"p_i_kPa": p_i, "reservoir_mm3": v_r, "polytropic_n": n_poly},
                 nominal_volume_mm3=geometry.cavity_volume())
     nan = np.full(npts, np.nan)
-    if not ok:
+    if not ok:  # keep what was reached: the inflation path and its last shape
+        details = _details(settings) | {"inflation_path": [
+            {"pressure_kPa": pk, "volume_mm3": vol, "apex_mm": apex}
+            for pk, vol, apex in inf.path]}
         info = SolveInfo(converged=False, message=msg, seconds=time.perf_counter() - t_start,
-                         iterations=iters, details=_details(settings))
+                         iterations=iters, details=details)
+        last = inf.reached
+        extra = {} if last is None else {"inflated_volume_mm3": last.volume_mm3,
+                                         "inflated_height_mm": float(last.eta[0])}
         curve = Curve(y, nan, nan, nan, nan, model="membrane", converged=np.zeros(npts, bool),
-                      message=(msg,) * npts, solver=info, **meta)
-        return MembraneResult(curve, None, (None,) * npts)
+                      message=(msg,) * npts, solver=info, **meta, **extra)
+        return MembraneResult(curve, last, (last,) + (None,) * (npts - 1))
     apex = float(infl.eta[0])
     if stroke >= apex:
         raise ParameterError("stroke", stroke_mm,

@@ -103,6 +103,12 @@ def _membrane(job: Job) -> Computed:
     return Computed(r.curve, extra, r)
 
 
+def _membrane_check(job: Job) -> None:
+    from spsc.membrane.solver import check_membrane_pressure
+
+    check_membrane_pressure(job.pressure_kPa, job.stroke_mm)
+
+
 def _simplified(job: Job) -> Computed:
     from spsc.membrane.simplified import simplified_curve
 
@@ -225,9 +231,10 @@ def _wall(job: Job) -> Computed:
 #: function Job -> Computed, its defaults and, if it has any, its options.
 MODELS: dict[str, Model] = {m.name: m for m in (
     Model("membrane", "axisymmetric membrane: inflation and plate contact (fast)", 6.0, 41,
-          _membrane_options, {"meridians": False, "wrinkling": "on"}, _membrane),
+          _membrane_options, {"meridians": False, "wrinkling": "on"}, _membrane,
+          _membrane_check),
     Model("simplified", "the nominal chamber cut by the plate, with the air spring", 6.0, 41,
-          None, {}, _simplified),
+          None, {}, _simplified, _membrane_check),
     Model("wall", "the thick wall as a solid (axisymmetric dome; swept stadium) with gas and "
           "plate: pressure and bending in one solve (seconds)", 6.0, 25,
           None, {"mesh_size": None, "layers": 2, "force": False}, _wall, _wall_check),

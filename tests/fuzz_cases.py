@@ -220,6 +220,9 @@ def invalid_cases(tmp: Path) -> list[Case]:
         cases += [Case(b[verb] + ("--png", str(tmp / "plot.xyz")), "unknown image format",
                        "png"),
                   Case(b[verb] + ("--png", str(tmp / "plot")), "no image suffix", "png")]
+        if verb in ("membrane", "curve-membrane", "curve-simplified"):
+            cases.append(Case(b[verb] + ("--pressure", "0"), "a membrane without pressure",
+                              "pressure"))
         # stroke against the chamber: above a smaller chamber's height
         cases.append(Case(b[verb] + ("--h", "4", "--stroke", "5"), "stroke above h", "stroke"))
     for verb in ("fem", "curve-wall", "curve-fem"):
@@ -302,11 +305,12 @@ def invalid_cases(tmp: Path) -> list[Case]:
 _MATERIAL_MIN_WALL = {"tpu60a": 0.8, "elastic50a": 0.5, "silicone40a": 0.5, "as40": 1.0}
 
 
-def random_design(rng) -> list[str]:
-    """``spsc bladder`` options of a random valid design (numpy Generator ``rng``): one of the
-    types A–D with its form factors drawn in the paper's family (sec. 2.2) and the verified
-    design space (h/w 0.5–2, l/w 0–3, t0/w 0.02–0.2, n 1–8, c_y ≤ 0.9), a wall at or above
-    the material's process minimum, any flange holes and a tube that fits the flange."""
+def random_design(rng) -> dict:
+    """A random valid bladder design (numpy Generator ``rng``): one of the types A–D with its
+    form factors drawn in the paper's family (sec. 2.2) and the verified design space (h/w
+    0.5–2, l/w 0–3, t0/w 0.02–0.2, n 1–8, c_y ≤ 0.9), a wall at or above the material's
+    process minimum, any flange holes and a tube that fits the flange. Values rounded to 4
+    significant digits, as a user would type them; :func:`design_argv` makes the options."""
     kind = str(rng.choice(list("ABCD")))
     material = str(rng.choice(list(_MATERIAL_MIN_WALL)))
     w = rng.uniform(5.0, 15.0)
@@ -317,11 +321,17 @@ def random_design(rng) -> list[str]:
     n1 = {"A": rng.uniform(3, 8), "B": 2.0, "C": rng.uniform(2, 8), "D": 2.0}[kind]
     n2 = {"A": rng.uniform(2, 8), "B": rng.uniform(2, 8), "C": 1.0, "D": rng.uniform(2, 8)}[kind]
     cy = rng.uniform(0.05, 0.9) if kind == "D" else 0.0
-    holes = int(rng.choice([0, 2, 4]))
-    tube = rng.uniform(1.6, 4.4)
-    values = dict(w=w, h=h, l=l, t0=t0, n1=n1, n2=n2, cy=cy)
-    argv = ["--type", kind]
-    for k, v in values.items():
-        argv += [f"--{k}", f"{v:.4g}"]
-    return argv + ["--material", material, "--flange-holes", str(holes),
-                   "--tube-id", f"{tube:.3g}"]
+    r4 = lambda v: float(f"{v:.4g}")  # noqa: E731
+    return {"type": kind, "w": r4(w), "h": r4(h), "l": r4(l),
+            "t0": max(r4(t0), _MATERIAL_MIN_WALL[material]), "n1": r4(n1), "n2": r4(n2),
+            "cy": r4(cy), "material": material, "flange_holes": int(rng.choice([0, 2, 4])),
+            "tube_id": float(f"{rng.uniform(1.6, 4.4):.3g}")}
+
+
+def design_argv(d: dict) -> list[str]:
+    """``spsc bladder`` options of a design of :func:`random_design`."""
+    argv = ["--type", d["type"]]
+    for k in ("w", "h", "l", "t0", "n1", "n2", "cy"):
+        argv += [f"--{k}", f"{d[k]:g}"]
+    return argv + ["--material", d["material"], "--flange-holes", str(d["flange_holes"]),
+                   "--tube-id", f"{d['tube_id']:g}"]
