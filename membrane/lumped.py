@@ -172,14 +172,15 @@ def jnd_depth(high: Curve, low: Curve, *, relative: float = 0.10, absolute_N: fl
 
 
 def mean_stiffness(curves) -> float:
-    """Mean of dF/dy (N/mm) over the stroke of each curve, then over the curves (DESIGN.md:
-    over the setup pressures of one type and mode; apply again over types)."""
-    return float(np.mean([np.nanmean(c.stiffness()) for c in _as_list(curves)]))
+    """Mean of dF/dy (N/mm) over the stroke each curve reached (:meth:`Curve.mean_stiffness`,
+    the integral mean), then over the curves (DESIGN.md: over the setup pressures of one type
+    and mode; apply again over types)."""
+    return float(np.mean([c.mean_stiffness(reached=True) for c in _as_list(curves)]))
 
 
 def mean_sensitivity(curves) -> float:
-    """Mean of dP/dy (kPa/mm) over the stroke, then over the curves."""
-    return float(np.mean([np.nanmean(c.sensitivity()) for c in _as_list(curves)]))
+    """Mean of dP/dy (kPa/mm) over the stroke reached, then over the curves."""
+    return float(np.mean([c.mean_sensitivity(reached=True) for c in _as_list(curves)]))
 
 
 def _as_list(curves):
