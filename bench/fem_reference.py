@@ -43,12 +43,18 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default="build/reference")
     ap.add_argument("--mesh-size", type=float, default=1.0)
     ap.add_argument("--layers", type=int, default=2)
+    ap.add_argument("--stroke", type=float, default=None,
+                    help="plate travel, mm (default: each case's; e.g. 1 with --points 3 "
+                    "for a refined check at y = 1 mm)")
+    ap.add_argument("--points", type=int, default=None)
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     for label, geo, p, vr, stroke, points in cases():
         if args.only and args.only not in label:
             continue
+        stroke = args.stroke or stroke
+        points = args.points or points
         path = out / f"{label}.json"
         if path.exists():
             continue
