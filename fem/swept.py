@@ -214,7 +214,7 @@ class SweptWall:
         self.n_dofs = 3 * n
         self.dofs = np.arange(self.n_dofs)
         # the solid
-        self.solid = self._solid(law, kind_st, s_st)
+        self.solid = self._solid(law)
         # cavity and outer surfaces: (patch, 9 local nodes) with their kind and station ends
         self._cavity = self._patches(section.cavity)
         self._outer = self._patches(section.outer)
@@ -223,13 +223,14 @@ class SweptWall:
         self._sign = math.copysign(1.0, self.volume(np.zeros(self.n_dofs)))
 
     # -- the solid ---------------------------------------------------------------------------
-    def _solid(self, law, kind_st, s_st):
+    def _solid(self, law):
         s, sw = self.section, self.sweep
         ne, nq = s.dV.shape
         Rq = s.Xq[..., 0]
         dA = s.dV / s.measure(Rq)  # (ne, nq) plain area weights
         phi, dphi = _phi(_ZG)  # (3, 3): Gauss point g, local station k
-        Bs, dVs, qs, edofs = [], [], [], []
+        dR, dZ = s.dNdX[..., 0], s.dNdX[..., 1]  # (ne, nq, 9)
+        grads, dVs, qs, edofs = [], [], [], []
         q_sec = _pressure_basis(s.dV, s.Xq, s.measure)  # (ne, nq, 3)
         for e, (kind, (s0, s1)) in enumerate(zip(sw.kinds, sw.ends)):
             half = 0.5 * (s1 - s0)
@@ -237,24 +238,23 @@ class SweptWall:
             nodes = self.node_of[st][:, s.elements]  # (3, ne, 9)
             nodes = np.transpose(nodes, (1, 2, 0)).reshape(ne, 27)  # local b = 3a + k
             edofs.append((3 * nodes[:, :, None] + np.arange(3)).reshape(ne, 81))
-            B_e, dV_e, q_e = [], [], []
+            grad_e, dV_e, q_e = [], [], []
             for g in range(3):
                 sg = 0.5 * (s0 + s1) + half * _ZG[g]
                 _, cR, cS = _frame(kind, sw.a, Rq, sg)  # (ne, nq, 3)
                 # ∂N_b/∂x_j = (dN_a/dR cR_j + dN_a/dZ δ_j2) φ_k + N_a φ_k' / half · cS_j
-                dR, dZ = s.dNdX[..., 0], s.dNdX[..., 1]  # (ne, nq, 9)
                 G = (np.einsum("eqa,eqj->eqaj", dR, cR)[..., None, :] * phi[g][:, None]
                      + (dZ[..., None] * phi[g])[..., None] * np.array([0.0, 0.0, 1.0])
                      + np.einsum("eqa,k,eqj->eqakj", s.N, dphi[g] / half, cS))
-                B_e.append(G.reshape(ne, nq, 27, 3))
+                grad_e.append(G.reshape(ne, nq, 27, 3))
                 meas = 1.0 if kind == "y" else Rq
                 dV_e.append(4.0 * dA * meas * half * _ZW[g])
                 q_e.append(np.concatenate([q_sec, np.full((ne, nq, 1), _ZG[g])], -1))
-            Bs.append(np.concatenate(B_e, 1))
+            grads.append(np.concatenate(grad_e, 1))
             dVs.append(np.concatenate(dV_e, 1))
             qs.append(np.concatenate(q_e, 1))
         return CartesianSolid(law, None, np.concatenate(dVs), np.concatenate(qs),
-                              np.concatenate(edofs), 3 * self.n_nodes, grad=np.concatenate(Bs))
+                              np.concatenate(edofs), 3 * self.n_nodes, grad=np.concatenate(grads))
 
     # -- surfaces ----------------------------------------------------------------------------
     def _patches(self, line):

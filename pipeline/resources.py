@@ -24,7 +24,8 @@ FEM_MAX_UNKNOWNS = 400_000
 #: Load steps (plate positions + inflation increments) of the 3D FEM beyond which a run needs
 #: --force: each takes a few factorisations (seconds at the default mesh).
 FEM_MAX_STEPS = 500
-#: The axisymmetric wall model: unknowns and load steps beyond which a run needs --force.
+#: The wall model (dome or swept stadium): unknowns and load steps beyond which a run needs
+#: --force.
 WALL_MAX_UNKNOWNS = 300_000
 WALL_MAX_STEPS = 5000
 
