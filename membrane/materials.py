@@ -4,6 +4,11 @@ A law is a polynomial in the invariants, W = Σ C_ij (I1 − 3)^i (I2 − 3)^j (
 neo-Hookean (C10), Mooney–Rivlin (C10, C01) and Yeoh 3rd order (C10, C20, C30). For the
 incompressible membrane the invariants are those of eq. 24; the nearly incompressible FEM uses
 the isochoric invariants Ī1, Ī2 in the same functions plus its own volumetric term.
+
+Each material records where its numbers come from (``provenance``: datasheet, paper,
+literature, assumed or user-fit) beside the ``source`` text. :func:`material` resolves a
+catalogue name or a material file (``*.json``, written by ``spsc fit-material``; see
+:mod:`.material_file`).
 """
 
 from __future__ import annotations
@@ -14,7 +19,43 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 
-__all__ = ["Material", "neo_hookean", "mooney_rivlin", "yeoh", "CATALOGUE", "material"]
+__all__ = ["Material", "PROVENANCES", "neo_hookean", "mooney_rivlin", "yeoh", "CATALOGUE",
+           "material", "polynomial_energy", "polynomial_dW", "polynomial_d2W"]
+
+#: Where a material's constants come from, from most to least trusted for a printed part:
+#: ``user-fit`` (fitted to the user's own tests), ``literature`` (a published fit of the
+#: material), ``paper`` (a value the SPSC paper states), ``datasheet`` (a manufacturer's
+#: figure, linearised), ``assumed`` (no measurement of this material: an estimate).
+PROVENANCES = ("user-fit", "literature", "paper", "datasheet", "assumed")
+
+
+def _shifted(I1, I2):
+    return np.asarray(I1, float) - 3.0, np.asarray(I2, float) - 3.0
+
+
+def polynomial_energy(coefficients, I1, I2):
+    """W = Σ C_ij (I1 − 3)^i (I2 − 3)^j in MPa for ``coefficients`` ((i, j, C_ij), ...)."""
+    a, b = _shifted(I1, I2)
+    return sum(c * a**i * b**j for i, j, c in coefficients)
+
+
+def polynomial_dW(coefficients, I1, I2):
+    """(∂W/∂I1, ∂W/∂I2) in MPa of the polynomial ``coefficients``."""
+    a, b = _shifted(I1, I2)
+    W1 = sum(c * i * a ** (i - 1) * b**j for i, j, c in coefficients if i > 0)
+    W2 = sum(c * j * a**i * b ** (j - 1) for i, j, c in coefficients if j > 0)
+    return W1 + 0.0 * a, W2 + 0.0 * b
+
+
+def polynomial_d2W(coefficients, I1, I2):
+    """(∂²W/∂I1², ∂²W/∂I1∂I2, ∂²W/∂I2²) in MPa of the polynomial ``coefficients``."""
+    a, b = _shifted(I1, I2)
+    z = 0.0 * a * b
+    W11 = sum(c * i * (i - 1) * a ** (i - 2) * b**j for i, j, c in coefficients if i > 1)
+    W12 = sum(c * i * j * a ** (i - 1) * b ** (j - 1) for i, j, c in coefficients
+              if i > 0 and j > 0)
+    W22 = sum(c * j * (j - 1) * a**i * b ** (j - 2) for i, j, c in coefficients if j > 1)
+    return W11 + z, W12 + z, W22 + z
 
 
 @dataclass(frozen=True)
@@ -24,25 +65,36 @@ class Material:
     Parameters
     ----------
     name : str
-        Catalogue key.
+        Catalogue key, or the name a material file gives.
     law : str
         ``neo-hookean``, ``mooney-rivlin`` or ``yeoh`` (for reports).
     coefficients : tuple of (i, j, C_ij)
         Exponents and coefficient (MPa). Initial shear modulus μ0 = 2(C10 + C01) must be > 0.
     source : str
-        Where the numbers come from; ``assumed`` marks values not taken from a fit of the material.
+        Where the numbers come from, in words (a datasheet, a paper, the files of a fit).
+    provenance : str
+        The kind of source, one of :data:`PROVENANCES`; ``assumed`` (the default) marks values
+        not taken from a measurement of the material.
     """
 
     name: str
     law: str
     coefficients: tuple[tuple[int, int, float], ...]
     source: str = ""
-    assumed: bool = False
+    provenance: str = "assumed"
 
     def __post_init__(self):
+        if self.provenance not in PROVENANCES:
+            raise ParameterError(f"{self.name}: provenance", self.provenance,
+                                 "one of " + ", ".join(PROVENANCES))
         if self.shear_modulus <= 0:
             raise ParameterError(f"{self.name}: initial shear modulus 2(C10 + C01)",
                                  self.shear_modulus, "> 0 (MPa)")
+
+    @property
+    def assumed(self) -> bool:
+        """True when the constants are an estimate, not from a measurement of the material."""
+        return self.provenance == "assumed"
 
     def _c(self, i: int, j: int) -> float:
         return sum(c for a, b, c in self.coefficients if (a, b) == (i, j))
@@ -54,43 +106,33 @@ class Material:
 
     def energy(self, I1, I2):
         """Strain energy density W in MPa (= mJ/mm³)."""
-        a, b = np.asarray(I1, float) - 3.0, np.asarray(I2, float) - 3.0
-        return sum(c * a**i * b**j for i, j, c in self.coefficients)
+        return polynomial_energy(self.coefficients, I1, I2)
 
     def dW(self, I1, I2):
         """(∂W/∂I1, ∂W/∂I2) in MPa, the factors of eqs. 22–23."""
-        a, b = np.asarray(I1, float) - 3.0, np.asarray(I2, float) - 3.0
-        W1 = sum(c * i * a ** (i - 1) * b**j for i, j, c in self.coefficients if i > 0)
-        W2 = sum(c * j * a**i * b ** (j - 1) for i, j, c in self.coefficients if j > 0)
-        return W1 + 0.0 * a, W2 + 0.0 * b
+        return polynomial_dW(self.coefficients, I1, I2)
 
     def d2W(self, I1, I2):
         """(∂²W/∂I1², ∂²W/∂I1∂I2, ∂²W/∂I2²) in MPa, for consistent tangents."""
-        a, b = np.asarray(I1, float) - 3.0, np.asarray(I2, float) - 3.0
-        z = 0.0 * a * b
-        W11 = sum(c * i * (i - 1) * a ** (i - 2) * b**j for i, j, c in self.coefficients if i > 1)
-        W12 = sum(c * i * j * a ** (i - 1) * b ** (j - 1) for i, j, c in self.coefficients
-                  if i > 0 and j > 0)
-        W22 = sum(c * j * (j - 1) * a**i * b ** (j - 2) for i, j, c in self.coefficients if j > 1)
-        return W11 + z, W12 + z, W22 + z
+        return polynomial_d2W(self.coefficients, I1, I2)
 
 
 def neo_hookean(mu: float, *, name: str = "neo-hookean", source: str = "",
-                assumed: bool = False) -> Material:
+                provenance: str = "assumed") -> Material:
     """Neo-Hookean W = (μ/2)(I1 − 3), μ in MPa."""
-    return Material(name, "neo-hookean", ((1, 0, mu / 2.0),), source, assumed)
+    return Material(name, "neo-hookean", ((1, 0, mu / 2.0),), source, provenance)
 
 
 def mooney_rivlin(c10: float, c01: float, *, name: str = "mooney-rivlin", source: str = "",
-                  assumed: bool = False) -> Material:
+                  provenance: str = "assumed") -> Material:
     """Mooney–Rivlin W = C10(I1 − 3) + C01(I2 − 3), MPa."""
-    return Material(name, "mooney-rivlin", ((1, 0, c10), (0, 1, c01)), source, assumed)
+    return Material(name, "mooney-rivlin", ((1, 0, c10), (0, 1, c01)), source, provenance)
 
 
 def yeoh(c10: float, c20: float, c30: float, *, name: str = "yeoh", source: str = "",
-         assumed: bool = False) -> Material:
+         provenance: str = "assumed") -> Material:
     """Yeoh 3rd order W = C10(I1 − 3) + C20(I1 − 3)² + C30(I1 − 3)³, MPa."""
-    return Material(name, "yeoh", ((1, 0, c10), (2, 0, c20), (3, 0, c30)), source, assumed)
+    return Material(name, "yeoh", ((1, 0, c10), (2, 0, c20), (3, 0, c30)), source, provenance)
 
 
 def _shore_a_to_youngs(shore_a: float) -> float:
@@ -102,27 +144,35 @@ _E_40A = _shore_a_to_youngs(40.0)
 
 CATALOGUE: dict[str, Material] = {
     "tpu60a": neo_hookean(
-        5.0 / 3.0, name="tpu60a",
+        5.0 / 3.0, name="tpu60a", provenance="datasheet",
         source="Recreus Filaflex 60A, linearised datasheet E = 5 MPa at 20 % elongation "
                "(paper sec. 3.1); neo-Hookean with mu = E/3"),
     "elastic50a": yeoh(
-        0.5056, 0.0, 0.002562, name="elastic50a",
+        0.5056, 0.0, 0.002562, name="elastic50a", provenance="literature",
         source="Formlabs Elastic 50A (cured), Yeoh fit of Xavier et al., "
                "Sensors and Actuators A, 2021 (paper ref. [40])"),
     "silicone40a": neo_hookean(
-        _E_40A / 3.0, name="silicone40a", assumed=True,
+        _E_40A / 3.0, name="silicone40a", provenance="assumed",
         source=f"ASSUMED: Formlabs Silicone 40A, Shore 40A -> E = {_E_40A:.2f} MPa by Gent's "
                "relation; neo-Hookean mu = E/3. No published hyperelastic fit used."),
     "as40": neo_hookean(
-        _E_40A / 3.0, name="as40", assumed=True,
+        _E_40A / 3.0, name="as40", provenance="assumed",
         source=f"ASSUMED: Easy Composites AS40 silicone, Shore 40A -> E = {_E_40A:.2f} MPa by "
                "Gent's relation; neo-Hookean mu = E/3. No published hyperelastic fit used."),
 }
 
 
-def material(name: str) -> Material:
-    """The catalogue material ``name`` (case-insensitive), or a one-line error listing them."""
-    key = str(name).strip().lower()
+def material(name) -> Material:
+    """The catalogue material ``name`` (case-insensitive), or the material file ``name`` (a
+    path ending in ``.json``, :func:`.material_file.load_material`); else a one-line error
+    listing the catalogue."""
+    text = str(name).strip()
+    if text.lower().endswith(".json"):
+        from .material_file import load_material
+
+        return load_material(text)
+    key = text.lower()
     if key not in CATALOGUE:
-        raise ParameterError("material", name, "one of " + ", ".join(CATALOGUE))
+        raise ParameterError("material", name, "one of " + ", ".join(CATALOGUE)
+                             + ", or a material file (.json) from spsc fit-material")
     return CATALOGUE[key]
