@@ -41,8 +41,14 @@ def dumps(data, *, indent: int | None = 1) -> str:
 
 
 def write_json(path, data, *, indent: int | None = 1) -> Path:
-    """Write ``data`` as UTF-8 JSON (atomically: a temporary file renamed over ``path``)."""
+    """Write ``data`` as UTF-8 JSON (atomically: a temporary file renamed over ``path``). A
+    path that exists and is not a regular file (``/dev/null``, a pipe) is written into, never
+    renamed over: run as root, the rename replaced the null device with a regular file."""
     path = Path(path)
+    if path.exists() and not path.is_file():
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(dumps(data, indent=indent) + "\n")
+        return path
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(dumps(data, indent=indent) + "\n", encoding="utf-8")
     tmp.replace(path)
