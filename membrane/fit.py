@@ -83,12 +83,13 @@ class LawFit:
     @property
     def aicc(self) -> float:
         """Corrected Akaike information criterion of the weighted residuals (lower: better;
-        it charges each extra constant)."""
+        it charges each extra constant). Residuals below 1e-10 (relative) are round-off: the
+        sum of squares is floored there, so laws that fit exactly rank by their size."""
         n, k = self.points, len(self.params)
         if n - k - 1 <= 0:
             return np.inf
-        return n * np.log(max(2.0 * self.cost, 1e-300) / n) + 2 * k + 2 * k * (k + 1) / (
-            n - k - 1)
+        ss = max(2.0 * self.cost, n * 1e-20)
+        return n * np.log(ss / n) + 2 * k + 2 * k * (k + 1) / (n - k - 1)
 
     def stress(self, test: str, lam) -> np.ndarray:
         return self.law.stress(test, lam, self.params)

@@ -91,10 +91,11 @@ def _text(path: Path) -> tuple[str, str]:
     raw = path.read_bytes()
     if b"\x00" in raw:
         raise ParameterError("data file", str(path), "a text CSV (this is binary)")
+    body = raw[3:] if raw.startswith(b"\xef\xbb\xbf") else raw  # a BOM, whatever follows
     try:
-        text = raw.decode("utf-8-sig")
+        text = body.decode("utf-8")
     except UnicodeDecodeError:
-        text = raw.decode("latin-1")
+        text = body.decode("latin-1")
     return text, hashlib.sha256(raw).hexdigest()
 
 

@@ -37,8 +37,15 @@ def bladder_spec(geom, flange_holes, tube_id):
 
 
 def process_for(material_name: str) -> str:
+    """The printing process of a catalogue material; a material file (.json) carries no
+    process, so the bladder refuses it in one line."""
+    from spsc.core.errors import ParameterError
     from spsc.membrane.materials import material
 
+    if str(material_name).strip().lower().endswith(".json"):
+        raise ParameterError("material", material_name, "a catalogue material ("
+                             + ", ".join(MATERIAL_PROCESS) + "): it picks the printing "
+                             "process and its minimum wall; a material file carries no process")
     return MATERIAL_PROCESS[material(material_name).name]
 
 

@@ -123,7 +123,9 @@ def add_setup_options(parser: argparse.ArgumentParser, *, stroke: float | None,
     plate positions and polytropic index (same names and units in every verb). ``stroke`` or
     ``points`` None: the default is the model's (``defaults_note`` says which)."""
     g = parser.add_argument_group("setup")
-    g.add_argument("--material", default="tpu60a", help="catalogue material (default tpu60a)")
+    g.add_argument("--material", default="tpu60a", metavar="NAME|FILE.json",
+                   help="catalogue material (tpu60a, elastic50a, silicone40a, as40; default "
+                   "tpu60a) or a material file from spsc fit-material")
     add_gas_options(g)
     s = f"default {stroke:g}" if stroke is not None else defaults_note
     g.add_argument("--stroke", type=number("stroke", "mm"), default=stroke, metavar="MM",

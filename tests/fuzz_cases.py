@@ -83,6 +83,21 @@ def fixtures(tmp: Path) -> dict[str, Path]:
         "short.csv": tmp / "short.csv",
         "bad.json": tmp / "bad.json",
         "binary.csv": tmp / "binary.csv",
+        "tension.csv": tmp / "tension.csv",
+        "t-nocol.csv": tmp / "t-nocol.csv",
+        "t-nonmono.csv": tmp / "t-nonmono.csv",
+        "t-negative.csv": tmp / "t-negative.csv",
+        "t-below1.csv": tmp / "t-below1.csv",
+        "t-falling.csv": tmp / "t-falling.csv",
+        "t-unit.csv": tmp / "t-unit.csv",
+        "t-nan.csv": tmp / "t-nan.csv",
+        "t-text.csv": tmp / "t-text.csv",
+        "t-header.csv": tmp / "t-header.csv",
+        "t-test.csv": tmp / "t-test.csv",
+        "ogden.json": tmp / "ogden.json",
+        "soft.json": tmp / "soft.json",
+        "foreign.json": tmp / "foreign.json",
+        "law.json": tmp / "law.json",
     }
     for k in ("dir", "dir.json", "dir.csv", "dir.stl"):
         f[k].mkdir(exist_ok=True)
@@ -98,7 +113,40 @@ def fixtures(tmp: Path) -> dict[str, Path]:
     f["short.csv"].write_text("y_mm,force_N,pressure_kPa\n0,0,40\n", encoding="utf-8")
     f["bad.json"].write_text("{not json", encoding="utf-8")
     f["binary.csv"].write_bytes(b"\x00\xff\xfe\x89PNG\x00\x00")
+    _material_fixtures(f)
     return f
+
+
+#: A valid uniaxial tension test (neo-Hookean, μ = 1 MPa) and broken variants of it.
+_TENSION = "stretch,stress_MPa\n1.0,0.0\n1.25,0.61\n1.5,1.06\n2.0,1.75\n2.5,2.34\n3.0,2.89\n"
+_TENSION_BAD = {
+    "t-nocol.csv": "stretch,force_N\n1,0\n2,1\n3,2\n",
+    "t-nonmono.csv": "stretch,stress_MPa\n1,0\n2,1\n1.5,1.5\n3,2\n",
+    "t-negative.csv": "strain,stress_MPa\n0,0\n-1.5,1\n1,2\n",
+    "t-below1.csv": "stretch,stress_MPa\n0.9,0\n1.5,1\n2,2\n",
+    "t-falling.csv": "stretch,stress_MPa\n1,2\n1.5,1\n2,0.5\n",
+    "t-unit.csv": "stretch,stress_bar\n1,0\n1.5,1\n2,2\n",
+    "t-nan.csv": "stretch,stress_MPa\n1,0\n1.5,nan\n2,2\n",
+    "t-text.csv": "stretch,stress_MPa\n1,0\n1.5,abc\n2,2\n",
+    "t-header.csv": "stretch,stress_MPa\n",
+    "t-test.csv": "# test: torsion\n" + _TENSION,
+}
+
+
+def _material_fixtures(f: dict[str, Path]) -> None:
+    import json
+
+    f["tension.csv"].write_text(_TENSION, encoding="utf-8")
+    for key, text in _TENSION_BAD.items():
+        f[key].write_text(text, encoding="utf-8")
+    base = {"schema": "spsc.material", "schema_version": 1, "name": "m", "law": "neo-hookean",
+            "constants": {"C10": 0.5}}
+    for key, change in (("ogden.json", {"law": "ogden", "constants": {"mu": [1.0],
+                                                                      "alpha": [2.0]}}),
+                        ("soft.json", {"constants": {"C10": -0.5}}),
+                        ("foreign.json", {"schema": "spsc.curve"}),
+                        ("law.json", {"law": "gent"})):
+        f[key].write_text(json.dumps(base | change), encoding="utf-8")
 
 
 _TET_STL = """solid tet
@@ -154,6 +202,7 @@ def _bases(f: dict[str, Path], tmp: Path) -> dict[str, tuple[str, ...]]:
         "fem": ("fem", "--type", "B", "--quiet"),
         "identify": ("identify", str(f["csv"]), "--pressure", "40", "--type", "B"),
         "report": ("report", "--out", out, "--cache", str(tmp / "cache"), "--quiet"),
+        "fit-material": ("fit-material", str(f["tension.csv"]), "--law", "neo-hookean"),
     }
     for model in ("membrane", "simplified", "wall", "fem"):
         bases[f"curve-{model}"] = ("curve", "--model", model, "--type", "B", "--quiet")
@@ -284,6 +333,7 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += [Case(("identify", str(tmp / "missing.csv")) + ident, "missing CSV", "missing.csv"),
               Case(("identify", str(f["csv"]), "--pressure", "40"), "no chamber", None),
               Case(("identify", str(f["csv"]), "--type", "B"), "no pressure", "pressure")]
+    cases += _fit_material_cases(f, b, tmp)
     # report
     cases += [Case(b["report"] + ("--types", v), f"--types {v!r}", "types")
               for v in ("", "E", "AX", "A-B", "1")]
@@ -297,6 +347,55 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += [Case(("membrane", "--type"), "missing value", "type"),
               Case(("nothing",), "unknown verb", None),
               Case((), "no verb", None)]
+    return cases
+
+
+def _fit_material_cases(f, b, tmp) -> list[Case]:
+    """spsc fit-material: bad data files, ranges, laws, tests, units, outputs; material files
+    refused by the models and the bladder."""
+    base, data = b["fit-material"], str(f["tension.csv"])
+    cases = [Case(("fit-material", str(f[k])), k, k) for k in _TENSION_BAD]
+    cases += [Case(("fit-material", str(tmp / "missing.csv")), "missing file", "missing.csv"),
+              Case(("fit-material", str(f["dir.csv"])), "a folder as data", "folder.csv"),
+              Case(("fit-material", str(f["binary.csv"])), "binary data", "binary.csv"),
+              Case(("fit-material", str(f["empty.csv"])), "an empty file", "empty.csv"),
+              Case(("fit-material", data, data), "one file twice", "tension.csv"),
+              Case(("fit-material",), "no data", "DATA.csv"),
+              Case(("fit-material", data, "--list-catalogue"), "catalogue with data",
+                   "list-catalogue")]
+    for v in ("5:6", "abc", "3:2", "0:1.2", "1:1", "nan:3", "1:2:3", "", "-1:2", "1,2"):
+        cases.append(Case(base + ("--range", v), f"--range {v!r}", "range"))
+    cases += [Case(base[:2] + ("--law", v), f"--law {v!r}", "law") for v in ("gent", "")]
+    cases += [Case(base + ("--test", v), f"--test {v!r}", "test") for v in ("torsion", "")]
+    cases += [Case(base + ("--test", "uniaxial", "--test", "planar"), "two tests, one file",
+                   "test"),
+              Case(("fit-material", data, "--test", "planar", "--test", "uniaxial", "--test",
+                    "planar"), "three tests, one file", "test")]
+    cases += [Case(base[:2] + ("--law", "ogden", "--ogden-terms", v), f"--ogden-terms {v}",
+                   "ogden-terms") for v in ("0", "4", "2.5", "abc", "")]
+    cases += [Case(base[:2] + ("--law", "ogden", "--ogden-terms", "3"), "6 points, 6 constants",
+                   "data points")]
+    cases += [Case(base + ("--strain-unit", v), f"--strain-unit {v!r}", "strain-unit")
+              for v in ("mm", "")]
+    cases += [Case(base + ("--stress-unit", v), f"--stress-unit {v!r}", "stress-unit")
+              for v in ("bar", "")]
+    cases += [Case(base + ("--weighting", "log"), "unknown weighting", "weighting"),
+              Case(base + ("--name", " "), "blank name", "name"),
+              Case(base + ("--out", str(tmp / "m.txt")), "material file not .json", "out"),
+              Case(base + ("--png", str(tmp / "fit.xyz")), "unknown image format", "png")]
+    for opt, suffix in (("--json", ".json"), ("--out", ".json"), ("--png", ".png")):
+        cases += _outputs(base, opt, f, tmp, suffix)
+    # material files through the models and the bladder
+    for key, why in (("ogden.json", "an Ogden file in a model"),
+                     ("soft.json", "a negative modulus"), ("foreign.json", "another schema"),
+                     ("law.json", "an unknown law"), ("bad.json", "not JSON"),
+                     ("dir.json", "a folder named .json")):
+        for verb in ("membrane", "curve-wall", "curve-fem"):
+            cases.append(Case(b[verb] + ("--material", str(f[key])), why, "material"))
+    cases += [Case(b["membrane"] + ("--material", str(tmp / "missing.json")),
+                   "missing material file", "material"),
+              Case(b["bladder"] + ("--material", str(f["ogden.json"])),
+                   "a material file for the bladder", "material")]
     return cases
 
 

@@ -79,6 +79,8 @@ KEY_OPTIONS = {
     "identify": ["--pressure", "--bladder-volume", "--reservoir", "--polytropic-n",
                  "--predict-pressures", "--json"],
     "report": ["--quick", "--out", "--cache", "--no-fem", "--types", "--quiet"],
+    "fit-material": ["--test", "--law", "--ogden-terms", "--range", "--strain-unit",
+                     "--stress-unit", "--json", "--png", "--out", "--list-catalogue"],
 }
 
 

@@ -52,6 +52,7 @@ WORK = {
     "spsc.fem.run": ["run_chamber"],
     "spsc.fem.wall": ["wall_curve"],
     "spsc.pipeline.runner": ["run_all"],
+    "spsc.membrane.fit": ["fit_law", "fit_laws"],
 }
 
 
@@ -93,7 +94,8 @@ def _check(case: Case, rc: int, out: str, err: str) -> None:
     assert len(lines) == 1, (case.why, err)
     assert "Traceback" not in err and "usage:" not in err, (case.why, err)
     verb = f"spsc {case.verb}" if case.verb in {"bladder", "fingertip", "check", "curve",
-                                                "membrane", "fem", "identify", "report"} else "spsc"
+                                                "membrane", "fem", "identify", "report",
+                                                "fit-material"} else "spsc"
     assert lines[0].startswith(f"{verb}: error: "), (case.why, lines[0])
     if case.names:
         message = lines[0].split(": error: ", 1)[1]
@@ -104,7 +106,7 @@ def _check(case: Case, rc: int, out: str, err: str) -> None:
 def test_the_table_covers_every_verb(tmp_cases):
     cases = invalid_cases(tmp_cases)
     assert {c.verb for c in cases} >= {"bladder", "fingertip", "check", "curve", "membrane",
-                                       "fem", "identify", "report"}
+                                       "fem", "identify", "report", "fit-material"}
     assert len(cases) >= 300
 
 
