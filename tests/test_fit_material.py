@@ -136,6 +136,30 @@ def test_noisy_uniaxial_and_equibiaxial_fit_is_within_1_percent_of_the_truth(nam
     assert np.median(worst) < 0.01
 
 
+@pytest.mark.parametrize("name", ["mooney-rivlin", "ogden-2"])
+def test_standard_errors_match_scipy_curve_fit(name):
+    """Constants and standard errors against an independent implementation: scipy's
+    curve_fit with the same weights (sigma = the relative scales, absolute_sigma=False, so
+    its covariance is s² (JᵀJ)⁻¹ with s² on n − p degrees of freedom)."""
+    from scipy.optimize import curve_fit
+
+    fl, params = TRUE[name]
+    tests = synthetic(fl, params, noise=0.01, seed=3)
+    f = fit_law(fl, tests)
+    x = np.concatenate([d.stretch for d in tests])
+    kind = np.concatenate([[k] * d.points for k, d in enumerate(tests)])
+    y = np.concatenate([d.stress_MPa for d in tests])
+    sigma = np.concatenate([np.maximum(np.abs(d.stress_MPa), 0.01 * np.abs(d.stress_MPa).max())
+                            for d in tests])
+
+    def model(_, *p):
+        return np.concatenate([fl.stress(d.test, x[kind == k], p) for k, d in enumerate(tests)])
+
+    popt, pcov = curve_fit(model, x, y, p0=f.params, sigma=sigma, absolute_sigma=False)
+    np.testing.assert_allclose(f.params, popt, rtol=1e-6)
+    np.testing.assert_allclose(f.stderr, np.sqrt(np.diag(pcov)), rtol=1e-4)
+
+
 def test_fewer_points_than_constants_is_refused():
     fl, params = TRUE["yeoh"]
     with pytest.raises(ParameterError, match="more than its 3 constants"):

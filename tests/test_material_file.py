@@ -131,3 +131,19 @@ def test_polynomial_energy_is_shared():
     np.testing.assert_array_equal(m.energy(I1, I2), polynomial_energy(m.coefficients, I1, I2))
     np.testing.assert_array_equal(m.dW(I1, I2), polynomial_dW(m.coefficients, I1, I2))
     np.testing.assert_array_equal(m.d2W(I1, I2), polynomial_d2W(m.coefficients, I1, I2))
+
+
+def test_the_readme_catalogue_table_is_the_catalogue():
+    """README's table (name, law, C10, μ0, provenance) says what the code holds."""
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
+    for key, m in CATALOGUE.items():
+        row = re.search(rf"^\| {key} \| ([^|]+) \| C10 = ([0-9.]+)[^|]* \| ([0-9.]+) \| (\S+) \|",
+                        text, re.M)
+        assert row, key
+        law, c10, mu0, prov = row.groups()
+        assert law.strip().lower() == m.law and prov == m.provenance
+        assert float(c10) == pytest.approx(m.coefficients[0][2], rel=5e-4)
+        assert float(mu0) == pytest.approx(m.shear_modulus, rel=5e-3)
