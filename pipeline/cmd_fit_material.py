@@ -9,9 +9,9 @@ statistics and Drucker stability, a figure, and a material file every model take
     spsc fit-material --list-catalogue
 
 Several files (or a file with a ``test`` column) fit jointly: one set of constants, every test
-in the residual. Exit 0; 1 when the law written is not Drucker-stable over its own data or the
-optimiser did not converge (everything is still written, the reason on stderr); 2 on invalid
-input (one line on stderr).
+in the residual. Exit 0; 1 when the law written is not Drucker-stable over its own data, has no
+positive initial shear modulus or did not converge, or no law could be written (what was found
+is still written, the reason on stderr); 2 on invalid input (one line on stderr).
 """
 
 from __future__ import annotations
@@ -189,10 +189,18 @@ def _verdict(fits, chosen) -> int:
             warn(VERB, f"{name}: {note}")
         if not f.drucker.stable:
             warn(VERB, f"{name}: {f.drucker.describe()}")
-    if chosen is not None and not chosen.converged:
+    if chosen is None:
+        print(f"spsc {VERB}: no material file: no invariant-based law with a positive initial "
+              "shear modulus could be fitted", file=sys.stderr)
+        return 1
+    if chosen.shear_modulus <= 0:
+        print(f"spsc {VERB}: unusable: {chosen.name} has initial shear modulus "
+              f"{chosen.shear_modulus:.4g} MPa <= 0", file=sys.stderr)
+        status = 1
+    if not chosen.converged:
         print(f"spsc {VERB}: not converged: {chosen.name}: {chosen.message}", file=sys.stderr)
         status = 1
-    if chosen is not None and not chosen.stable_over_data:
+    if not chosen.stable_over_data:
         print(f"spsc {VERB}: unstable: {chosen.name} is not Drucker-stable over its own data "
               f"({chosen.drucker.describe()})", file=sys.stderr)
         status = 1

@@ -26,7 +26,7 @@ def _panel(ax, test, fits, tests, lam_max, chosen) -> None:
             continue
         with np.errstate(over="ignore", invalid="ignore"):
             P = f.stress(test, lam)
-        tops.append(float(np.nanmax(P)) if np.any(np.isfinite(P)) else 0.0)
+        tops.append(float(np.max(P[np.isfinite(P)])) if np.any(np.isfinite(P)) else 0.0)
         label = name + (" → material file" if name == chosen else "")
         if data and test in f.r2:
             label += f" (R² {f.r2[test]:.3f})"
@@ -35,7 +35,8 @@ def _panel(ax, test, fits, tests, lam_max, chosen) -> None:
         ax.plot(lam, P, "-" if data else "--", color=f"C{k}", lw=2.0 if name == chosen else 1.2,
                 label=label)
     top = 1.25 * ymax if data else 1.25 * float(np.median(tops)) if tops else 1.0
-    ax.set_ylim(min(0.0, -0.05 * top), top if top > 0 else 1.0)
+    top = top if np.isfinite(top) and top > 0 else 1.0
+    ax.set_ylim(-0.05 * top, top)
     ax.set_xlim(1.0, hi)
     ax.set_xlabel("stretch λ")
     ax.set_ylabel("nominal stress (MPa)")

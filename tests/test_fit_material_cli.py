@@ -45,7 +45,7 @@ def _nh_rows(test="uniaxial", mu=5.0 / 3.0, fmt=lambda lam, P: f"{lam!r},{P!r}")
 def test_columns_and_units_from_the_names(tmp_path, header, convert, unit_note):
     P = NH.stress("uniaxial", LAM, [0.8])
     rows = "\n".join(f"{float(a)!r},{float(b)!r}" for a, b in zip(*convert(LAM, P)))
-    path = _csv(tmp_path, "a.csv", f"{header}\n{rows}\n".replace(",", ";", 0))
+    path = _csv(tmp_path, "a.csv", f"{header}\n{rows}\n")
     (d,), (note,) = read_tests([path])
     np.testing.assert_allclose(d.stretch, LAM, rtol=1e-14)
     np.testing.assert_allclose(d.stress_MPa, P, rtol=1e-14)
@@ -65,8 +65,9 @@ def test_bom_latin1_comments_semicolons_and_decimal_commas(tmp_path):
 
 
 def test_a_test_column_holds_several_tests(tmp_path):
-    rows = "".join(f"{t},{float(a)!r},{float(b)!r}\n" for t in ("pure shear", "uniaxial") for a, b in
-                   zip(LAM, NH.stress("planar" if t == "pure shear" else t, LAM, [0.5])))
+    rows = "".join(f"{t},{float(a)!r},{float(b)!r}\n" for t in ("pure shear", "uniaxial")
+                   for a, b in zip(LAM, NH.stress("planar" if t == "pure shear" else t, LAM,
+                                                  [0.5])))
     tests, (note,) = read_tests([_csv(tmp_path, "c.csv", "test,stretch,stress_MPa\n" + rows)])
     assert [d.test for d in tests] == ["uniaxial", "planar"] and "'test' column" in note
 
@@ -231,3 +232,15 @@ def test_one_line_errors(tmp_path, capsys, argv, names):
             "{data}": data}
     rc, _, err = _run([fill.get(a, a) for a in argv], capsys)
     assert rc == 2 and len(err.strip().splitlines()) == 1 and names in err, err
+
+
+def test_one_test_plots_predictions_and_ogden_file_is_a_record(tmp_path, capsys):
+    """Uniaxial data only: the figure still has the equibiaxial and planar panels (the laws'
+    predictions); --law ogden writes its record and says a model will not take it."""
+    rc, out, _ = _run(["fit-material", TRELOAR[0], "--range", ":5", "--png",
+                       tmp_path / "u.png", "--law", "ogden", "--out", tmp_path / "og.json"],
+                      capsys)
+    assert rc == 0 and (tmp_path / "u.png").stat().st_size > 10_000
+    assert "a record of the fit: the models take" in out
+    rc, _, err = _run(["membrane", "--type", "B", "--material", tmp_path / "og.json"], capsys)
+    assert rc == 2 and "--law all" in err
