@@ -115,8 +115,9 @@ class LawFit:
 def _scales(tests, weighting: str) -> list[np.ndarray]:
     if weighting == "absolute":
         return [np.ones(d.points) for d in tests]
-    return [np.maximum(np.abs(d.stress_MPa), RELATIVE_FLOOR * np.max(np.abs(d.stress_MPa)))
-            for d in tests]
+    floors = [RELATIVE_FLOOR * np.max(np.abs(d.stress_MPa)) for d in tests]
+    return [np.maximum(np.abs(d.stress_MPa), f if f > 0 else 1.0)  # a test of zeros: 1 MPa
+            for d, f in zip(tests, floors)]
 
 
 def _linear_solver(tests, scales):
@@ -149,10 +150,8 @@ def _optimise(law, tests, scales):
     for x0 in law.starts(_linear_solver(tests, scales)):
         x0 = np.clip(np.nan_to_num(x0), lo + 1e-12 * np.isfinite(lo),
                      hi - 1e-12 * np.isfinite(hi))
-        r = solve(x0, SCOUT_EVALUATIONS)
-        if np.all(np.isfinite(r.fun)):
-            tried.append(r)
-    best = min(tried, key=lambda r: r.cost)
+        tried.append(solve(x0, SCOUT_EVALUATIONS))
+    best = min(tried, key=lambda r: r.cost if np.isfinite(r.cost) else np.inf)
     return best if best.status > 0 else solve(best.x, MAX_EVALUATIONS)
 
 
