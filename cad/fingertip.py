@@ -173,7 +173,7 @@ def _place(shape: cq.Shape, origin: np.ndarray, xdir: np.ndarray, zdir: np.ndarr
 
 def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
     """Build the monolithic fingertip solid, its cavity and the design facts for the gate."""
-    P, D, pk, mt, pt = spec.pulp, spec.distal, spec.pocket, spec.mount, spec.port
+    P, D, mt, pt = spec.pulp, spec.distal, spec.mount, spec.port
     a = math.radians(spec.angle)
     W = spec.width
     n_d = np.array([0.0, math.sin(a), math.cos(a)])       # distal chamber axis
@@ -203,32 +203,8 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
     dist_out = place_distal(profile_body(D.outer_profile_points(PROFILE_POINTS), D.l))
     dist_cav = place_distal(profile_body(D.profile_points(PROFILE_POINTS)[0], D.l))
 
-    # the channel: a circle swept along a spline from inside the pulp cavity's front cap, under
-    # the valley between the chambers, into the distal cavity (one connected cavity)
-    rc = spec.channel_width / 2
-    dip = max(P.t0, D.t0) + rc + 1.0
-    p1 = np.array([0.0, P.l / 2, 0.5])
-    p2 = A + np.array([0.0, 0.0, -dip])
-    p3 = C + n_d * 0.5
-    t1 = np.array([0.0, 0.6, -1.0]) / math.hypot(0.6, 1.0)
-    path = cq.Workplane().spline([tuple(p1), tuple(p2), tuple(p3)],
-                                 tangents=[tuple(t1), tuple(n_d)], includeCurrent=False)
-    start = cq.Plane(origin=cq.Vector(*p1), xDir=cq.Vector(1, 0, 0), normal=cq.Vector(*t1))
-    channel = cq.Workplane(start).circle(rc).sweep(path, transition="round").val()
-
-    # pockets: three along the pulp's axis, two across the distal chamber
-    adds, cuts, pockets = [], [], []
-    for p, n in _pocket_frames(P, [-spec.pocket_pitch, 0.0, spec.pocket_pitch]):
-        pad, cut, info = _pad_and_cuts(p, n, np.array([1.0, 0.0, 0.0]), spec, P)
-        adds.append(pad), cuts.append(cut), pockets.append(("pulp",) + info)
-    half = spec.pocket_pitch / 2
-    for p, n in _pocket_frames(D, [-half, half]):
-        # distal leads run sideways (local ±y = global ±x), away from the valley
-        pad, cut, info = _pad_and_cuts(p, n, np.array([0.0, math.copysign(1.0, p[1]), 0.0]),
-                                       spec, D)
-        adds.append(place_distal(pad)), cuts.append(place_distal(cut))
-        floor, normal, r = info
-        pockets.append(("distal", rot_d @ floor + C, rot_d @ normal, r))
+    channel = _channel(spec, A, C, n_d)
+    adds, cuts, pockets = _pockets(spec, C, rot_d, place_distal)
 
     # port along −y at the rear face; bore rises into the pulp cavity at the rear cap centre
     z_axis = -b + mt.slot_depth + pt.barb_diameter / 2 + P.t0
@@ -241,17 +217,7 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
     bore_v = cq.Solid.makeCylinder(pt.bore / 2, -z_axis + 0.5, cq.Vector(0, y_riser, z_axis),
                                    cq.Vector(0, 0, 1))
 
-    # mount: slot under the rear block for the gripper finger, screw holes across it (x)
-    mount_cuts = []
-    if mt.slot_width > 0 and mt.slot_depth > 0:
-        mount_cuts.append(cq.Solid.makeBox(mt.slot_width, mt.length + 1.0, mt.slot_depth + 1.0,
-                                           cq.Vector(-mt.slot_width / 2, y_rear - 1.0, -b - 1.0)))
-    ys = {0: [], 1: [0.5], 2: [0.3, 0.75]}[mt.screws]
-    for f in ys:
-        mount_cuts.append(cq.Solid.makeCylinder(
-            mt.screw_diameter / 2, W + 2.0,
-            cq.Vector(-W / 2 - 1.0, y_rear + f * mt.length, -b + mt.slot_depth / 2),
-            cq.Vector(1, 0, 0)))
+    mount_cuts = _mount_cuts(mt, W, y_rear, b)
 
     for part in (pulp_cav, dist_cav, channel):
         if part.Volume() <= 0 or not part.isValid():
@@ -262,7 +228,66 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
     if not solid.isValid():
         raise RuntimeError("OCCT produced an invalid fingertip solid")
 
-    design = {
+    design = _design(spec, cavity, pockets, y_riser, z_axis)
+    return Fingertip(spec, solid, cavity, design)
+
+
+def _channel(spec, A, C, n_d):
+    """The channel: a circle swept along a spline from inside the pulp cavity's front cap,
+    under the valley between the chambers (A, the front edge of the top face), into the distal
+    cavity (base centre C, axis n_d): one connected cavity."""
+    P, D = spec.pulp, spec.distal
+    rc = spec.channel_width / 2
+    dip = max(P.t0, D.t0) + rc + 1.0
+    p1 = np.array([0.0, P.l / 2, 0.5])
+    p2 = A + np.array([0.0, 0.0, -dip])
+    p3 = C + n_d * 0.5
+    t1 = np.array([0.0, 0.6, -1.0]) / math.hypot(0.6, 1.0)
+    path = cq.Workplane().spline([tuple(p1), tuple(p2), tuple(p3)],
+                                 tangents=[tuple(t1), tuple(n_d)], includeCurrent=False)
+    start = cq.Plane(origin=cq.Vector(*p1), xDir=cq.Vector(1, 0, 0), normal=cq.Vector(*t1))
+    return cq.Workplane(start).circle(rc).sweep(path, transition="round").val()
+
+
+def _pockets(spec, C, rot_d, place_distal):
+    """The FSR pockets: three along the pulp's axis, two across the distal chamber. (pads to
+    add, cuts, [(site, floor centre, normal, radius)])."""
+    P, D = spec.pulp, spec.distal
+    adds, cuts, pockets = [], [], []
+    for p, n in _pocket_frames(P, [-spec.pocket_pitch, 0.0, spec.pocket_pitch]):
+        pad, cut, info = _pad_and_cuts(p, n, np.array([1.0, 0.0, 0.0]), spec, P)
+        adds.append(pad), cuts.append(cut), pockets.append(("pulp",) + info)
+    half = spec.pocket_pitch / 2
+    for p, n in _pocket_frames(D, [-half, half]):
+        # distal leads run sideways (local ±y = global ±x), away from the valley
+        pad, cut, info = _pad_and_cuts(p, n, np.array([0.0, math.copysign(1.0, p[1]), 0.0]),
+                                       spec, D)
+        adds.append(place_distal(pad)), cuts.append(place_distal(cut))
+        floor, normal, r = info
+        pockets.append(("distal", rot_d @ floor + C, rot_d @ normal, r))
+    return adds, cuts, pockets
+
+
+def _mount_cuts(mt, W, y_rear, b):
+    """The mount: a slot under the rear block for the gripper finger, screw holes across it
+    (x)."""
+    mount_cuts = []
+    if mt.slot_width > 0 and mt.slot_depth > 0:
+        mount_cuts.append(cq.Solid.makeBox(mt.slot_width, mt.length + 1.0, mt.slot_depth + 1.0,
+                                           cq.Vector(-mt.slot_width / 2, y_rear - 1.0, -b - 1.0)))
+    ys = {0: [], 1: [0.5], 2: [0.3, 0.75]}[mt.screws]
+    for f in ys:
+        mount_cuts.append(cq.Solid.makeCylinder(
+            mt.screw_diameter / 2, W + 2.0,
+            cq.Vector(-W / 2 - 1.0, y_rear + f * mt.length, -b + mt.slot_depth / 2),
+            cq.Vector(1, 0, 0)))
+    return mount_cuts
+
+
+def _design(spec, cavity, pockets, y_riser, z_axis) -> dict:
+    """The design facts the printability gate checks the fingertip against."""
+    P, D, pk, mt, pt = spec.pulp, spec.distal, spec.pocket, spec.mount, spec.port
+    return {
         "kind": "fingertip",
         "cavity_volume_mm3": float(cavity.Volume()),
         "cavity_volume_source": "exact B-rep of the fused cavity (chambers + channel)",
@@ -279,7 +304,6 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
                      "depth": pk.depth} for site, fl, nv, r in pockets],
         "print": {"build_direction": [0.0, 0.0, 1.0], "plane": "i-k (x-y), base down"},
     }
-    return Fingertip(spec, solid, cavity, design)
 
 
 def _first_hit(tri: np.ndarray, origin: np.ndarray, direction: np.ndarray) -> float:
