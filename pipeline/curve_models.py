@@ -13,7 +13,7 @@ from typing import Callable
 
 from .options import integer, number
 
-__all__ = ["MODELS", "Model", "Job", "Computed", "mesh_options"]
+__all__ = ["MODELS", "Model", "Job", "Computed", "mesh_options", "wall_size_check"]
 
 
 @dataclass(frozen=True)
@@ -108,8 +108,8 @@ def _simplified(job: Job) -> Computed:
 def mesh_options(g) -> None:
     """The discretisation of the solid models (fem, wall), each with its own defaults."""
     g.add_argument("--mesh-size", type=number("mesh size", "mm"), default=None, metavar="MM",
-                   help="element edge along the wall, mm (default: fem 1.0, wall 0.5 on a dome, 1.0 "
-                   "on a stadium)")
+                   help="element edge along the wall, mm (default: fem 1.0, wall 0.5 on a dome, "
+                   "1.0 on a stadium)")
     g.add_argument("--layers", type=integer("layers"), default=None, metavar="N",
                    help="quadratic elements through the wall thickness (default: fem 2, "
                    "wall 2)")
@@ -140,17 +140,27 @@ def _fem_check(job: Job) -> None:
 
 
 def _wall_check(job: Job) -> None:
+    wall_size_check(job.verb, job.geometry, job.args.mesh_size, job.args.layers,
+                    job.points - 1 + (2 if job.pressure_kPa > 0 else 0),
+                    force=bool(job.args.force), quiet=job.quiet, points=job.points)
+
+
+def wall_size_check(verb: str, geometry, mesh_size, layers, steps: int, *, force: bool,
+                    quiet: bool, points: int) -> None:
+    """The wall model's discretisation checked and its size estimated before any work
+    (ParameterError beyond the limits unless ``force``; the estimate on stderr unless
+    ``quiet``). ``mesh_size`` None: the model's default for the chamber."""
     from spsc.fem.mesh import check_mesh_size
     from spsc.fem.wall_model import WallSettings
 
-    from .resources import WALL_MAX_UNKNOWNS, wall_counts
+    from .resources import WALL_MAX_UNKNOWNS, check_size, wall_counts
 
-    given = job.args.mesh_size
-    size = given if given is not None else WallSettings().profile_size(job.geometry.l > 0)
-    size, layers = check_mesh_size(job.geometry, size, job.args.layers)
-    counts = wall_counts(job.geometry, size, layers, WallSettings().sweep_size_mm)
-    steps = job.points - 1 + (2 if job.pressure_kPa > 0 else 0)
-    _check_solid(job, WALL_MAX_UNKNOWNS, counts, steps, None)
+    size = mesh_size if mesh_size is not None else \
+        WallSettings().profile_size(geometry.l > 0)
+    size, layers = check_mesh_size(geometry, size, layers)
+    counts = wall_counts(geometry, size, layers, WallSettings().sweep_size_mm)
+    check_size(verb, counts, steps, limit=WALL_MAX_UNKNOWNS, gib=None, force=force,
+               quiet=quiet, mesh_size=size, points=points)
 
 
 def _fem_options(g) -> None:
