@@ -112,16 +112,16 @@ def calibrate(bench: BenchData, geometry: SPSCGeometry, material: Material, *,
     F_b = np.asarray(bench.force_N, float)
     stroke = float(y[-1])
     settings = settings or WallSettings()
-    runs = []
+    runs: dict[float, Curve] = {}
 
     def model(s: float) -> Curve:
-        c = wall_curve(geometry, scaled(material, s), pressure_kPa=pressure_kPa,
-                       reservoir_mm3=reservoir_mm3, stroke_mm=stroke, points=points,
-                       polytropic_n=polytropic_n, settings=settings)
-        runs.append(c)
-        if progress is not None:
-            progress()
-        return c
+        if s not in runs:  # the optimiser's last point is the answer: solve it once
+            runs[s] = wall_curve(geometry, scaled(material, s), pressure_kPa=pressure_kPa,
+                                 reservoir_mm3=reservoir_mm3, stroke_mm=stroke, points=points,
+                                 polytropic_n=polytropic_n, settings=settings)
+            if progress is not None:
+                progress()
+        return runs[s]
 
     use_p = pressure_kPa > 0 and bench.pressure_kPa is not None
     dP_b = np.asarray(bench.pressure_kPa, float) - pressure_kPa if use_p else None
@@ -144,7 +144,7 @@ def calibrate(bench: BenchData, geometry: SPSCGeometry, material: Material, *,
     else:
         fit = least_squares(lambda q: relative(*residuals(model(math.exp(q[0])))), [0.0],
                             bounds=([math.log(SCALE_RANGE[0])], [math.log(SCALE_RANGE[1])]),
-                            diff_step=1e-3, x_scale=[0.1], xtol=1e-6)
+                            diff_step=1e-3, x_scale=[1.0], xtol=1e-3, ftol=1e-6)
         s = float(math.exp(fit.x[0]))
     if not SCALE_RANGE[0] <= s <= SCALE_RANGE[1] * (1 + 1e-9):
         raise ParameterError("calibrated stiffness factor", round(s, 6),
