@@ -105,12 +105,54 @@ def run(args) -> int:
         bar.update(len(preds))
     finally:
         bar.close()
+    idents = _identification(args, bench, geom, setups)
     _summary(args, cal, mat, preds)
+    if idents:
+        _compare(preds, idents, min(float(bench.y_mm[-1]), args.predict_stroke))
     if args.json:
-        _write_json(args.json, cal, mat, preds)
+        _write_json(args.json, cal, mat, preds, idents)
     if args.png:
         _plot(args.png, bench, cal, preds, args.pressure)
     return 0
+
+
+def _identification(args, bench, geom, setups) -> list:
+    """The paper's identification (eqs. 39–40) on the same closed-chamber bench test, and its
+    lumped-model predictions (eqs. 6–7) at the same setups; [] for an open chamber's test. V_b,i
+    is the nominal cavity; without an elastic_force_N column F_el is taken as 0 (the paper
+    measures it separately), so the identified area then carries the wall's force."""
+    if args.pressure == 0 or bench.pressure_kPa is None or not setups:
+        return []
+    from spsc.membrane.identify import identify, predict
+
+    vb = geom.cavity_volume()
+    ident = identify(bench, pressure_kPa=args.pressure, bladder_volume_mm3=vb,
+                     reservoir_mm3=args.reservoir, polytropic_n=args.polytropic_n,
+                     geometry=geom.as_dict())
+    return [predict(ident, pressure_kPa=p, reservoir_mm3=r, bladder_volume_mm3=vb,
+                    polytropic_n=args.polytropic_n, elastic_force_N=bench.elastic_force_N)
+            for p, r in setups]
+
+
+def _slope(curve, values, y_end: float) -> float:
+    """(v(y_end) − v(0)) / y_end over the converged points (N/mm or kPa/mm)."""
+    ok = curve.converged & np.isfinite(values)
+    if not ok.any() or curve.y_mm[ok][-1] < y_end - 1e-9:
+        return float("nan")
+    v = np.interp([0.0, y_end], curve.y_mm[ok], values[ok])
+    return float((v[1] - v[0]) / y_end)
+
+
+def _compare(preds, idents, y_end: float) -> None:
+    """Mean stiffness and sensitivity over [0, y_end] mm of both predictions, per setup."""
+    print(f"calibrated wall model vs the paper's identification (eqs. 39-40) on the same test, "
+          f"mean slopes over 0-{y_end:.3g} mm:")
+    print(f"{'p_i_kPa':>8} {'V_r_mm3':>9} {'k_wall':>8} {'k_ident':>8} {'S_wall':>8} "
+          f"{'S_ident':>8}")
+    for w, i in zip(preds, idents):
+        print(f"{w.setup['p_i_kPa']:8.4g} {w.setup['reservoir_mm3']:9.6g} "
+              f"{_slope(w, w.force_N, y_end):8.4g} {_slope(i, i.force_N, y_end):8.4g} "
+              f"{_slope(w, w.pressure_kPa, y_end):8.4g} {_slope(i, i.pressure_kPa, y_end):8.4g}")
 
 
 def _summary(args, cal, mat, preds) -> None:
@@ -132,7 +174,7 @@ def _summary(args, cal, mat, preds) -> None:
               f"{c.pressure_kPa[-1]:10.3f} {c.mean_stiffness():8.4g} {c.mean_sensitivity():9.4g}")
 
 
-def _write_json(path, cal, mat, preds) -> None:
+def _write_json(path, cal, mat, preds, idents) -> None:
     from spsc.core.jsonio import write_json
 
     m = cal.material
@@ -148,7 +190,8 @@ def _write_json(path, cal, mat, preds) -> None:
                      "pressure_kPa": None if cal.pressure_residual_kPa is None
                      else cal.pressure_residual_kPa.tolist()},
         "curve": cal.curve.to_dict(),
-        "predictions": [c.to_dict() for c in preds]})
+        "predictions": [c.to_dict() for c in preds],
+        "identification_predictions": [c.to_dict() for c in idents]})
 
 
 def _plot(path, bench, cal, preds, p_i) -> None:

@@ -103,3 +103,29 @@ def test_cli_bad_input_is_one_line_exit_2(tmp_path, capsys, argv, message):
     rc = main(["calibrate", "--type", "B", "--quiet"] + [files.get(a, a) for a in argv])
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1 and message in err[0], err
+
+
+def test_identification_is_compared_and_agrees_at_the_tests_own_setup(tmp_path, capsys):
+    # the paper's identification reproduces its own bench test by construction (eqs. 39-40 then
+    # 6-7 at the same setup), as does the calibrated wall model: the two predictions meet there
+    b = _bench(1.2, 40.0, points=9, stroke=2.0)
+    csv = tmp_path / "p40.csv"
+    csv.write_text("y_mm,force_N,pressure_kPa\n" + "".join(
+        f"{y},{f},{p}\n" for y, f, p in zip(b.y_mm, b.force_N, b.pressure_kPa)))
+    out = tmp_path / "cal.json"
+    rc = main(["calibrate", str(csv), "--type", "B", "--l", "0", "--pressure", "40",
+               "--mesh-size", "1", "--layers", "1", "--predict-pressures", "10,40",
+               "--predict-reservoirs", "0", "--predict-stroke", "2", "--json", str(out),
+               "--quiet"])
+    assert rc == 0
+    data = json.loads(out.read_text())
+    wall = {c["setup"]["p_i_kPa"]: c for c in data["predictions"]}
+    ident = {c["setup"]["p_i_kPa"]: c for c in data["identification_predictions"]}
+    assert set(wall) == set(ident) == {10, 40}
+    # at 40 kPa both end at the bench's force and pressure: the identification exactly, the
+    # calibrated wall model to its fit (a 13-point model interpolated onto 9 bench points:
+    # measured 0.3 % in force at the end, 1e-5 in pressure)
+    for c, rel in ((ident[40], 1e-9), (wall[40], 1e-2)):
+        assert c["curve"]["force_N"][-1] == pytest.approx(b.force_N[-1], rel=rel)
+        assert c["curve"]["pressure_kPa"][-1] == pytest.approx(b.pressure_kPa[-1], rel=rel / 10)
+    assert "paper's identification" in capsys.readouterr().out
