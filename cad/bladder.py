@@ -11,83 +11,17 @@ without supports; its bore runs through the plate and rises into the cavity at t
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import cadquery as cq
 import numpy as np
 
 from .chamber import PROFILE_POINTS, cavity_solid, outer_solid
-from spsc.core.errors import ParameterError, require
+from .specs import BladderSpec, FlangeSpec, PortSpec
 from .geometry import SPSCGeometry
 
 __all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "Bladder", "build_bladder", "nipple",
            "widest_outer_radius", "flange_hole_centres"]
-
-
-@dataclass(frozen=True)
-class PortSpec:
-    """Barbed nipple for a push-on tube (mm).
-
-    ``tube_id`` is the tube's inner diameter: the shaft has that diameter and the barbs
-    ``barb_ratio`` times it. ``bore`` is the air channel diameter.
-    """
-
-    tube_id: float = 3.0
-    bore: float = 1.4
-    length: float = 9.0
-    barbs: int = 2
-    barb_ratio: float = 1.25
-
-    def __post_init__(self):
-        require("port.tube_id", self.tube_id, gt=0, unit="mm")
-        require("port.bore", self.bore, gt=0, lt=self.tube_id, unit="mm, < tube_id")
-        require("port.length", self.length, gt=0, unit="mm")
-        require("port.barb_ratio", self.barb_ratio, ge=1.0, le=2.0)
-        if int(self.barbs) != self.barbs or self.barbs < 0:
-            raise ParameterError("port.barbs", self.barbs, "an integer >= 0")
-
-    @property
-    def barb_diameter(self) -> float:
-        return self.barb_ratio * self.tube_id
-
-
-@dataclass(frozen=True)
-class FlangeSpec:
-    """Floor plate and clamping flange (mm): thickness, width beyond the widest wall, holes."""
-
-    thickness: float = 3.5
-    width: float = 6.0
-    holes: int = 4
-    hole_diameter: float = 3.4  # M3 clearance
-
-    def __post_init__(self):
-        require("flange.thickness", self.thickness, gt=0, unit="mm")
-        require("flange.width", self.width, gt=0, unit="mm")
-        require("flange.hole_diameter", self.hole_diameter, gt=0, lt=self.width,
-                unit="mm, < flange.width")
-        if self.holes not in (0, 2, 4):
-            raise ParameterError("flange.holes", self.holes, "0, 2 or 4")
-
-
-@dataclass(frozen=True)
-class BladderSpec:
-    geometry: SPSCGeometry
-    flange: FlangeSpec = field(default_factory=FlangeSpec)
-    port: PortSpec = field(default_factory=PortSpec)
-
-    def __post_init__(self):
-        f, p = self.flange, self.port
-        if self.port_axis_z + p.bore / 2 >= 0:
-            widest = 2 * (f.thickness - p.bore / 2) / p.barb_ratio
-            raise ParameterError("port.tube_id", p.tube_id,
-                                 f"< {widest:.4g} mm for flange.thickness = {f.thickness:g} mm "
-                                 "(the barbs rest on the build plane and the bore must pass "
-                                 "under the cavity floor)")
-
-    @property
-    def port_axis_z(self) -> float:
-        """Height of the port axis: the barbs touch the build plane z = −thickness."""
-        return -self.flange.thickness + self.port.barb_diameter / 2
 
 
 @dataclass(frozen=True)

@@ -259,7 +259,7 @@ def _min_wall(cav, design, limit, proc) -> Check:
     if "reason" in cav:
         return Check("min_wall", False if cav.get("expected") else None, None, lim,
                      f"min wall {cav['reason']}")
-    v, f, best = cav["v"], cav["f"], None
+    v, f = cav["v"], cav["f"]
     pts_all, d_all = [], []
     for i, p in enumerate(cav["cavities"]):
         pts = mt.sample_surface(v, f[p], SAMPLE_SPACING_MM)

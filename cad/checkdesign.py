@@ -61,34 +61,9 @@ def parse_design(design: dict | None) -> dict:
             raise ParameterError("genus", g, "an integer >= 0")
         out["genus"] = g
     if "bbox_mm" in design:
-        bb = design["bbox_mm"]
-        if np.ndim(bb) == 2:  # [[xmin, ymin, zmin], [xmax, ymax, zmax]]
-            lo, hi = _vec("bbox_mm", bb, n=6)[:3], _vec("bbox_mm", bb, n=6)[3:]
-            if not all(b > a for a, b in zip(lo, hi)):
-                raise ParameterError("bbox_mm", bb, "[[xmin, ymin, zmin], [xmax, ymax, zmax]] "
-                                     "with max > min")
-            out["bbox_mm"] = {"extents": [b - a for a, b in zip(lo, hi)], "min": lo, "max": hi}
-        else:
-            out["bbox_mm"] = {"extents": _vec("bbox_mm", bb, positive=True)}
+        out["bbox_mm"] = _bbox(design["bbox_mm"])
     if "port" in design:
-        port = design["port"]
-        if not isinstance(port, dict):
-            raise ParameterError("port", port, "a dict with axis_point, axis_dir, radius, z_range")
-        q = {"axis_point": _vec("port.axis_point", port.get("axis_point")),
-             "axis_dir": _vec("port.axis_dir", port.get("axis_dir")),
-             "radius": require("port.radius", port.get("radius"), gt=0, unit="mm")}
-        d = q["axis_dir"]
-        if np.linalg.norm(d) == 0:
-            raise ParameterError("port.axis_dir", port.get("axis_dir"), "a non-zero vector")
-        key = "s_range" if "s_range" in port else "z_range"
-        rng = _vec(f"port.{key}", port.get(key), n=2)
-        if rng[0] == rng[1]:
-            raise ParameterError(f"port.{key}", port.get(key), "two different numbers")
-        if key == "z_range" and abs(d[2]) < 1e-9 * np.linalg.norm(d):
-            raise ParameterError("port.axis_dir", port.get("axis_dir"),
-                                 "a non-horizontal axis with z_range (use s_range)")
-        q[key] = rng
-        out["port"] = q
+        out["port"] = _port(design["port"])
     if "wall_region" in design:
         wr = design["wall_region"]
         if not isinstance(wr, dict) or "z_min" not in wr:
@@ -102,6 +77,38 @@ def parse_design(design: dict | None) -> dict:
                            "radius": require("exclude.radius", e.get("radius"), gt=0, unit="mm")}
                           for e in ex]
     return out
+
+
+def _bbox(bb) -> dict:
+    """bbox_mm: extents [dx, dy, dz] or [[xmin, ymin, zmin], [xmax, ymax, zmax]] (mm)."""
+    if np.ndim(bb) == 2:  # [[xmin, ymin, zmin], [xmax, ymax, zmax]]
+        lo, hi = _vec("bbox_mm", bb, n=6)[:3], _vec("bbox_mm", bb, n=6)[3:]
+        if not all(b > a for a, b in zip(lo, hi)):
+            raise ParameterError("bbox_mm", bb, "[[xmin, ymin, zmin], [xmax, ymax, zmax]] "
+                                 "with max > min")
+        return {"extents": [b - a for a, b in zip(lo, hi)], "min": lo, "max": hi}
+    return {"extents": _vec("bbox_mm", bb, positive=True)}
+
+
+def _port(port) -> dict:
+    """port: axis point and direction, radius (mm) and the z (or s) range it spans."""
+    if not isinstance(port, dict):
+        raise ParameterError("port", port, "a dict with axis_point, axis_dir, radius, z_range")
+    q = {"axis_point": _vec("port.axis_point", port.get("axis_point")),
+         "axis_dir": _vec("port.axis_dir", port.get("axis_dir")),
+         "radius": require("port.radius", port.get("radius"), gt=0, unit="mm")}
+    d = q["axis_dir"]
+    if np.linalg.norm(d) == 0:
+        raise ParameterError("port.axis_dir", port.get("axis_dir"), "a non-zero vector")
+    key = "s_range" if "s_range" in port else "z_range"
+    rng = _vec(f"port.{key}", port.get(key), n=2)
+    if rng[0] == rng[1]:
+        raise ParameterError(f"port.{key}", port.get(key), "two different numbers")
+    if key == "z_range" and abs(d[2]) < 1e-9 * np.linalg.norm(d):
+        raise ParameterError("port.axis_dir", port.get("axis_dir"),
+                             "a non-horizontal axis with z_range (use s_range)")
+    q[key] = rng
+    return q
 
 
 def _vec(name, value, n=3, positive=False) -> list[float]:

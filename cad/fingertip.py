@@ -16,102 +16,18 @@ thickness 0.325 mm, tail width 6.35 mm).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import cadquery as cq
 import numpy as np
 
-from .bladder import PortSpec, nipple
+from .bladder import nipple
 from .chamber import PROFILE_POINTS, profile_body
-from spsc.core.errors import ParameterError, require
 from .geometry import SPSCGeometry
+from .specs import FingertipSpec, MountSpec, PocketSpec
 
 __all__ = ["PocketSpec", "MountSpec", "FingertipSpec", "Fingertip", "build_fingertip",
            "measure_pockets"]
-
-
-@dataclass(frozen=True)
-class PocketSpec:
-    """FSR pocket (mm): diameter and depth of the recess, rim of the raised pad around it,
-    clearance of the pocket floor above the wall's tangent plane, lead (tail) channel width."""
-
-    diameter: float = 8.0      # FSR05 head Ø7.62 + 0.4 clearance
-    depth: float = 0.5         # FSR05 thickness 0.325 + adhesive/clearance
-    rim: float = 1.2
-    clearance: float = 0.3
-    lead_width: float = 6.75   # FSR05 tail 6.35 + 0.4
-
-    def __post_init__(self):
-        require("pocket.diameter", self.diameter, gt=0, unit="mm")
-        require("pocket.depth", self.depth, gt=0, le=self.diameter / 2,
-                unit="mm, at most half the pocket diameter: a recess for a flat sensor "
-                "(FSR05: 0.325 mm)")
-        require("pocket.rim", self.rim, gt=0, unit="mm")
-        require("pocket.clearance", self.clearance, ge=0, unit="mm")
-        require("pocket.lead_width", self.lead_width, gt=0, le=self.diameter,
-                unit="mm, <= pocket.diameter")
-
-
-@dataclass(frozen=True)
-class MountSpec:
-    """Rear mount (mm): block length behind the pulp, slot for the gripper finger on the
-    underside (width × depth), cross screw holes (count, diameter)."""
-
-    length: float = 12.0
-    slot_width: float = 10.0
-    slot_depth: float = 3.0
-    screws: int = 2
-    screw_diameter: float = 2.2  # M2 clearance
-
-    def __post_init__(self):
-        require("mount.length", self.length, gt=0, unit="mm")
-        require("mount.slot_width", self.slot_width, ge=0, unit="mm")
-        require("mount.slot_depth", self.slot_depth, ge=0, unit="mm")
-        require("mount.screw_diameter", self.screw_diameter, gt=0, unit="mm")
-        if self.screws not in (0, 1, 2):
-            raise ParameterError("mount.screws", self.screws, "0, 1 or 2")
-
-
-def _type_a(w, h, l, t0):
-    return SPSCGeometry(w=w, h=h, l=l, t0=t0, n1=3.0, n2=4.0, cy=0.0)
-
-
-@dataclass(frozen=True)
-class FingertipSpec:
-    """Fingertip for a ~20 mm wide gripper finger pad (defaults): pulp and distal Type A
-    chambers, the angle (deg) between their axes, pockets, mount and port."""
-
-    pulp: SPSCGeometry = field(default_factory=lambda: _type_a(8.0, 5.0, 12.0, 1.0))
-    distal: SPSCGeometry = field(default_factory=lambda: _type_a(6.0, 4.0, 5.0, 1.0))
-    angle: float = 45.0
-    pocket_pitch: float = 9.0
-    pocket: PocketSpec = field(default_factory=PocketSpec)
-    mount: MountSpec = field(default_factory=MountSpec)
-    port: PortSpec = field(default_factory=lambda: PortSpec(tube_id=3.0))
-    channel_width: float = 4.0
-    margin: float = 1.0
-
-    def __post_init__(self):
-        require("angle", self.angle, ge=30.0, le=90.0, unit="deg")
-        require("pocket_pitch", self.pocket_pitch, ge=self.pocket.diameter + 0.8,
-                unit="mm, >= pocket.diameter + 0.8")
-        require("channel_width", self.channel_width, gt=0,
-                lt=2 * min(self.pulp.w, self.distal.w), unit="mm, < 2 min(w)")
-        for name, g in (("pulp", self.pulp), ("distal", self.distal)):
-            if g.cy != 0 or g.n2 < 2:
-                raise ParameterError(f"{name}.n2/cy", (g.n2, g.cy),
-                                     "a chamber whose base is vertical (n2 >= 2, c_y = 0)")
-        span = self.distal.l + 2 * (self.distal.w + self.distal.t0)
-        if self.pocket_pitch + self.pocket.diameter > span:
-            raise ParameterError("pocket_pitch", self.pocket_pitch,
-                                 f"<= {span - self.pocket.diameter:g} mm so both distal pockets "
-                                 "fit on the distal chamber")
-
-    @property
-    def width(self) -> float:
-        """Body width across the finger (x), mm."""
-        return max(2 * (self.pulp.w + self.pulp.t0),
-                   self.distal.l + 2 * (self.distal.w + self.distal.t0)) + 2 * self.margin
 
 
 @dataclass(frozen=True)
@@ -153,7 +69,6 @@ def _pad_and_cuts(point, normal, tangent, spec: FingertipSpec, g: SPSCGeometry):
     pk = spec.pocket
     r_pad = pk.diameter / 2 + pk.rim
     floor = point + normal * pk.clearance
-    top = floor + normal * pk.depth
     sink = g.t0 + r_pad**2 / (2 * min(g.w, g.h))  # reaches the convex wall at the pad's edge
     pad = _cylinder(point - normal * sink, normal, r_pad, sink + pk.clearance + pk.depth)
     pocket = _cylinder(floor, normal, pk.diameter / 2, pk.depth + 1.0)
@@ -173,7 +88,7 @@ def _place(shape: cq.Shape, origin: np.ndarray, xdir: np.ndarray, zdir: np.ndarr
 
 def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
     """Build the monolithic fingertip solid, its cavity and the design facts for the gate."""
-    P, D, pk, mt, pt = spec.pulp, spec.distal, spec.pocket, spec.mount, spec.port
+    P, D, mt, pt = spec.pulp, spec.distal, spec.mount, spec.port
     a = math.radians(spec.angle)
     W = spec.width
     n_d = np.array([0.0, math.sin(a), math.cos(a)])       # distal chamber axis
@@ -203,32 +118,8 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
     dist_out = place_distal(profile_body(D.outer_profile_points(PROFILE_POINTS), D.l))
     dist_cav = place_distal(profile_body(D.profile_points(PROFILE_POINTS)[0], D.l))
 
-    # the channel: a circle swept along a spline from inside the pulp cavity's front cap, under
-    # the valley between the chambers, into the distal cavity (one connected cavity)
-    rc = spec.channel_width / 2
-    dip = max(P.t0, D.t0) + rc + 1.0
-    p1 = np.array([0.0, P.l / 2, 0.5])
-    p2 = A + np.array([0.0, 0.0, -dip])
-    p3 = C + n_d * 0.5
-    t1 = np.array([0.0, 0.6, -1.0]) / math.hypot(0.6, 1.0)
-    path = cq.Workplane().spline([tuple(p1), tuple(p2), tuple(p3)],
-                                 tangents=[tuple(t1), tuple(n_d)], includeCurrent=False)
-    start = cq.Plane(origin=cq.Vector(*p1), xDir=cq.Vector(1, 0, 0), normal=cq.Vector(*t1))
-    channel = cq.Workplane(start).circle(rc).sweep(path, transition="round").val()
-
-    # pockets: three along the pulp's axis, two across the distal chamber
-    adds, cuts, pockets = [], [], []
-    for p, n in _pocket_frames(P, [-spec.pocket_pitch, 0.0, spec.pocket_pitch]):
-        pad, cut, info = _pad_and_cuts(p, n, np.array([1.0, 0.0, 0.0]), spec, P)
-        adds.append(pad), cuts.append(cut), pockets.append(("pulp",) + info)
-    half = spec.pocket_pitch / 2
-    for p, n in _pocket_frames(D, [-half, half]):
-        # distal leads run sideways (local ±y = global ±x), away from the valley
-        pad, cut, info = _pad_and_cuts(p, n, np.array([0.0, math.copysign(1.0, p[1]), 0.0]),
-                                       spec, D)
-        adds.append(place_distal(pad)), cuts.append(place_distal(cut))
-        floor, normal, r = info
-        pockets.append(("distal", rot_d @ floor + C, rot_d @ normal, r))
+    channel = _channel(spec, A, C, n_d)
+    adds, cuts, pockets = _pockets(spec, C, rot_d, place_distal)
 
     # port along −y at the rear face; bore rises into the pulp cavity at the rear cap centre
     z_axis = -b + mt.slot_depth + pt.barb_diameter / 2 + P.t0
@@ -241,17 +132,7 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
     bore_v = cq.Solid.makeCylinder(pt.bore / 2, -z_axis + 0.5, cq.Vector(0, y_riser, z_axis),
                                    cq.Vector(0, 0, 1))
 
-    # mount: slot under the rear block for the gripper finger, screw holes across it (x)
-    mount_cuts = []
-    if mt.slot_width > 0 and mt.slot_depth > 0:
-        mount_cuts.append(cq.Solid.makeBox(mt.slot_width, mt.length + 1.0, mt.slot_depth + 1.0,
-                                           cq.Vector(-mt.slot_width / 2, y_rear - 1.0, -b - 1.0)))
-    ys = {0: [], 1: [0.5], 2: [0.3, 0.75]}[mt.screws]
-    for f in ys:
-        mount_cuts.append(cq.Solid.makeCylinder(
-            mt.screw_diameter / 2, W + 2.0,
-            cq.Vector(-W / 2 - 1.0, y_rear + f * mt.length, -b + mt.slot_depth / 2),
-            cq.Vector(1, 0, 0)))
+    mount_cuts = _mount_cuts(mt, W, y_rear, b)
 
     for part in (pulp_cav, dist_cav, channel):
         if part.Volume() <= 0 or not part.isValid():
@@ -262,7 +143,66 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
     if not solid.isValid():
         raise RuntimeError("OCCT produced an invalid fingertip solid")
 
-    design = {
+    design = _design(spec, cavity, pockets, y_riser, z_axis)
+    return Fingertip(spec, solid, cavity, design)
+
+
+def _channel(spec, A, C, n_d):
+    """The channel: a circle swept along a spline from inside the pulp cavity's front cap,
+    under the valley between the chambers (A, the front edge of the top face), into the distal
+    cavity (base centre C, axis n_d): one connected cavity."""
+    P, D = spec.pulp, spec.distal
+    rc = spec.channel_width / 2
+    dip = max(P.t0, D.t0) + rc + 1.0
+    p1 = np.array([0.0, P.l / 2, 0.5])
+    p2 = A + np.array([0.0, 0.0, -dip])
+    p3 = C + n_d * 0.5
+    t1 = np.array([0.0, 0.6, -1.0]) / math.hypot(0.6, 1.0)
+    path = cq.Workplane().spline([tuple(p1), tuple(p2), tuple(p3)],
+                                 tangents=[tuple(t1), tuple(n_d)], includeCurrent=False)
+    start = cq.Plane(origin=cq.Vector(*p1), xDir=cq.Vector(1, 0, 0), normal=cq.Vector(*t1))
+    return cq.Workplane(start).circle(rc).sweep(path, transition="round").val()
+
+
+def _pockets(spec, C, rot_d, place_distal):
+    """The FSR pockets: three along the pulp's axis, two across the distal chamber. (pads to
+    add, cuts, [(site, floor centre, normal, radius)])."""
+    P, D = spec.pulp, spec.distal
+    adds, cuts, pockets = [], [], []
+    for p, n in _pocket_frames(P, [-spec.pocket_pitch, 0.0, spec.pocket_pitch]):
+        pad, cut, info = _pad_and_cuts(p, n, np.array([1.0, 0.0, 0.0]), spec, P)
+        adds.append(pad), cuts.append(cut), pockets.append(("pulp",) + info)
+    half = spec.pocket_pitch / 2
+    for p, n in _pocket_frames(D, [-half, half]):
+        # distal leads run sideways (local ±y = global ±x), away from the valley
+        pad, cut, info = _pad_and_cuts(p, n, np.array([0.0, math.copysign(1.0, p[1]), 0.0]),
+                                       spec, D)
+        adds.append(place_distal(pad)), cuts.append(place_distal(cut))
+        floor, normal, r = info
+        pockets.append(("distal", rot_d @ floor + C, rot_d @ normal, r))
+    return adds, cuts, pockets
+
+
+def _mount_cuts(mt, W, y_rear, b):
+    """The mount: a slot under the rear block for the gripper finger, screw holes across it
+    (x)."""
+    mount_cuts = []
+    if mt.slot_width > 0 and mt.slot_depth > 0:
+        mount_cuts.append(cq.Solid.makeBox(mt.slot_width, mt.length + 1.0, mt.slot_depth + 1.0,
+                                           cq.Vector(-mt.slot_width / 2, y_rear - 1.0, -b - 1.0)))
+    ys = {0: [], 1: [0.5], 2: [0.3, 0.75]}[mt.screws]
+    for f in ys:
+        mount_cuts.append(cq.Solid.makeCylinder(
+            mt.screw_diameter / 2, W + 2.0,
+            cq.Vector(-W / 2 - 1.0, y_rear + f * mt.length, -b + mt.slot_depth / 2),
+            cq.Vector(1, 0, 0)))
+    return mount_cuts
+
+
+def _design(spec, cavity, pockets, y_riser, z_axis) -> dict:
+    """The design facts the printability gate checks the fingertip against."""
+    P, D, pk, mt, pt = spec.pulp, spec.distal, spec.pocket, spec.mount, spec.port
+    return {
         "kind": "fingertip",
         "cavity_volume_mm3": float(cavity.Volume()),
         "cavity_volume_source": "exact B-rep of the fused cavity (chambers + channel)",
@@ -279,7 +219,6 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
                      "depth": pk.depth} for site, fl, nv, r in pockets],
         "print": {"build_direction": [0.0, 0.0, 1.0], "plane": "i-k (x-y), base down"},
     }
-    return Fingertip(spec, solid, cavity, design)
 
 
 def _first_hit(tri: np.ndarray, origin: np.ndarray, direction: np.ndarray) -> float:

@@ -3,7 +3,8 @@ pressure, closed gas cavity with reservoir, frictionless rigid plate (DESIGN.md,
 
 from spsc.core.gaslaw import GasLaw
 from .material import NearlyIncompressible
-from .mesh import TetMesh, block, cached_mesh, sphere_shell, spsc_wall, spsc_wall_tetwild
+from .mesh import TetMesh, block, cached_mesh, sphere_shell, spsc_wall
+from .tetwild import spsc_wall_tetwild, tetwild_mesh
 from .model import FEMModel, Load
 from .pressure import CavitySurface
 from .run import ChamberRun, run_chamber, to_curve, write_vtu
@@ -29,6 +30,7 @@ __all__ = [
     "sphere_shell",
     "spsc_wall",
     "spsc_wall_tetwild",
+    "tetwild_mesh",
     "to_curve",
     "write_vtu",
 ]

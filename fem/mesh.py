@@ -7,8 +7,8 @@ Two paths:
   thickness): extruded along y over the middle part of length l and revolved about the end axes.
   Symmetry and base planes are exact, the 10-node elements are isoparametric (edge nodes on the
   curved surfaces), and the thickness resolution is controlled.
-* :func:`tetwild_mesh` — pytetwild tetrahedra of any closed surface (e.g. a CAD STL), promoted to
-  P2; facets are tagged by a caller's classifier.
+* :func:`spsc.fem.tetwild.tetwild_mesh` — pytetwild tetrahedra of any closed surface (e.g. a
+  CAD STL), promoted to P2; facets are tagged by a caller's classifier.
 
 A hexahedral grid is split into six tetrahedra along its main diagonal (consistent across
 neighbours); coincident nodes (the revolution axis, a sphere's pole) are merged and the
@@ -33,8 +33,8 @@ from spsc.cad.geometry import SPSCGeometry
 
 from .element import TET_EDGES, TET_FACES
 
-__all__ = ["TetMesh", "check_mesh_size", "wall_mesh_counts", "spsc_wall", "wall_section", "sphere_shell", "block", "tetwild_mesh", "spsc_wall_tetwild",
-           "boundary_facets", "p1_to_p2", "cached_mesh", "CACHE_DIR"]
+__all__ = ["TetMesh", "check_mesh_size", "wall_mesh_counts", "spsc_wall", "wall_section",
+           "sphere_shell", "block", "boundary_facets", "orient_tets", "cached_mesh", "CACHE_DIR"]
 
 CACHE_DIR = Path("build/cache/fem")
 #: part of every cache key: bump it when a mesh generator changes its output
@@ -94,7 +94,7 @@ def boundary_facets(tets: np.ndarray) -> np.ndarray:
     return faces[idx[count == 1]]
 
 
-def _orient(nodes, tets):
+def orient_tets(nodes, tets):
     """Flip negatively oriented tetrahedra (swap vertices 1 and 2 and their edges)."""
     a, b, c, d = (nodes[tets[:, i]] for i in range(4))
     vol = np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)
@@ -172,7 +172,7 @@ def _grid_mesh(grid, axis_fix=None, tol=1e-7):
     pts = np.where(np.abs(pts) < tol, 0.0, pts)
     keep, tets = _merge(pts, tets, tol)
     nodes = pts[keep]
-    tets, vol = _orient(nodes, tets)
+    tets, vol = orient_tets(nodes, tets)
     if np.any(vol <= 1e-12 * np.max(vol)):
         raise ValueError("degenerate tetrahedra in the structured mesh")
     return nodes, tets, layer[keep]
@@ -283,7 +283,7 @@ def _mirror(nodes, tets, layer, tol):
         lay = np.concatenate([layer, layer])
         keep, tt = _merge(pts, np.vstack([tets, tets + len(nodes)]), tol)
         nodes, layer = pts[keep], lay[keep]
-        tets, _ = _orient(nodes, tt)
+        tets, _ = orient_tets(nodes, tt)
     return nodes, tets, layer
 
 
@@ -313,80 +313,6 @@ def block(lengths=(1.0, 1.0, 1.0), cells=(2, 2, 2)) -> TetMesh:
         tags[f"{name}0"] = facets[np.all(np.abs(v[..., c]) < 1e-9, axis=1)]
         tags[f"{name}1"] = facets[np.all(np.abs(v[..., c] - lengths[c]) < 1e-9, axis=1)]
     return TetMesh(nodes, tets, tags, 1)
-
-
-# -- pytetwild ----------------------------------------------------------------------------------
-def p1_to_p2(nodes, tets4):
-    """Add straight edge nodes to 4-node tetrahedra: (nodes, (nel, 10) tets)."""
-    edges = np.stack([np.sort(tets4[:, [i, j]], axis=1) for i, j in TET_EDGES], axis=1)
-    uniq, inv = np.unique(edges.reshape(-1, 2), axis=0, return_inverse=True)
-    mid = 0.5 * (nodes[uniq[:, 0]] + nodes[uniq[:, 1]])
-    tets = np.hstack([tets4, len(nodes) + inv.reshape(-1, 6)])
-    return np.vstack([nodes, mid]), tets
-
-
-def tetwild_mesh(vertices, faces, size: float, classify, *, symmetry: int = 1,
-                 planes=None, epsilon: float = 1e-3, threads: int = 1) -> TetMesh:
-    """pytetwild tetrahedra of the closed triangle surface (vertices (n, 3), faces (m, 3)),
-    target edge length ``size`` (mm), promoted to P2 (straight edges).
-
-    ``classify(centroids (k, 3)) -> array of tags`` names each boundary facet; ``planes`` maps a
-    tag to (axis, value): the nodes of those facets are snapped onto that plane (TetWild keeps
-    the surface only within its envelope ``epsilon`` × the bounding-box diagonal).
-    """
-    import contextlib
-    import tempfile
-
-    import pytetwild
-
-    v = np.asarray(vertices, float)
-    # fTetWild writes __tracked_surface.stl into the working directory: keep it out of ours
-    with tempfile.TemporaryDirectory() as tmp, contextlib.chdir(tmp):
-        nodes, tets4 = pytetwild.tetrahedralize(v, np.asarray(faces, np.int32),
-                                                edge_length_abs=float(size), epsilon=epsilon,
-                                                optimize=True, num_threads=threads, quiet=True)
-    nodes = np.asarray(nodes, float)
-    tets4 = np.asarray(tets4, np.int64)
-    used, tets4 = np.unique(tets4, return_inverse=True)
-    nodes, tets4 = nodes[used], tets4.reshape(-1, 4)
-    face_nodes = boundary_facets(np.hstack([tets4, np.zeros((len(tets4), 6), np.int64)]))[:, :3]
-    tags = np.asarray(classify(nodes[face_nodes].mean(axis=1)))
-    for tag, (axis, value) in (planes or {}).items():
-        nodes[np.unique(face_nodes[tags == tag]), axis] = value
-    nodes, tets = p1_to_p2(nodes, tets4)
-    tets, vol = _orient(nodes, tets)
-    facets = boundary_facets(tets)
-    tags = np.asarray(classify(nodes[facets[:, :3]].mean(axis=1)))
-    return TetMesh(nodes, tets, {str(t): facets[tags == t] for t in np.unique(tags)}, symmetry)
-
-
-def spsc_wall_tetwild(g: SPSCGeometry, size: float = 1.0, *, epsilon: float = 2e-4) -> TetMesh:
-    """Quarter wall of a parametric chamber meshed by pytetwild (unstructured, straight P2),
-    from the boundary of a fine structured mesh; facets tagged like :func:`spsc_wall`."""
-    from scipy.spatial import cKDTree
-
-    ref = spsc_wall(g, size / 3, layers=1)
-    f = boundary_facets(ref.tets)[:, :3]
-    tags_ref = {}
-    for tag, fac in ref.facets.items():
-        for row in np.sort(fac[:, :3], axis=1):
-            tags_ref[tuple(row)] = tag
-    ref_tags = np.array([tags_ref[tuple(r)] for r in np.sort(f, axis=1)])
-    used, faces = np.unique(f, return_inverse=True)
-    faces = faces.reshape(-1, 3)
-    tree = cKDTree(ref.nodes[f].mean(axis=1))
-    tol = 1e-6 * max(g.w, g.h)
-
-    def classify(c):
-        out = ref_tags[tree.query(c)[1]].astype(object)
-        out[np.abs(c[:, 0]) < tol] = "sym_x"
-        out[np.abs(c[:, 1]) < tol] = "sym_y"
-        out[np.abs(c[:, 2]) < tol] = "base"
-        return out
-
-    planes = {"base": (2, 0.0), "sym_x": (0, 0.0), "sym_y": (1, 0.0)}
-    return tetwild_mesh(ref.nodes[used], faces, size, classify, symmetry=4, planes=planes,
-                        epsilon=epsilon)
 
 
 # -- cache --------------------------------------------------------------------------------------

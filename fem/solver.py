@@ -139,6 +139,31 @@ class NewtonFailure(RuntimeError):
     pass
 
 
+def _linear_step(model, ev, reduction, free, presc, jump, settings):
+    """The Newton step on the free unknowns, K_ff Δx_f = −r_f − K_fc δ_c with the active
+    contact unknowns moved by ``jump`` (the gas's rank-one term by Sherman–Morrison): (step,
+    negative pivots of the factorised K_ff or None)."""
+    n_u, n = model.disc.n_u, model.disc.n
+    factor = factorize(reduction.upper(ev.K), settings.solver, upper=True)
+    rhs = -ev.r[free]
+    if jump.size:
+        jump_full = np.zeros(n)
+        jump_full[presc] = jump
+        rhs -= (ev.K @ jump_full)[free]
+    if ev.c > 0.0:
+        gf = np.zeros(n)
+        gf[:n_u] = ev.g
+        if jump.size:
+            rhs -= ev.c * gf[free] * (gf[presc] @ jump)
+        dx = solve_rank_one(factor, ev.c, gf[free], rhs)
+    else:
+        dx = factor(rhs)
+    step = np.zeros(n)
+    step[free] = dx
+    step[presc] = jump
+    return step, factor.negative
+
+
 def newton(model: FEMModel, x0, load: Load, settings: Settings, active=None):
     """Solve r(x) = 0 from x0 for one load.
 
@@ -164,15 +189,11 @@ def newton(model: FEMModel, x0, load: Load, settings: Settings, active=None):
         r = ev.r
         if not np.all(np.isfinite(r)):
             raise NewtonFailure("non-finite residual")
-        if fscale is None:
-            fscale = max(np.linalg.norm(ev.pressure * ev.g),
-                         np.linalg.norm(r[:n_u][model.fixed[:n_u]]),
-                         np.linalg.norm(r[:n_u][free[:n_u]]),
-                         1e-6 * model.law.mu)
+        fscale = fscale or max(np.linalg.norm(ev.pressure * ev.g), 1e-6 * model.law.mu,
+                               np.linalg.norm(r[:n_u][model.fixed[:n_u]]),
+                               np.linalg.norm(r[:n_u][free[:n_u]]))
         res = np.linalg.norm(r[:n_u][free[:n_u]])
         settled = jump.size == 0 or np.max(np.abs(jump)) <= 1e-12
-        _log.debug("it %d res %.3e jump %.2e active %d", it, res,
-                   np.max(np.abs(jump), initial=0.0), active.size)
         converged = res <= settings.rtol * fscale and it > 1 and settled
         near = converged or res <= settings.active_set_update * fscale
         if load.plate is not None and settled and it > 1 and near:
@@ -186,37 +207,17 @@ def newton(model: FEMModel, x0, load: Load, settings: Settings, active=None):
                 carried = ev  # x is unchanged: its evaluation stands
                 continue
         if converged:
-            # the inertia belongs to the last factorised tangent: unknown if the active set
-            # has changed since
-            same = negative is not None and factored == free.tobytes()
-            return x, active, it, ev, negative if same else None
-        if reduction is None or reduction.key != free.tobytes():
-            reduction = _Reduction(ev.K, free)
-        factor = factorize(reduction.upper(ev.K), settings.solver, upper=True)
-        negative, factored = factor.negative, reduction.key
-        rhs = -r[free]
-        if jump.size:
-            jump_full = np.zeros(model.disc.n)
-            jump_full[presc] = jump
-            rhs -= (ev.K @ jump_full)[free]
-        if ev.c > 0.0:
-            gf = np.zeros(model.disc.n)
-            gf[:n_u] = ev.g
-            if jump.size:
-                rhs -= ev.c * gf[free] * (gf[presc] @ jump)
-            dx = solve_rank_one(factor, ev.c, gf[free], rhs)
-        else:
-            dx = factor(rhs)
-        step = np.zeros(model.disc.n)
-        step[free] = dx
-        step[presc] = jump
+            # the inertia of the last factorised tangent: unknown if the active set changed since
+            return x, active, it, ev, negative if factored == free.tobytes() else None
+        reduction = reduction if reduction is not None and reduction.key == free.tobytes() \
+            else _Reduction(ev.K, free)
+        step, negative = _linear_step(model, ev, reduction, free, presc, jump, settings)
+        factored = reduction.key
         # with a pending jump the residual of the unconstrained state is no merit to descend
         # on: take the largest admissible step (no inverted element) instead
         base = np.linalg.norm(r[free]) if settled else np.inf
-        if settings.line_search:
-            alpha, carried = _line_search(model, x, step, free, load, base)
-        else:
-            alpha = 1.0
+        alpha, carried = _line_search(model, x, step, free, load, base) \
+            if settings.line_search else (1.0, None)
         x += alpha * step
     raise NewtonFailure(f"no convergence in {settings.max_iterations} iterations "
                         f"(residual {res:.3g} N against {settings.rtol * fscale:.3g} N)")
@@ -264,6 +265,41 @@ def _record(model, step, kind, x, ev, load, active, it, settings, negative=None)
                   _unstable_modes(model, negative, load))
 
 
+def _load_path(model, x, load, step):
+    """(t ∈ [0, 1] -> Load, kind) of an Inflate or Press step starting from ``load`` at the
+    state ``x``: the pressure ramp, or the plate lowered from first contact (the highest
+    contact node, mm) by the stroke."""
+    if isinstance(step, Inflate):
+        start, end = load.pressure, float(step.pressure)
+        return (lambda t: Load(pressure=start + t * (end - start), plate=load.plate)), "inflate"
+    if isinstance(step, Press):
+        pos = model.disc.X + model.displacement(x)
+        z0 = float(pos[model.contact_nodes, 2].max()) if load.plate is None else load.plate
+        stroke = float(step.stroke)
+        return (lambda t: Load(load.pressure, load.gas, z0 - t * stroke)), "press"
+    raise TypeError(f"unknown step {step!r}")
+
+
+def _failed(k, kind, t, step, trial, exc) -> tuple[str, str]:
+    """(message, instability) of an increment that failed under every step cut: a press that
+    stalls may be a snap-through or buckling."""
+    where = (f"press at y = {t * step.stroke:.4g} mm" if kind == "press"
+             else f"inflate at p = {trial.pressure * 1e3:.4g} kPa")
+    stall = ("Newton stalls under step cuts: possible snap-through or buckling at "
+             f"y ≈ {t * step.stroke:.3g} mm") if kind == "press" else ""
+    return f"step {k} ({kind}) failed at {where}: {exc}", stall
+
+
+def _unstable(rec, kind, t, step) -> str:
+    """The instability message of an unstable recorded equilibrium ('' if stable)."""
+    if not rec.unstable_modes:
+        return ""
+    where = (f"y = {t * step.stroke:.3g} mm" if kind == "press"
+             else f"p = {rec.pressure * 1e3:.3g} kPa")
+    return (f"the tangent has {rec.unstable_modes} negative eigenvalue(s) at {where}: "
+            "unstable equilibrium (buckling or snap-through)")
+
+
 def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=None) -> Result:
     """Walk ``steps`` (Inflate / CloseValve / Press) from the undeformed state.
 
@@ -278,35 +314,17 @@ def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=
     load = Load()
     active = np.zeros(0, int)
     total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
-    done = 0
-    last_force = 0.0
-    instability = ""
+    done, last_force, instability = 0, 0.0, ""
     for k, step in enumerate(steps):
         if isinstance(step, CloseValve):
             gas = GasLaw(load.pressure, model.volume(x), step.reservoir,
-                            step.polytropic_index)
+                         step.polytropic_index)
             load = Load(gas=gas, plate=load.plate)
             continue
-        if isinstance(step, Inflate):
-            start, end = load.pressure, float(step.pressure)
-
-            def load_at(t, start=start, end=end, plate=load.plate):
-                return Load(pressure=start + t * (end - start), plate=plate)
-            kind = "inflate"
-        elif isinstance(step, Press):
-            pos = model.disc.X + model.displacement(x)
-            z0 = float(pos[model.contact_nodes, 2].max()) if load.plate is None else load.plate
-            base = load
-
-            def load_at(t, z0=z0, base=base, stroke=float(step.stroke)):
-                return Load(base.pressure, base.gas, z0 - t * stroke)
-            kind = "press"
-        else:
-            raise TypeError(f"unknown step {step!r}")
+        load_at, kind = _load_path(model, x, load, step)
         nominal = 1.0 / step.increments
-        t, dt = 0.0, nominal
+        t, dt, ti = 0.0, nominal, 0
         targets = [(i + 1) * nominal for i in range(step.increments)]
-        ti = 0
         while ti < len(targets):
             t_new = min(t + dt, targets[ti])
             trial = load_at(t_new)
@@ -316,26 +334,17 @@ def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=
                 _log.debug("cut %s t=%.4g dt=%.3g: %s", kind, t_new, dt, exc)
                 dt *= 0.5
                 if dt < settings.min_fraction * nominal:
-                    where = (f"press at y = {t_new * step.stroke:.4g} mm" if kind == "press"
-                             else f"inflate at p = {trial.pressure * 1e3:.4g} kPa")
-                    msg = f"step {k} ({kind}) failed at {where}: {exc}"
-                    if kind == "press":
-                        instability = instability or (
-                            "Newton stalls under step cuts: possible snap-through or buckling "
-                            f"at y ≈ {t_new * step.stroke:.3g} mm")
-                    return Result(records, False, msg, instability,
+                    msg, stall = _failed(k, kind, t_new, step, trial, exc)
+                    return Result(records, False, msg, instability or stall,
                                   time.perf_counter() - t_start)
                 continue
             x, active, t, load = x_new, act_new, t_new, trial
             dt = min(nominal, 2 * dt)
             if math.isclose(t, targets[ti], rel_tol=1e-12, abs_tol=1e-14):
                 rec = _record(model, k, kind, x, ev, load, active, it, settings, negative)
-                if rec.unstable_modes:
+                if _unstable(rec, kind, t, step):
                     # an unstable equilibrium is not a result: stop before it (DESIGN.md)
-                    where = (f"y = {t * step.stroke:.3g} mm" if kind == "press"
-                             else f"p = {load.pressure * 1e3:.3g} kPa")
-                    instability = (f"the tangent has {rec.unstable_modes} negative eigenvalue(s) "
-                                   f"at {where}: unstable equilibrium (buckling or snap-through)")
+                    instability = _unstable(rec, kind, t, step)
                     return Result(records, False, f"step {k} ({kind}) stopped: {instability}",
                                   instability, time.perf_counter() - t_start)
                 if kind == "press" and rec.force < (1 - settings.softening) * last_force:

@@ -43,8 +43,8 @@ import numpy as np
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.constants import KPA_PER_MPA
 from spsc.core.curve import Curve, SolveInfo
-from spsc.core.errors import require
 from spsc.core.gaslaw import GasLaw
+from spsc.core.loadcase import check_load
 from spsc.membrane.materials import Material
 
 from .section_solid import InvertedSection
@@ -154,15 +154,12 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
                polytropic_n: float = 1.0, settings: WallSettings | None = None,
                model: WallModel | None = None, progress=None) -> Curve:
     t_start = time.perf_counter()
-    require("pressure", pressure_kPa, ge=0, le=1000, unit="kPa gauge")
-    require("reservoir", reservoir_mm3, ge=0, unit="mm³")
-    require("stroke", stroke_mm, gt=0, unit="mm")
-    points = int(require("points", points, ge=2, le=10001))
+    load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
+                      stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
+    pressure_kPa, reservoir_mm3, stroke_mm = load.pressure_kPa, load.reservoir_mm3, load.stroke_mm
+    points, polytropic_n = load.points, load.polytropic_n
     settings = settings or (model.settings if model is not None else WallSettings())
     model = model or WallModel(geometry, material, settings)
-    if stroke_mm >= geometry.h + geometry.t0:
-        require("stroke", stroke_mm, lt=geometry.h + geometry.t0, unit="mm: less than the "
-                "chamber's height h + t0, the plate would reach the base")
     p_i = pressure_kPa / KPA_PER_MPA
     path = _Path()
     x = model.zero_state()

@@ -63,91 +63,146 @@ def _inertia(Kff, c, gf) -> int | None:
     return negative
 
 
+@dataclass(frozen=True)
+class _Load:
+    """One load: prescribed gauge ``pressure`` (MPa) or the closed ``gas``; plate height
+    ``plate`` (mm) or None."""
+
+    pressure: float
+    gas: GasLaw | None
+    plate: float | None
+
+    def at(self, volume: float) -> tuple[float, float]:
+        """(gauge pressure p (MPa), c = −dp/dV (MPa/mm³)) at the cavity ``volume``."""
+        if self.gas is None:
+            return float(self.pressure), 0.0
+        return float(self.gas.pressure(volume)), -float(self.gas.dpressure(volume))
+
+
 def newton(model: WallModel, x0, *, pressure=0.0, gas: GasLaw | None = None, plate=None,
-            active=None, settings: WallSettings):
+           active=None, settings: WallSettings):
     """Solve one load (prescribed gauge ``pressure`` MPa, or the closed ``gas``; plate height
-    ``plate`` mm or None) from ``x0``. Returns a :class:`WallState`."""
+    ``plate`` mm or None) from ``x0``. Returns a :class:`WallState`.
+
+    Semi-smooth Newton on the contact: the active set is updated after every linear step from
+    its linearised reactions (the multipliers of that step) and the gaps; if it keeps changing,
+    only at near-equilibrium from the true reactions (plain primal–dual active set)."""
+    load = _Load(pressure, gas, plate)
     x = x0.copy()
-    n_u = model.n_u
-    active = np.zeros(0, int) if active is None or plate is None else np.asarray(active, int)
-    if plate is not None:  # start from every node the plate has passed
-        z = model.reference[model.contact_dofs] + x[model.contact_dofs]
-        active = np.union1d(active, model.contact_dofs[z > plate + settings.contact_tolerance])
-    scale, changes, negative, factored, res, lam = None, 0, None, None, np.inf, None
+    active = _start_active(model, x, plate, active, settings)
+    scale, changes, lam, res, step = 0.0, 0, None, np.inf, None
     for it in range(1, settings.max_iterations + 1):
         V = model.volume(x)
-        p = float(gas.pressure(V)) if gas is not None else float(pressure)
-        c = -float(gas.dpressure(V)) if gas is not None else 0.0
+        p, c = load.at(V)
         ev = model.evaluate(x, p)
-        r = ev.r
-        if not np.all(np.isfinite(r)):
+        if not np.all(np.isfinite(ev.r)):
             raise WallFailure("non-finite residual")
-        jump = (plate - model.reference[active] - x[active]) if plate is not None \
-            else np.zeros(0)
-        free = ~model.fixed
-        free[active] = False
-        res = float(np.linalg.norm(r[free]))
         # the load's force scale: pressure load, support and plate reactions (displacement
         # control of a vented chamber has no other)
-        scale = max(scale or 0.0, np.linalg.norm(p * ev.g), np.linalg.norm(r[model.fixed]),
-                    np.linalg.norm(r[active]), 1e-9 * model.mu * model.geometry.t0 ** 2)
+        scale = max(scale, np.linalg.norm(p * ev.g), np.linalg.norm(ev.r[model.fixed]),
+                    np.linalg.norm(ev.r[active]), 1e-9 * model.mu * model.geometry.t0 ** 2)
+        jump = _gap(model, x, plate, active)
         settled = jump.size == 0 or float(np.max(np.abs(jump))) <= 1e-12
-        small = settled and it > 1 and model.pressure_error(ev) <= 1e-3 * settings.rtol
-        # semi-smooth Newton on the contact: the active set is updated after every linear
-        # step from its linearised reactions (the multipliers of that step) and the gaps;
-        # if it keeps changing, only at near-equilibrium from the true reactions (plain PDAS)
+        res = float(np.linalg.norm(ev.r[_free(model, active)]))
         changed = False
-        if plate is not None and settled and it > 1 and (lam is not None
-                                                          or res <= 1e-2 * scale):
-            reaction = lam if lam is not None else -r[active]
-            new = _update_active(model, x, reaction, plate, active, settings.rtol * scale,
-                                 settings.contact_tolerance)
+        if plate is not None and settled and it > 1 and (lam is not None or res <= 1e-2 * scale):
+            new = _update_active(model, x, lam if lam is not None else -ev.r[active], plate,
+                                 active, settings.rtol * scale, settings.contact_tolerance)
             if new is not None:
                 changes += 1
                 if changes > 40:
                     raise WallFailure("the contact active set does not settle")
                 active, changed = new, True
-                jump = plate - model.reference[active] - x[active]
-                free = ~model.fixed
-                free[active] = False
-                res = float(np.linalg.norm(r[free]))
-        lam = None
+                res = float(np.linalg.norm(ev.r[_free(model, active)]))
+        small = settled and it > 1 and model.pressure_error(ev) <= 1e-3 * settings.rtol
         if not changed and small and res <= settings.rtol * scale:
-            if factored != free.tobytes():  # the inertia must be that of this free set
-                negative = _inertia(ev.K[free][:, free], c, ev.g[free])
-            force = float(-np.sum(r[active])) if plate is not None else 0.0
-            area = model.contact_area(x, plate) if plate is not None and active.size else 0.0
-            return WallState(x, p, V, plate, force, area, active, it, negative)
-        K = ev.K
-        solve, negative = _factor(K[free][:, free])
-        factored = free.tobytes()
-        rc = model.condensed(ev)
-        rhs = -rc[free]
-        g = ev.g
-        if jump.size:
-            dj = np.zeros(n_u)
-            dj[active] = jump
-            rhs -= (K @ dj)[free]
-            if c > 0.0:
-                rhs -= c * g[free] * (g[active] @ jump)
-        if c > 0.0:
-            du_f = solve_rank_one(solve, c, g[free], rhs)
-            if negative is not None:
-                # K + c g gᵀ loses one negative eigenvalue iff 1 + c gᵀK⁻¹g < 0
-                negative -= int(1.0 + c * float(g[free] @ solve(g[free])) < 0.0)
-        else:
-            du_f = solve(rhs)
-        du = np.zeros(n_u)
-        du[free] = du_f
-        if jump.size:
-            du[active] = jump
-        if active.size and changes < 10:
-            r_lin = rc + K @ du + (c * g * (g @ du) if c > 0.0 else 0.0)
-            lam = -r_lin[active]
-        step = np.concatenate([du, model.recover(ev, du)])
-        x = _admissible(model, x, step)
+            return _converged(model, x, ev, load, V, c, active, it, step)
+        step = _linear_step(model, ev, c, active, _gap(model, x, plate, active),
+                            multipliers=changes < 10)
+        lam = step.multipliers
+        x = _admissible(model, x, np.concatenate([step.du, model.recover(ev, step.du)]))
     raise WallFailure(f"no convergence in {settings.max_iterations} iterations (residual "
                       f"{res:.3g} N against {settings.rtol * scale:.3g} N)")
+
+
+def _start_active(model, x, plate, active, settings) -> np.ndarray:
+    """The given active set plus every contact node the plate has passed (none without a
+    plate)."""
+    if plate is None:
+        return np.zeros(0, int)
+    active = np.zeros(0, int) if active is None else np.asarray(active, int)
+    z = model.reference[model.contact_dofs] + x[model.contact_dofs]
+    return np.union1d(active, model.contact_dofs[z > plate + settings.contact_tolerance])
+
+
+def _free(model, active) -> np.ndarray:
+    free = ~model.fixed
+    free[active] = False
+    return free
+
+
+def _gap(model, x, plate, active) -> np.ndarray:
+    """Prescribed jump of the active contact unknowns onto the plate (mm)."""
+    if plate is None:
+        return np.zeros(0)
+    return plate - model.reference[active] - x[active]
+
+
+@dataclass(frozen=True, eq=False)
+class _Step:
+    """A Newton step: displacement increment ``du`` (mm), the linearised contact reactions
+    ``multipliers`` (N, or None), the negative eigenvalues of the factorised tangent (None:
+    unknown) and the free set it was factorised on (bytes)."""
+
+    du: np.ndarray
+    multipliers: np.ndarray | None
+    negative: int | None
+    free: bytes
+
+
+def _linear_step(model, ev, c, active, jump, *, multipliers: bool) -> _Step:
+    """Solve the condensed system (K + c g gᵀ) Δu = −r on the free unknowns with the active
+    contact unknowns moved by ``jump`` (Sherman–Morrison for the gas)."""
+    K, g, n_u = ev.K, ev.g, model.n_u
+    free = _free(model, active)
+    solve, negative = _factor(K[free][:, free])
+    rc = model.condensed(ev)
+    rhs = -rc[free]
+    if jump.size:
+        dj = np.zeros(n_u)
+        dj[active] = jump
+        rhs -= (K @ dj)[free]
+        if c > 0.0:
+            rhs -= c * g[free] * (g[active] @ jump)
+    if c > 0.0:
+        du_f = solve_rank_one(solve, c, g[free], rhs)
+        if negative is not None:
+            # K + c g gᵀ loses one negative eigenvalue iff 1 + c gᵀK⁻¹g < 0
+            negative -= int(1.0 + c * float(g[free] @ solve(g[free])) < 0.0)
+    else:
+        du_f = solve(rhs)
+    du = np.zeros(n_u)
+    du[free] = du_f
+    du[active] = jump if jump.size else du[active]
+    lam = None
+    if active.size and multipliers:
+        r_lin = rc + K @ du + (c * g * (g @ du) if c > 0.0 else 0.0)
+        lam = -r_lin[active]
+    return _Step(du, lam, negative, free.tobytes())
+
+
+def _converged(model, x, ev, load, V, c, active, iterations, step) -> WallState:
+    """The converged state, with the inertia of the tangent on its own free set (the last
+    factorisation's when that was on the same set)."""
+    free = _free(model, active)
+    if step is not None and step.free == free.tobytes():
+        negative = step.negative
+    else:
+        negative = _inertia(ev.K[free][:, free], c, ev.g[free])
+    p, plate = load.at(V)[0], load.plate
+    force = float(-np.sum(ev.r[active])) if plate is not None else 0.0
+    area = model.contact_area(x, plate) if plate is not None and active.size else 0.0
+    return WallState(x, p, V, plate, force, area, active, iterations, negative)
 
 
 def _update_active(model, x, reaction, plate, active, force_tol, gap_tol):

@@ -32,11 +32,12 @@ _UNITS = {"y": "mm", "force": "N", "pressure": "kPa", "elastic_force": "N"}
 
 @dataclass(frozen=True)
 class BenchData:
-    """One bench test: plate travel y (mm), force F (N), gauge pressure p (kPa), F_el (N or None)."""
+    """One bench test: plate travel y (mm), force F (N), gauge pressure p (kPa; None for an
+    open chamber's test), F_el (N or None)."""
 
     y_mm: np.ndarray
     force_N: np.ndarray
-    pressure_kPa: np.ndarray
+    pressure_kPa: np.ndarray | None
     elastic_force_N: np.ndarray | None = None
     source: str = ""
 
@@ -44,8 +45,9 @@ class BenchData:
         y = np.asarray(self.y_mm, float)
         if y.size < 3:
             raise ParameterError("bench rows", y.size, ">= 3 data rows")
-        for name in ("force_N", "pressure_kPa") + (("elastic_force_N",)
-                                                  if self.elastic_force_N is not None else ()):
+        for name in ("force_N", "pressure_kPa", "elastic_force_N"):
+            if getattr(self, name) is None:
+                continue
             a = np.asarray(getattr(self, name), float)
             if a.shape != y.shape:
                 raise ParameterError(f"len({name})", a.size, f"= len(y_mm) = {y.size}")
@@ -58,17 +60,19 @@ class BenchData:
                                  f"> previous value {y[k - 1]:g} (y must increase monotonically)")
 
 
-def _header_check(header: list[str]) -> None:
+def _header_check(header: list[str], required=REQUIRED) -> None:
     for col in header:
         m = re.fullmatch(r"(y|force|pressure|elastic_force)_(\w+)", col)
         if m and col not in REQUIRED + OPTIONAL:
             q, unit = m.group(1), m.group(2)
             raise ParameterError(f"column {col}", unit,
                                  f"unit {_UNITS[q]}: name the column {q}_{_UNITS[q]}")
-    missing = [c for c in REQUIRED if c not in header]
+    missing = [c for c in required if c not in header]
     if missing:
+        optional = [c for c in REQUIRED + OPTIONAL if c not in required]
         raise ParameterError("missing column", missing[0],
-                             "a header with " + ", ".join(REQUIRED) + " [, elastic_force_N]")
+                             "a header with " + ", ".join(required)
+                             + "".join(f" [, {c}]" for c in optional))
 
 
 def _read_text(path: Path) -> str:
@@ -84,9 +88,10 @@ def _read_text(path: Path) -> str:
         return raw.decode("latin-1")
 
 
-def read_bench(source: str | Path) -> BenchData:
+def read_bench(source: str | Path, *, required=REQUIRED) -> BenchData:
     """Read a bench CSV (path, or the text itself if it contains a newline). Lines starting
-    with ``#`` are comments; UTF-8 (a byte-order mark is skipped) or Latin-1."""
+    with ``#`` are comments; UTF-8 (a byte-order mark is skipped) or Latin-1. ``required``:
+    the columns that must be there (an open chamber's test has no pressure)."""
     text = str(source)
     name = "<text>"
     if "\n" not in text:
@@ -97,7 +102,7 @@ def read_bench(source: str | Path) -> BenchData:
         raise ParameterError("bench file", name, "a CSV with a header line and data rows")
     rows = list(csv.reader(io.StringIO("\n".join(lines))))
     header = [h.strip() for h in rows[0]]
-    _header_check(header)
+    _header_check(header, required)
     cols = {c: [] for c in header}
     for i, row in enumerate(rows[1:], start=2):
         if len(row) != len(header):
@@ -108,7 +113,7 @@ def read_bench(source: str | Path) -> BenchData:
             except ValueError:
                 raise ParameterError(f"row {i}, column {c}", v.strip(), "a number") from None
     return BenchData(np.array(cols["y_mm"]), np.array(cols["force_N"]),
-                     np.array(cols["pressure_kPa"]),
+                     np.array(cols["pressure_kPa"]) if "pressure_kPa" in cols else None,
                      np.array(cols["elastic_force_N"]) if "elastic_force_N" in cols else None,
                      source=name)
 
@@ -120,6 +125,8 @@ def identify(bench: BenchData, *, pressure_kPa: float, bladder_volume_mm3: float
     with bladder volume V_b,i and reservoir V_r (mm³). Returns the bench :class:`Curve`
     (model ``identified``) carrying the measured F, p and the identified A, ΔV."""
     setup = Setup(pressure_kPa, bladder_volume_mm3, reservoir_mm3, polytropic_n)
+    if bench.pressure_kPa is None:
+        raise ParameterError("missing column", "pressure_kPa", "the cavity pressure of the test")
     p = np.asarray(bench.pressure_kPa, float)
     tol = max(1.0, 0.2 * setup.p_i_kPa)
     if abs(p[0] - setup.p_i_kPa) > tol:

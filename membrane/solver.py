@@ -224,53 +224,20 @@ def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm
     check_membrane_pressure(p_i, stroke)
 
     inf = inflate(geometry, mat, p_i, settings=settings)
-    infl, ok, msg, iters = inf.shape, inf.converged, inf.message, inf.iterations
+    infl, ok, iters = inf.shape, inf.converged, inf.iterations
     y = np.linspace(0.0, stroke, npts)
     meta = dict(geometry=geometry.as_dict(), material=mat.name,
                 setup={"p_i_kPa": p_i, "reservoir_mm3": v_r, "polytropic_n": n_poly},
                 nominal_volume_mm3=geometry.cavity_volume())
-    nan = np.full(npts, np.nan)
-    if not ok:  # keep what was reached: the inflation path and its last shape
-        details = _details(settings) | {"inflation_path": [
-            {"pressure_kPa": pk, "volume_mm3": vol, "apex_mm": apex}
-            for pk, vol, apex in inf.path]}
-        info = SolveInfo(converged=False, message=msg, seconds=time.perf_counter() - t_start,
-                         iterations=iters, details=details)
-        last = inf.reached
-        extra = {} if last is None else {"inflated_volume_mm3": last.volume_mm3,
-                                         "inflated_height_mm": float(last.eta[0])}
-        curve = Curve(y, nan, nan, nan, nan, model="membrane", converged=np.zeros(npts, bool),
-                      message=(msg,) * npts, solver=info, **meta, **extra)
-        return MembraneResult(curve, last, (last,) + (None,) * (npts - 1))
+    if not ok:
+        return _failed_inflation(inf, y, meta, settings, t_start)
     apex = float(infl.eta[0])
     if stroke >= apex:
         raise ParameterError("stroke", stroke_mm,
                              f"< inflated chamber height {apex:.4g} mm (the plate would reach "
                              "the base)")
-
     press = StrokeContinuation(geometry, mat, infl, settings, p_i * 1e-3, v_r, n_poly)
-    F, P, A, DV = (nan.copy() for _ in range(4))
-    F[0], P[0], A[0], DV[0] = 0.0, p_i, 0.0, 0.0
-    conv = np.zeros(npts, bool)
-    conv[0] = True
-    msgs = [""] * npts
-    shapes = [infl] + [None] * (npts - 1)
-    stop = ""
-    for k in range(1, npts):
-        sh, why = press.advance(y[k])
-        if sh is not None and why:
-            msgs[k] = why
-        if sh is None:
-            stop = f"no equilibrium found beyond y = {press.y:.4g} mm: {why}"
-            for j in range(k, npts):
-                msgs[j] = stop if j == k else f"not attempted (continuation stopped at y = {press.y:.4g} mm)"
-            break
-        rG = sh.contact_radius
-        A[k] = math.pi * rG * rG + 2.0 * geometry.l * rG
-        P[k] = sh.pressure_kPa
-        F[k] = 1e-3 * P[k] * A[k]
-        DV[k] = infl.volume_mm3 - sh.volume_mm3
-        conv[k], shapes[k] = True, sh
+    F, P, A, DV, conv, msgs, shapes, stop = _press(press, geometry, infl, y, p_i)
     notes = []
     wr = infl.T2 <= 0.0
     if wr.any():
@@ -284,6 +251,51 @@ def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm
                   inflated_height_mm=apex, converged=conv, message=tuple(msgs), solver=info,
                   **meta)
     return MembraneResult(curve, infl, tuple(shapes))
+
+
+def _failed_inflation(inf, y, meta, settings, t_start) -> MembraneResult:
+    """The result of an inflation that stopped: the path and the last shape it reached, the
+    curve all NaN with the reason (nothing is lost)."""
+    npts = y.size
+    nan = np.full(npts, np.nan)
+    details = _details(settings) | {"inflation_path": [
+        {"pressure_kPa": pk, "volume_mm3": vol, "apex_mm": apex} for pk, vol, apex in inf.path]}
+    info = SolveInfo(converged=False, message=inf.message, seconds=time.perf_counter() - t_start,
+                     iterations=inf.iterations, details=details)
+    last = inf.reached
+    extra = {} if last is None else {"inflated_volume_mm3": last.volume_mm3,
+                                     "inflated_height_mm": float(last.eta[0])}
+    curve = Curve(y, nan, nan, nan, nan, model="membrane", converged=np.zeros(npts, bool),
+                  message=(inf.message,) * npts, solver=info, **meta, **extra)
+    return MembraneResult(curve, last, (last,) + (None,) * (npts - 1))
+
+
+def _press(press, geometry, infl, y, p_i):
+    """Walk the plate positions ``y`` (mm) with the continuation ``press``: F = p·A (N, eq. 38
+    with the deformed contact radius), P (kPa), A (mm²), ΔV (mm³), converged flags, messages,
+    shapes and the reason it stopped ('' if it did not)."""
+    npts = y.size
+    F, P, A, DV = (np.full(npts, np.nan) for _ in range(4))
+    F[0], P[0], A[0], DV[0] = 0.0, p_i, 0.0, 0.0
+    conv = np.zeros(npts, bool)
+    conv[0] = True
+    msgs = [""] * npts
+    shapes = [infl] + [None] * (npts - 1)
+    for k in range(1, npts):
+        sh, why = press.advance(y[k])
+        if sh is None:
+            stop = f"no equilibrium found beyond y = {press.y:.4g} mm: {why}"
+            msgs[k:] = [stop] + [f"not attempted (continuation stopped at y = {press.y:.4g} mm)"
+                                 ] * (npts - k - 1)
+            return F, P, A, DV, conv, msgs, shapes, stop
+        msgs[k] = why or ""
+        rG = sh.contact_radius
+        A[k] = math.pi * rG * rG + 2.0 * geometry.l * rG
+        P[k] = sh.pressure_kPa
+        F[k] = 1e-3 * P[k] * A[k]
+        DV[k] = infl.volume_mm3 - sh.volume_mm3
+        conv[k], shapes[k] = True, sh
+    return F, P, A, DV, conv, msgs, shapes, ""
 
 
 def _details(settings: SolverSettings) -> dict:

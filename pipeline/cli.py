@@ -29,6 +29,7 @@ COMMANDS = {
     "membrane": "cmd_membrane",
     "fem": "cmd_fem",
     "identify": "cmd_identify",
+    "calibrate": "cmd_calibrate",
     "fit-material": "cmd_fit_material",
     "report": "cmd_report",
 }

@@ -31,7 +31,7 @@ def register(sub) -> None:
 
 def bladder_spec(geom, flange_holes, tube_id):
     """The BladderSpec of the CLI's options (validated: one-line ParameterError)."""
-    from spsc.cad.bladder import BladderSpec, FlangeSpec, PortSpec
+    from spsc.cad.specs import BladderSpec, FlangeSpec, PortSpec
 
     return BladderSpec(geom, FlangeSpec(holes=flange_holes), PortSpec(tube_id=tube_id))
 

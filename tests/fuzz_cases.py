@@ -201,6 +201,8 @@ def _bases(f: dict[str, Path], tmp: Path) -> dict[str, tuple[str, ...]]:
         "membrane": ("membrane", "--type", "B"),
         "fem": ("fem", "--type", "B", "--quiet"),
         "identify": ("identify", str(f["csv"]), "--pressure", "40", "--type", "B"),
+        "calibrate": ("calibrate", str(f["csv"]), "--pressure", "40", "--type", "B",
+                      "--quiet"),
         "report": ("report", "--out", out, "--cache", str(tmp / "cache"), "--quiet"),
         "fit-material": ("fit-material", str(f["tension.csv"]), "--law", "neo-hookean"),
     }
@@ -333,6 +335,29 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += [Case(("identify", str(tmp / "missing.csv")) + ident, "missing CSV", "missing.csv"),
               Case(("identify", str(f["csv"]), "--pressure", "40"), "no chamber", None),
               Case(("identify", str(f["csv"]), "--type", "B"), "no pressure", "pressure")]
+    # calibrate
+    cal = b["calibrate"]
+    cases += _numbers(cal, ("pressure", "reservoir", "polytropic-n", "mesh-size", "layers",
+                            "predict-stroke"))
+    cases += _outputs(cal, "--json", f, tmp)
+    cases += _outputs(cal, "--png", f, tmp, ".png")
+    for v in (",", "abc", "-5", "nan", "1e5"):
+        cases.append(Case(cal + ("--predict-pressures", v), "bad predict pressures",
+                          "predict-pressures"))
+    for key, why in (("empty.csv", "an empty CSV"), ("badrow.csv", "a text value"),
+                     ("short.csv", "too few rows"), ("dir.csv", "a folder named .csv"),
+                     ("binary.csv", "binary data")):
+        cases.append(Case(("calibrate", str(f[key])) + cal[2:], why, None))
+    cases += [Case(("calibrate", str(tmp / "missing.csv")) + cal[2:], "missing CSV",
+                   "missing.csv"),
+              Case(cal + ("--material", "rubber"), "unknown material", "material"),
+              Case(cal[:2] + ("--pressure", "0", "--type", "B"), "pressures of a vented test",
+                   "pressure"),
+              Case(cal + ("--h", "2", "--predict-stroke", "1"), "bench stroke above h",
+                   "stroke"),
+              Case(cal + ("--predict-stroke", "50"), "predicted stroke above h",
+                   "predict-stroke"),
+              Case(cal[:2] + ("--type", "B"), "no pressure", "pressure")]
     cases += _fit_material_cases(f, b, tmp)
     # report
     cases += [Case(b["report"] + ("--types", v), f"--types {v!r}", "types")
@@ -390,7 +415,7 @@ def _fit_material_cases(f, b, tmp) -> list[Case]:
                      ("soft.json", "a negative modulus"), ("foreign.json", "another schema"),
                      ("law.json", "an unknown law"), ("bad.json", "not JSON"),
                      ("dir.json", "a folder named .json")):
-        for verb in ("membrane", "curve-wall", "curve-fem"):
+        for verb in ("membrane", "curve-wall", "curve-fem", "calibrate"):
             cases.append(Case(b[verb] + ("--material", str(f[key])), why, "material"))
     cases += [Case(b["membrane"] + ("--material", str(tmp / "missing.json")),
                    "missing material file", "material"),

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from spsc.cad.geometry import preset
-from spsc.fem.mesh import spsc_wall, spsc_wall_tetwild
+from spsc.fem.mesh import spsc_wall
+from spsc.fem.tetwild import spsc_wall_tetwild
 from spsc.fem.model import FEMModel
 from spsc.fem.run import ChamberRun, run_chamber
 from spsc.fem.solver import Inflate, solve

@@ -127,10 +127,18 @@ def test_gas_law_holds_along_the_stroke():
     assert np.all(np.diff(c.force_N) > 0) and np.all(np.diff(c.pressure_kPa) > 0)
 
 
-def test_bad_input_is_a_one_line_error():
-    g = preset("A")
-    with pytest.raises(ParameterError, match="stroke"):
-        wall_curve(g, material("tpu60a"), stroke_mm=20.0)
+@pytest.mark.parametrize("kwargs, name", [
+    # the shared load case's limits (the same as every model and the CLI): the stroke below h
+    # (13 mm here, not h + t0), the polytropic index of air, an integer number of points
+    (dict(stroke_mm=13.0), "stroke"), (dict(stroke_mm=20.0), "stroke"),
+    (dict(polytropic_n=3.0), "polytropic_n"), (dict(points=1.5), "points"),
+    (dict(pressure_kPa=-1.0), "pressure"), (dict(reservoir_mm3=float("nan")), "reservoir")])
+def test_bad_input_is_a_one_line_error(kwargs, name):
+    with pytest.raises(ParameterError, match=f"^{name} = "):
+        wall_curve(preset("A"), material("tpu60a"), **kwargs)
+
+
+def test_bad_settings_are_a_one_line_error():
     with pytest.raises(ParameterError, match="mesh_size"):
         WallSettings(mesh_size_mm=0.0)
 
