@@ -79,8 +79,9 @@ KEY_OPTIONS = {
     "identify": ["--pressure", "--bladder-volume", "--reservoir", "--polytropic-n",
                  "--predict-pressures", "--json"],
     "report": ["--quick", "--out", "--cache", "--no-fem", "--types", "--quiet"],
-    "calibrate": ["--pressure", "--reservoir", "--material", "--mesh-size", "--predict-pressures",
-                  "--predict-reservoirs", "--predict-stroke", "--json", "--png", "--quiet"],
+    "calibrate": ["--pressure", "--reservoir", "--material", "--mesh-size", "--layers",
+                  "--predict-pressures", "--predict-reservoirs", "--predict-stroke", "--json",
+                  "--png", "--quiet"],
     "fit-material": ["--test", "--law", "--ogden-terms", "--range", "--strain-unit",
                      "--stress-unit", "--json", "--png", "--out", "--list-catalogue"],
 }
