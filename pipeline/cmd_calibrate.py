@@ -52,6 +52,8 @@ def register(subparsers) -> None:
                    metavar="MM", help="stroke of the predicted curves, mm (default 4)")
     add_output_options(p, json="write the calibration, its curve and the predictions here",
                        csv=None, png="plot bench vs calibrated model and the predictions here")
+    p.add_argument("--out", metavar="MATERIAL.json",
+                   help="write the calibrated law as a material file (use it as --material)")
     add_quiet_option(p)
     p.set_defaults(func=run)
 
@@ -78,6 +80,8 @@ def run(args) -> int:
         check_output_file("--json", args.json)
     if args.png is not None:
         check_output_file("--png", args.png, PLOT_SUFFIXES)
+    if args.out is not None:
+        check_output_file("--out", args.out, (".json",))
     geom = geometry_from_args(args)
     mat = material(args.material)
     require("pressure", args.pressure, ge=0, le=PRESSURE_MAX_KPA, unit="kPa gauge")
@@ -113,7 +117,35 @@ def run(args) -> int:
         _write_json(args.json, cal, mat, preds, idents)
     if args.png:
         _plot(args.png, bench, cal, preds, args.pressure)
+    if args.out:
+        _write_material(args, cal, mat)
+        print(f"material file {args.out} ({cal.material.law}, name '{cal.material.name}'): "
+              f"use it as --material {args.out}")
     return 0
+
+
+def _write_material(args, cal, mat) -> None:
+    """The calibrated law as a material file (``spsc.material``, provenance user-fit), with
+    the bench file's hash and the calibration's residual."""
+    import hashlib
+    from pathlib import Path
+
+    from spsc.core.jsonio import write_json
+    from spsc.membrane.material_file import LAW_CONSTANTS, material_record
+
+    names = {ij: name for name, ij in LAW_CONSTANTS[cal.material.law].items()}
+    constants = {names[(i, j)]: c for i, j, c in cal.material.coefficients}
+    digest = hashlib.sha256(Path(args.bench).read_bytes()).hexdigest()
+    fit = {"calibration": {"start_material": mat.name, "scale": cal.scale,
+                           "model": "wall", "pressure_kPa": args.pressure,
+                           "reservoir_mm3": args.reservoir,
+                           "force_rms_N": cal.force_rms_N,
+                           "pressure_rise_rms_kPa": cal.pressure_rms_kPa,
+                           "relative_rms": cal.relative_rms}}
+    data = [{"file": str(args.bench), "sha256": digest, "test": "chamber bench test",
+             "points": int(cal.y_mm.size)}]
+    write_json(args.out, material_record(cal.material.name, cal.material.law, constants,
+                                         source=cal.material.source, fit=fit, data=data))
 
 
 def _identification(args, bench, geom, setups) -> list:

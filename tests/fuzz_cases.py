@@ -351,6 +351,8 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += [Case(("calibrate", str(tmp / "missing.csv")) + cal[2:], "missing CSV",
                    "missing.csv"),
               Case(cal + ("--material", "rubber"), "unknown material", "material"),
+              Case(cal + ("--out", str(tmp / "material.txt")), "material file not .json",
+                   "out"),
               Case(cal[:2] + ("--pressure", "0", "--type", "B"), "pressures of a vented test",
                    "pressure"),
               Case(cal + ("--h", "2", "--predict-stroke", "1"), "bench stroke above h",

@@ -77,10 +77,14 @@ def test_cli_writes_the_calibrated_material_and_predictions(tmp_path, capsys):
     rc = main(["calibrate", str(csv), "--type", "B", "--l", "0", "--pressure", "0",
                "--mesh-size", "1", "--layers", "1", "--predict-pressures", "40",
                "--predict-reservoirs", "0", "--predict-stroke", "1", "--json", str(out),
-               "--quiet"])
+               "--out", str(tmp_path / "mine.json"), "--quiet"])
     assert rc == 0
     data = json.loads(out.read_text())
     assert data["scale"] == pytest.approx(1.3, rel=2e-3)
+    # the calibrated law as a material file every model takes as --material
+    mine = material(str(tmp_path / "mine.json"))
+    assert mine.provenance == "user-fit"
+    assert mine.shear_modulus == pytest.approx(data["scale"] * MAT.shear_modulus, rel=1e-12)
     assert data["material"]["shear_modulus_MPa"] == pytest.approx(1.3 * 5 / 3, rel=2e-3)
     (pred,) = data["predictions"]
     assert pred["setup"]["p_i_kPa"] == 40 and pred["solver"]["converged"]

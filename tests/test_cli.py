@@ -81,7 +81,7 @@ KEY_OPTIONS = {
     "report": ["--quick", "--out", "--cache", "--no-fem", "--types", "--quiet"],
     "calibrate": ["--pressure", "--reservoir", "--material", "--mesh-size", "--layers",
                   "--predict-pressures", "--predict-reservoirs", "--predict-stroke", "--json",
-                  "--png", "--quiet"],
+                  "--png", "--out", "--quiet"],
     "fit-material": ["--test", "--law", "--ogden-terms", "--range", "--strain-unit",
                      "--stress-unit", "--json", "--png", "--out", "--list-catalogue"],
 }
