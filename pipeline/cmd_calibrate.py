@@ -109,14 +109,15 @@ def run(args) -> int:
         bar.update(len(preds))
     finally:
         bar.close()
-    idents = _identification(args, bench, geom, setups)
+    idents = identification(bench, geom, setups, pressure_kPa=args.pressure,
+                            reservoir_mm3=args.reservoir, polytropic_n=args.polytropic_n)
     _summary(args, cal, mat, preds)
     if idents:
         _compare(preds, idents, min(float(bench.y_mm[-1]), args.predict_stroke))
     if args.json:
         _write_json(args.json, cal, mat, preds, idents)
     if args.png:
-        _plot(args.png, bench, cal, preds, args.pressure)
+        plot_calibration(args.png, bench, cal, preds, args.pressure)
     if args.out:
         _write_material(args, cal, mat)
         print(f"material file {args.out} ({cal.material.law}, name '{cal.material.name}'): "
@@ -148,25 +149,26 @@ def _write_material(args, cal, mat) -> None:
                                          source=cal.material.source, fit=fit, data=data))
 
 
-def _identification(args, bench, geom, setups) -> list:
+def identification(bench, geom, setups, *, pressure_kPa: float, reservoir_mm3: float,
+                   polytropic_n: float) -> list:
     """The paper's identification (eqs. 39–40) on the same closed-chamber bench test, and its
     lumped-model predictions (eqs. 6–7) at the same setups; [] for an open chamber's test. V_b,i
     is the nominal cavity; without an elastic_force_N column F_el is taken as 0 (the paper
     measures it separately), so the identified area then carries the wall's force."""
-    if args.pressure == 0 or bench.pressure_kPa is None or not setups:
+    if pressure_kPa == 0 or bench.pressure_kPa is None or not setups:
         return []
     from spsc.membrane.identify import identify, predict
 
     vb = geom.cavity_volume()
-    ident = identify(bench, pressure_kPa=args.pressure, bladder_volume_mm3=vb,
-                     reservoir_mm3=args.reservoir, polytropic_n=args.polytropic_n,
+    ident = identify(bench, pressure_kPa=pressure_kPa, bladder_volume_mm3=vb,
+                     reservoir_mm3=reservoir_mm3, polytropic_n=polytropic_n,
                      geometry=geom.as_dict())
     return [predict(ident, pressure_kPa=p, reservoir_mm3=r, bladder_volume_mm3=vb,
-                    polytropic_n=args.polytropic_n, elastic_force_N=bench.elastic_force_N)
+                    polytropic_n=polytropic_n, elastic_force_N=bench.elastic_force_N)
             for p, r in setups]
 
 
-def _slope(curve, values, y_end: float) -> float:
+def mean_slope(curve, values, y_end: float) -> float:
     """(v(y_end) − v(0)) / y_end over the converged points (N/mm or kPa/mm)."""
     ok = curve.converged & np.isfinite(values)
     if not ok.any() or curve.y_mm[ok][-1] < y_end - 1e-9:
@@ -183,8 +185,10 @@ def _compare(preds, idents, y_end: float) -> None:
           f"{'S_ident':>8}")
     for w, i in zip(preds, idents):
         print(f"{w.setup['p_i_kPa']:8.4g} {w.setup['reservoir_mm3']:9.6g} "
-              f"{_slope(w, w.force_N, y_end):8.4g} {_slope(i, i.force_N, y_end):8.4g} "
-              f"{_slope(w, w.pressure_kPa, y_end):8.4g} {_slope(i, i.pressure_kPa, y_end):8.4g}")
+              f"{mean_slope(w, w.force_N, y_end):8.4g} "
+              f"{mean_slope(i, i.force_N, y_end):8.4g} "
+              f"{mean_slope(w, w.pressure_kPa, y_end):8.4g} "
+              f"{mean_slope(i, i.pressure_kPa, y_end):8.4g}")
 
 
 def _summary(args, cal, mat, preds) -> None:
@@ -226,7 +230,8 @@ def _write_json(path, cal, mat, preds, idents) -> None:
         "identification_predictions": [c.to_dict() for c in idents]})
 
 
-def _plot(path, bench, cal, preds, p_i) -> None:
+def plot_calibration(path, bench, cal, preds, p_i) -> None:
+    """Bench vs the calibrated wall model; the predicted forces and pressures."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

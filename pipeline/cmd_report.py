@@ -26,7 +26,7 @@ from pathlib import Path
 
 from spsc.core.errors import ParameterError
 
-from .options import check_output_dir
+from .options import check_output_dir, number
 
 DEFAULT_OUT = {False: Path("reports/validation"), True: Path("build/report-quick")}
 
@@ -44,6 +44,17 @@ def register(subparsers) -> None:
                    help="no 3D FEM: the membrane, simplified and wall models only")
     p.add_argument("--types", help="subset of the types, e.g. BD (default ABCD)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    b = p.add_argument_group("your bench test (optional): calibrate the material on it and "
+                             "compare with the paper's identification")
+    b.add_argument("--bench", metavar="CSV", help="bench CSV: y_mm, force_N[, pressure_kPa]")
+    b.add_argument("--bench-type", metavar="TYPE", help="the tested chamber: A, B, C or D "
+                   "(Table 1 preset)")
+    b.add_argument("--bench-pressure", type=number("bench_pressure", "kPa gauge"), metavar="KPA",
+                   help="setup pressure of the test, kPa gauge (0: open chamber)")
+    b.add_argument("--bench-reservoir", type=number("bench_reservoir", "mm³"), default=0.0,
+                   metavar="MM3", help="reservoir of the test, mm³ (default 0)")
+    b.add_argument("--bench-material", default="tpu60a", metavar="NAME|FILE",
+                   help="the law to calibrate (default tpu60a)")
     p.add_argument("--allow-dirty", action="store_true",
                    help="build the committed report from uncommitted changes (it is then "
                         "marked NOT REPRODUCIBLE)")
@@ -67,6 +78,7 @@ def run(args) -> int:
         study = study.replace(fem=False)
     if types:
         study = study.replace(types=types)
+    bench = _bench(args)
     committed = _same_dir(out, committed_report_dir())
     if committed and not args.allow_dirty and not _clean_or_say_why(provenance()):
         return 2
@@ -78,7 +90,7 @@ def run(args) -> int:
     out.mkdir(parents=True, exist_ok=True)
     path = build_report(study, outcomes, out, command=_command(args),
                         fig_cache=cache.root / "figures", source=source,
-                        wall_seconds=time.perf_counter() - t0)
+                        wall_seconds=time.perf_counter() - t0, bench=bench)
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
@@ -90,6 +102,25 @@ def run(args) -> int:
         print(f"spsc report: failed runs: {', '.join(failed)}", file=sys.stderr)
         return 1
     return 0
+
+
+def _bench(args):
+    """The bench test's spec, checked before the study runs (None without --bench)."""
+    from .bench_section import BenchSpec
+
+    given = [o for o in ("bench_type", "bench_pressure") if getattr(args, o) is not None]
+    if args.bench is None:
+        if given:
+            raise ParameterError("--" + given[0].replace("_", "-"), getattr(args, given[0]),
+                                 "only with --bench CSV")
+        return None
+    for opt in ("bench_type", "bench_pressure"):
+        if getattr(args, opt) is None:
+            raise ParameterError("--" + opt.replace("_", "-"), None, "a value with --bench")
+    spec = BenchSpec(args.bench, str(args.bench_type).strip().upper(), args.bench_pressure,
+                     args.bench_reservoir, args.bench_material)
+    spec.check()
+    return spec
 
 
 def _types(text: str | None) -> tuple[str, ...] | None:
@@ -133,6 +164,13 @@ def _reconstruct(args) -> str:
         parts += ["--cache", args.cache]
     if args.no_fem:
         parts.append("--no-fem")
+    if args.bench is not None:
+        parts += ["--bench", str(args.bench), "--bench-type", str(args.bench_type),
+                  "--bench-pressure", f"{args.bench_pressure:g}"]
+        if args.bench_reservoir:
+            parts += ["--bench-reservoir", f"{args.bench_reservoir:g}"]
+        if args.bench_material != "tpu60a":
+            parts += ["--bench-material", str(args.bench_material)]
     if args.allow_dirty:
         parts.append("--allow-dirty")
     return shlex.join(parts)

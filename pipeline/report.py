@@ -16,6 +16,7 @@ from pathlib import Path
 
 from spsc.core.jsonio import write_json
 
+from .bench_section import bench_section
 from .figures import FigureCache
 from .paper_bench import paper_bench
 from .provenance import Provenance, provenance, versions
@@ -29,12 +30,14 @@ __all__ = ["build_report", "write_run_data"]
 
 def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
                  wall_seconds: float | None = None, render: bool = True, fig_cache=None,
-                 source: Provenance | None = None) -> Path:
+                 source: Provenance | None = None, bench=None) -> Path:
     """Write ``out_dir/index.html`` with ``figures/``, ``data/`` and ``summary.json`` beside
     it; returns the HTML path. ``outcomes`` is :func:`~.runner.run_all`'s result;
     ``fig_cache``: a directory where figures are kept by a hash of what they show (None:
     always drawn); ``render``: draw the FEM shapes; ``source``: the commit and tree state the
-    report is built from (default: this checkout's, now)."""
+    report is built from (default: this checkout's, now); ``bench``: a
+    :class:`~.bench_section.BenchSpec` of the user's bench test, calibrated and compared with
+    the paper's identification in its own section (None: no such section)."""
     out = Path(out_dir)
     figs, data = out / "figures", out / "data"
     for d in (figs, data):
@@ -53,7 +56,8 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
            "headline": headline_section(study, res), "jnd": jnd_section(study, res),
            "comparison": comparison_section(study, res, fig_out),
            "convergence": convergence_section(study, res, fig_out),
-           "versions": versions({m.name: code_version(m.name) for m in study.models})}
+           "versions": versions({m.name: code_version(m.name) for m in study.models}),
+           "bench": bench_section(bench, study, figs) if bench is not None else None}
     write_json(out / "summary.json", _summary(ctx))
     path = out / "index.html"
     path.write_text(render_page(ctx), encoding="utf-8")
@@ -77,6 +81,7 @@ def _summary(ctx: dict) -> dict:
             "headline": {mat: h["summary"] for mat, h in ctx["headline"].items()},
             "jnd_mm": ctx["jnd"]["summary"],
             "convergence": (ctx["convergence"] or {}).get("rows", []),
+            "bench": ctx["bench"],
             "versions": ctx["versions"]}
 
 

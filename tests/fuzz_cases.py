@@ -364,6 +364,15 @@ def invalid_cases(tmp: Path) -> list[Case]:
     # report
     cases += [Case(b["report"] + ("--types", v), f"--types {v!r}", "types")
               for v in ("", "E", "AX", "A-B", "1")]
+    rb = b["report"] + ("--bench", str(f["csv"]), "--bench-type", "B", "--bench-pressure", "40")
+    cases += _numbers(rb, ("bench-pressure", "bench-reservoir"))
+    cases += [Case(b["report"] + ("--bench-type", "B"), "bench type without a bench", "bench-type"),
+              Case(rb[:-2], "bench without its pressure", "bench-pressure"),
+              Case(rb[:-4] + ("--bench-type", "E", "--bench-pressure", "40"),
+                   "unknown bench type", "type"),
+              Case(rb + ("--bench-material", "rubber"), "unknown bench material", "material"),
+              Case(b["report"] + ("--bench", str(tmp / "missing.csv"), "--bench-type", "B",
+                                  "--bench-pressure", "40"), "missing bench", "missing.csv")]
     cases += _out_dirs(("report", "--cache", str(tmp / "cache")), "--out", f)
     cases += _out_dirs(("report", "--out", str(tmp / "out")), "--cache", f)
     # argparse's own mistakes, every verb

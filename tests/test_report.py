@@ -229,3 +229,42 @@ def test_quick_report_end_to_end(tmp_path, capsys):
     assert main(args) == 0
     n = len(__import__("spsc.pipeline.study", fromlist=["quick_study"]).quick_study().runs())
     assert f"{n} runs, {n} from the cache, 0 failed" in capsys.readouterr().out
+
+
+def test_a_bench_test_gets_its_own_section(tmp_path):
+    # a vented Type B dome made by the wall model at 1.4 x tpu60a: the section calibrates it
+    # back and predicts the study's setups (no identification: an open test has no pressure)
+    from spsc.cad.geometry import preset
+    from spsc.fem.calibrate import scaled
+    from spsc.fem.wall import wall_curve
+    from spsc.membrane.materials import material
+    from spsc.pipeline.bench_section import BenchSpec
+
+    c = wall_curve(preset("B", l=0.0), scaled(material("tpu60a"), 1.4), pressure_kPa=0.0,
+                   stroke_mm=2.0, points=9)
+    csv = tmp_path / "open.csv"
+    csv.write_text("y_mm,force_N\n" + "".join(f"{y},{f}\n" for y, f in zip(c.y_mm, c.force_N)))
+    spec = BenchSpec(str(csv), "B", 0.0, geometry=(("l", 0.0),))
+    out = tmp_path / "r"
+    page = build_report(SMALL, {}, out, source=CLEAN, bench=spec).read_text(encoding="utf-8")
+    assert "Your bench test" in page and (out / "figures" / "bench-calibration.png").is_file()
+    b = json.loads((out / "summary.json").read_text(encoding="utf-8"))["bench"]
+    assert b["scale"] == pytest.approx(1.4, rel=5e-3)  # 13-point model on a 9-point bench
+    assert len(b["rows"]) == len(SMALL.modes) * len(SMALL.pressures_kPa)
+    assert not b["identified"] and all(r["k_ident"] is None for r in b["rows"])
+    high = [r for r in b["rows"] if r["reservoir"] == 0]
+    assert all(r["k_wall"] > 0 for r in high)
+    assert "only with --bench" in _report_error(tmp_path, ["--bench-type", "B"])
+    assert "bench-pressure" in _report_error(tmp_path, ["--bench", str(csv), "--bench-type", "B"])
+
+
+def _report_error(tmp_path, argv) -> str:
+    import contextlib
+    import io
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        rc = main(["report", "--out", str(tmp_path / "x"), "--cache", str(tmp_path / "c"),
+                   "--quiet", *argv])
+    assert rc == 2
+    return err.getvalue()
