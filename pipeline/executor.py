@@ -1,0 +1,106 @@
+"""Where parallel work runs: a Dask client on an in-process LocalCluster (the default, nothing to
+set up) or on an existing scheduler given by address (a cluster started by hand, or by
+dask-jobqueue on a SLURM machine; see the README).
+
+Workers are processes with one thread each: the models are numpy/scipy code that holds the GIL
+between small kernels, and their BLAS is kept single-threaded (multi-threaded OpenBLAS spins on
+the wall model's batched small matrix products), so one process per core is the fast layout.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import socket
+from urllib.parse import urlparse
+
+from spsc.core.errors import ParameterError
+
+__all__ = ["dask_client", "check_workers", "check_scheduler", "default_workers"]
+
+#: Environment of every local worker process: single-threaded BLAS/OpenMP (see module docstring;
+#: distributed's default ``nanny.pre-spawn-environ`` does the same, this keeps it if a user's Dask
+#: config changes that).
+WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
+              "PYTHONUTF8": "1"}
+_MAX_LOCAL_WORKERS = 256
+
+
+def default_workers() -> int:
+    """Local workers when none are asked for: one per core this process may use."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not on Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def check_workers(workers) -> int:
+    """``workers`` as a positive int (None → :func:`default_workers`); ParameterError otherwise."""
+    if workers is None:
+        return default_workers()
+    allowed = f"an integer from 1 to {_MAX_LOCAL_WORKERS}"
+    if isinstance(workers, bool):
+        raise ParameterError("workers", workers, allowed)
+    try:
+        n = int(str(workers).strip()) if isinstance(workers, str) else int(workers)
+    except (TypeError, ValueError):
+        raise ParameterError("workers", workers, allowed) from None
+    if (not isinstance(workers, str) and n != workers) or not 1 <= n <= _MAX_LOCAL_WORKERS:
+        raise ParameterError("workers", workers, allowed)
+    return n
+
+
+def check_scheduler(address: str, timeout: float = 3.0) -> str:
+    """``address`` (``tcp://host:port`` or ``host:port``) if a scheduler port answers there within
+    ``timeout`` seconds; ParameterError naming the address otherwise.
+
+    A plain TCP connect, so a wrong address fails in seconds with one line instead of Dask's
+    retry loop and traceback; the Dask handshake itself happens in :func:`dask_client`.
+    """
+    text = str(address).strip()
+    allowed = "the address of a running Dask scheduler, e.g. tcp://10.0.0.5:8786"
+    url = urlparse(text if "://" in text else "tcp://" + text)
+    if url.scheme not in ("tcp", "tls") or not url.hostname:
+        raise ParameterError("scheduler", address, allowed)
+    try:
+        port = url.port
+    except ValueError:
+        port = None
+    if port is None:
+        raise ParameterError("scheduler", address, allowed + " (with its port)")
+    try:
+        with socket.create_connection((url.hostname, port), timeout=timeout):
+            pass
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        raise ParameterError("scheduler", address,
+                             f"{allowed}; nothing answered there ({reason})") from None
+    return f"{url.scheme}://{url.hostname}:{port}"
+
+
+@contextlib.contextmanager
+def dask_client(workers: int | None = None, scheduler: str | None = None):
+    """A ``distributed.Client``: on ``scheduler`` if given (``workers`` is then ignored: the
+    cluster has its own), else on a new in-process LocalCluster of ``workers`` single-threaded
+    worker processes, closed on exit.
+
+    The dashboard is off (it needs bokeh and a free port, neither of which a batch run wants);
+    Dask's own log lines are kept to errors so the progress bar stays readable.
+    """
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        address = check_scheduler(scheduler)
+        with Client(address, timeout="10s") as client:
+            yield client
+        return
+    n = check_workers(workers)
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=logging.ERROR,
+                           env=dict(WORKER_ENV))
+    try:
+        with Client(cluster) as client:
+            yield client
+    finally:
+        cluster.close()

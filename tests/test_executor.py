@@ -1,0 +1,72 @@
+"""The Dask executor: local workers are separate single-threaded processes, an existing scheduler
+is reached by address, and bad addresses or worker counts fail in one line, fast."""
+
+import os
+import socket
+import time
+
+import pytest
+
+from spsc.core.errors import ParameterError
+from spsc.pipeline.executor import check_scheduler, check_workers, dask_client
+
+
+def _worker_facts(_):
+    time.sleep(0.2)  # long enough that both workers take a task
+    return os.getpid(), os.environ.get("OPENBLAS_NUM_THREADS")
+
+
+def test_local_cluster_runs_on_separate_single_threaded_processes():
+    with dask_client(workers=2) as client:
+        info = client.scheduler_info()
+        assert len(info["workers"]) == 2
+        assert all(w["nthreads"] == 1 for w in info["workers"].values())
+        facts = client.gather(client.map(_worker_facts, range(6), pure=False))
+    pids = {pid for pid, _ in facts}
+    assert os.getpid() not in pids
+    assert len(pids) == 2
+    assert {blas for _, blas in facts} == {"1"}
+
+
+def test_existing_scheduler_is_used_by_address():
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, protocol="tcp",
+                      dashboard_address=None) as cluster:
+        with dask_client(workers=5, scheduler=cluster.scheduler_address) as client:
+            # the cluster's own single worker, not five new ones
+            assert len(client.scheduler_info()["workers"]) == 1
+            assert client.submit(lambda x: x + 1, 41).result() == 42
+
+
+def _closed_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def test_scheduler_that_does_not_answer_is_one_line_error_within_seconds():
+    port = _closed_port()
+    t0 = time.perf_counter()
+    with pytest.raises(ParameterError, match=r"^scheduler = .*nothing answered") as err:
+        check_scheduler(f"tcp://127.0.0.1:{port}", timeout=2.0)
+    assert time.perf_counter() - t0 < 10.0  # not Dask's retry loop (minutes)
+    assert "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("address", ["", "http://x:1", "tcp://", "tcp://host", "tcp://h:port"])
+def test_malformed_scheduler_address_is_refused(address):
+    with pytest.raises(ParameterError, match="^scheduler = "):
+        check_scheduler(address)
+
+
+@pytest.mark.parametrize("workers", [0, -1, 2.5, "two", True, 10_000])
+def test_bad_worker_count_is_refused(workers):
+    with pytest.raises(ParameterError, match="^workers = "):
+        check_workers(workers)
+
+
+def test_worker_count_defaults_to_usable_cores():
+    assert check_workers(None) >= 1
+    assert check_workers(3) == 3
+    assert check_workers("2") == 2
