@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder fingertip gate test test-slow bench bench-compare bench-wall clean
+.PHONY: help venv bladder fingertip gate test test-slow bench bench-compare bench-wall bench-material clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -54,6 +54,10 @@ bench: $(STAMP)
 	@echo "== bench/bench_wall.py speed (wall vs membrane; the 3D FEM figure is bench_fem's)"
 	@$(BIN)/python bench/bench_wall.py speed --type B
 	@$(BIN)/python bench/bench_wall.py speed --type B --dome
+
+# material fitting and calibration figures (issue 12; about 6 min)
+bench-material: $(STAMP)
+	$(BIN)/python bench/bench_material.py
 
 # the wall model against the 3D FEM (references: about 40 min the first time, then cached)
 bench-wall: $(STAMP)
