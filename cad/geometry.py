@@ -280,19 +280,26 @@ class SPSCGeometry:
 def _distinct(pts: np.ndarray, tol: float) -> np.ndarray:
     """Mask keeping the first and last point and every point farther than ``tol`` from the last
     kept one (near-coincident points break spline interpolation, e.g. c_y → 0 with n2 = 1)."""
-    keep = np.zeros(len(pts), dtype=bool)
-    keep[0] = True
+    keep = np.ones(len(pts), dtype=bool)
+    step = np.hypot(*np.diff(pts[:-1], axis=0).T)
+    to_end = np.hypot(*(pts[-1] - pts[1:-1]).T)
+    if np.all(step > tol) and np.all(to_end > tol):
+        return keep  # nothing to drop: the usual case, without the walk below
+    keep[1:-1] = False
     last = pts[0]
     for i in range(1, len(pts) - 1):
         if np.hypot(*(pts[i] - last)) > tol and np.hypot(*(pts[-1] - pts[i])) > tol:
             keep[i], last = True, pts[i]
-    keep[-1] = True
     return keep
 
 
 def _fan_corners(pts, nrm, max_turn=math.radians(3.0)):
     """Where the normal jumps between two coincident points (a corner of the profile, n2 = 1 with
     c_y > 0), insert normals sweeping the gap, so the offset is a round arc and not a chord."""
+    turn = np.abs(np.diff(np.arctan2(nrm[:, 1], nrm[:, 0])))
+    gap = np.hypot(*np.diff(pts, axis=0).T)
+    if not np.any((turn > 0.99 * max_turn) & (gap < 1.01e-3 * np.maximum(1.0, turn))):
+        return pts.copy(), nrm.copy()  # no corner: the usual case, without the walk below
     out_p, out_n = [pts[0]], [nrm[0]]
     for k in range(1, len(pts)):
         a0, a1 = math.atan2(nrm[k - 1, 1], nrm[k - 1, 0]), math.atan2(nrm[k, 1], nrm[k, 0])
