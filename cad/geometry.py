@@ -46,6 +46,10 @@ DESIGN_SPACE = {
 }
 
 
+#: Points of the profile polylines of the export mesh (:mod:`spsc.cad.meshbuild`, the mesh the
+#: printability gate checks): spacing ~0.2 mm on Table 1 chambers, sag < 0.002 mm.
+MESH_PROFILE_POINTS = 161
+
 #: Lengths below this (mm) are zero: OCCT's Precision::Confusion.
 LENGTH_CONFUSION_MM = 1e-7
 
@@ -253,8 +257,13 @@ class SPSCGeometry:
         """The outer wall surface: the profile offset by t0 along its normal, from (0, h + t0)
         down to the base plane z = 0. Where the offset ends above z = 0 (Type C) it is prolonged
         along its end tangent; where it dips below (Type D) it is cut there (DESIGN.md)."""
-        pts, nrm = self.profile_points(n)
-        pts, nrm = _fan_corners(pts, nrm)
+        return self.wall_profiles(n)[1]
+
+    def wall_profiles(self, n: int = 121) -> tuple[np.ndarray, np.ndarray]:
+        """The cavity profile of :meth:`profile_points` and the outer wall of
+        :meth:`outer_profile_points` (points (x, z) in mm, apex first) from one evaluation."""
+        inner, nrm = self.profile_points(n)
+        pts, nrm = _fan_corners(inner, nrm)
         off = pts + self.t0 * nrm
         below = np.nonzero(off[:, 1] < 0.0)[0]
         if below.size:
@@ -274,7 +283,7 @@ class SPSCGeometry:
             off = np.vstack([off, end])
         else:
             off[-1, 1] = 0.0
-        return off[_distinct(off, 1e-6 * self.w)]
+        return inner, off[_distinct(off, 1e-6 * self.w)]
 
 
 def _distinct(pts: np.ndarray, tol: float) -> np.ndarray:
