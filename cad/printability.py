@@ -66,7 +66,7 @@ class Verdict:
     reasons: tuple[str, ...]
     summary: str
     process: str = ""
-    measures: dict = field(default_factory=dict)
+    measures: dict = field(default_factory=dict, hash=False)
 
 
 def printability(geometry: SPSCGeometry, process: str | Process = "fdm", *,

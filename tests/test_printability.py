@@ -151,6 +151,7 @@ def test_process_object_and_geometry_type():
 def test_verdict_is_frozen():
     v = printability(preset("A"))
     assert isinstance(v, Verdict) and v.ok and v.reasons == ()
+    assert hash(v) == hash(printability(preset("A")))  # usable as a key in a sweep
     with pytest.raises(dataclasses.FrozenInstanceError):
         v.ok = False
 
