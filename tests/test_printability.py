@@ -48,6 +48,56 @@ def test_wall_of_a_smooth_profile_is_t0(kind):
     assert g.t0 - 2e-3 < wall <= g.t0 + 1e-12
 
 
+def _segment_distance(p, a, b):
+    """Distance from each point ``p`` to the nearest of the segments [a, b] (all pairs)."""
+    ab = b - a
+    ap = p[:, None, :] - a[None]
+    t = np.clip((ap * ab).sum(-1) / np.maximum((ab * ab).sum(-1), 1e-300), 0.0, 1.0)
+    return np.linalg.norm(ap - t[..., None] * ab[None], axis=-1).min(axis=1)
+
+
+def test_wall_is_the_exact_distance_between_the_polylines():
+    """Against all pairs of vertex and segment, both ways, both halves of the meridian, on
+    random geometries over the hard limits' range (corners, n = 1, thick walls)."""
+    rng = np.random.default_rng(13)
+    checked = 0
+    while checked < 25:
+        w = rng.uniform(2.0, 20.0)
+        kw = dict(w=w, h=w * rng.uniform(0.3, 2.0), l=rng.choice([0.0, rng.uniform(0, 10)]),
+                  t0=w * rng.uniform(0.02, 0.3), n1=rng.choice([1.0, 2.0, rng.uniform(1, 8)]),
+                  n2=rng.choice([1.0, 2.0, rng.uniform(1, 8)]),
+                  cy=rng.choice([0.0, rng.uniform(0, 0.9)]))
+        try:
+            g = SPSCGeometry(**{k: float(v) for k, v in kw.items()})
+        except ParameterError:
+            continue
+        if g.h <= g.t0:
+            continue
+        inner, outer = g.wall_profiles(161)
+        k = int(np.count_nonzero(inner[:, 1] >= g.t0))
+        cav = inner[:k]
+        if k < len(inner):
+            a, b = inner[k - 1], inner[k]
+            cav = np.vstack([cav, a + (b - a) * (a[1] - g.t0) / (a[1] - b[1])])
+        both = np.vstack([outer[::-1] * [-1, 1], outer])
+        ref = min(_segment_distance(cav, both[:-1], both[1:]).min(),
+                  _segment_distance(both, cav[:-1], cav[1:]).min())
+        np.testing.assert_allclose(printability(g).measures["wall_mm"], ref, rtol=0, atol=1e-12)
+        checked += 1
+
+
+def test_nearest_segment_found_beyond_the_nearest_vertices():
+    """The wall's point-to-polyline search looks at the segments next to the nearest vertices,
+    and must still find a long segment whose ends are all far: here the point is 1 from a
+    200-long segment and 2.5 from the twelve vertices after it."""
+    from spsc.cad.printability import _point_polyline
+
+    arc = 2.5 * np.exp(1j * np.linspace(-0.5, -2.6, 12))
+    line = np.vstack([[[-100.0, 1.0], [100.0, 1.0]], np.column_stack([arc.real, arc.imag])])
+    d, near = _point_polyline(np.array([[0.0, 0.0]]), line)
+    np.testing.assert_allclose([d[0], near[0].real, near[0].imag], [1.0, 0.0, 1.0], atol=1e-12)
+
+
 def test_wall_thinned_at_a_profile_corner():
     """n2 = 1 with c_y > 0 has a corner at the widest section (w̄, c_y h̄); the export mesh's
     outer polyline crosses the corner's offset arc on a chord, which the gate measures
