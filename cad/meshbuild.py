@@ -48,7 +48,8 @@ def chamber_manifold(pts: np.ndarray, l: float, *, sink: float = 0.0) -> m3.Mani
     piece, no seams where ends and middle meet. ``sink`` > 0 prolongs the profile's last
     (straight) segment from z = 0 down to z = −sink in place of the base ring, so a union with
     a plate whose top is z = 0 shares no coplanar face or ring (an STL cannot represent the
-    coincident vertices such a union leaves); above z = 0 the surface is unchanged.
+    coincident vertices such a union leaves); above z = 0 the surface is unchanged. Points on
+    the chord of their neighbours go before the hull (:func:`hull_meridian`).
     """
     pts = np.asarray(pts, float)
     if sink > 0:
