@@ -121,10 +121,12 @@ def test_cone_bladder_passes_the_gate(tmp_path):
     dict(w=9.324, h=5.825, l=14.22, t0=1.769, n1=6.132, material="tpu60a", holes=2, tube=2.86),
     dict(w=7.054, h=8.082, l=11.644, t0=1.038, n1=2.0, material="silicone40a", holes=4,
          tube=3.77),
-], ids=["seed11-24", "seed11-92", "seed11-106", "seed11-131", "four-holes"])
+    dict(w=11.63, h=6.04, l=12.74, t0=1.098, n1=5.569, material="tpu60a", holes=2, tube=2.19),
+], ids=["seed11-24", "seed11-92", "seed11-106", "seed11-131", "four-holes", "folded-here"])
 def test_issue_10_type_c_designs_pass(tmp_path, d):
     """The four Type C designs bench_badinput --designs 200 --seed 11 failed and the four-hole
-    one, through the STL as ``spsc bladder`` checks it."""
+    one (elsewhere; they pass here even without the fix), and one that failed here with 14
+    self-intersecting faces, through the STL as ``spsc bladder`` checks it."""
     g = SPSCGeometry(w=d["w"], h=d["h"], l=d["l"], t0=d["t0"], n1=d["n1"], n2=1.0, cy=0.0)
     spec = BladderSpec(g, FlangeSpec(holes=d["holes"]), PortSpec(tube_id=d["tube"]))
     report = _gate_stl(tmp_path, spec, d["material"])
