@@ -19,11 +19,15 @@ from .bladder import BladderSpec, flange_hole_centres, widest_outer_radius
 from .export import TriMesh
 from .geometry import MESH_PROFILE_POINTS, SPSCGeometry
 
-__all__ = ["bladder_mesh", "chamber_manifold", "SAG_MM"]
+__all__ = ["bladder_mesh", "chamber_manifold", "hull_meridian", "SAG_MM"]
 
 #: Chord sag (mm) of every circle of the mesh: volume error ~2·sag/R ≈ 0.05 %, far inside the
 #: 0.2 % the issue allows, and a wall error far under the gate's 0.01 mm allowance.
 SAG_MM = 0.004
+#: A meridian point within this fraction of the part's largest coordinate of the chord between
+#: its neighbours is left out of the hull (:func:`hull_meridian`): 100x under QuickHull's own
+#: coplanarity tolerance (1e-7 of that coordinate), a million times over rounding noise.
+COLLINEAR_REL = 1e-9
 
 
 def _segments(radius: float, degrees: float = 360.0) -> int:
@@ -42,12 +46,14 @@ def chamber_manifold(pts: np.ndarray, l: float, *, sink: float = 0.0) -> m3.Mani
     piece, no seams where ends and middle meet. ``sink`` > 0 prolongs the profile's last
     (straight) segment from z = 0 down to z = −sink in place of the base ring, so a union with
     a plate whose top is z = 0 shares no coplanar face or ring (an STL cannot represent the
-    coincident vertices such a union leaves); above z = 0 the surface is unchanged.
+    coincident vertices such a union leaves); above z = 0 the surface is unchanged. Points on
+    the chord of their neighbours go before the hull (:func:`hull_meridian`).
     """
     pts = np.asarray(pts, float)
     if sink > 0:
         d = pts[-1] - pts[-2]
         pts = np.vstack([pts[:-1], pts[-2] + d * ((-sink - pts[-2, 1]) / d[1])])
+    pts = hull_meridian(pts, l)
     n = _segments(float(pts[:, 0].max()))
     a = np.linspace(0.0, math.pi, n // 2 + 1)
     rings = []
@@ -59,6 +65,38 @@ def chamber_manifold(pts: np.ndarray, l: float, *, sink: float = 0.0) -> m3.Mani
         ys = np.concatenate([l / 2 + r * np.sin(a), -l / 2 - r * np.sin(a)])
         rings.append(np.column_stack([xs, ys, np.full_like(xs, z)]))
     return m3.Manifold.hull_points(np.vstack(rings))
+
+
+def hull_meridian(pts: np.ndarray, l: float = 0.0) -> np.ndarray:
+    """The meridian ``pts`` (x, z) without the points that lie on the chord between their
+    neighbours (within :data:`COLLINEAR_REL` of the largest coordinate of the body, extruded by
+    ``l``); every point left out lies that close to the chord of the points kept around it.
+
+    Why: such a point adds nothing to the convex body, but its ring lies in the planes of the
+    facets spanned by the rings on either side, and QuickHull (manifold3d's ``hull_points``)
+    then tells on which side of them each of its points lies by the sign of rounding noise: it
+    keeps part of the ring, drops the rest, fails to close horizons and can return folded,
+    self-intersecting facets. Type C's outer wall has such a point by construction: its offset
+    ends above the base plane and is prolonged along its last chord
+    (:meth:`SPSCGeometry.outer_profile_points`), and ``sink`` prolongs that same line into the
+    plate, so the ring where the offset ends sits exactly on the line (issue 10: self-
+    intersecting faces at the wall's root). A cone (n1 = n2 = 1) is nothing but such points.
+    """
+    pts = np.asarray(pts, float)
+    tol = COLLINEAR_REL * (l / 2 + float(np.abs(pts).max()))
+    keep, skipped = [0], []
+    for i in range(1, len(pts) - 1):
+        a, b = pts[keep[-1]], pts[i + 1]
+        run = pts[skipped + [i]]
+        ab = b - a
+        t = np.clip((run - a) @ ab / (ab @ ab), 0.0, 1.0)
+        if np.hypot(*(a + t[:, None] * ab - run).T).max() <= tol:
+            skipped.append(i)  # on the chord from the last kept point to the next one
+        else:
+            keep.append(i)
+            skipped = []
+    keep.append(len(pts) - 1)
+    return pts[keep]
 
 
 def _cylinder(radius, height, start, direction, r_top=None) -> m3.Manifold:
