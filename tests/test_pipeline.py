@@ -136,3 +136,44 @@ def test_cache_ignores_a_corrupt_entry(tmp_path):
     out = run_all([run], cache, progress=False)
     assert out[run].ok and not out[run].cached
     assert json.loads((cache.entry(run) / "result.json").read_text(encoding="utf-8"))["key"] == run.key()
+
+
+def test_cache_put_is_safe_when_processes_store_the_same_run_at_once(tmp_path):
+    """Workers (or two reports) may store one run together: every writer gets a whole entry,
+    one entry remains, nothing half-written or left over; a stale entry is replaced."""
+    import threading
+
+    run = SMALL.runs()[1]
+    cache = Cache(tmp_path)
+    writers = 8
+    barrier = threading.Barrier(writers)
+    results, errors = [], []
+
+    def compute(directory, i):
+        (directory / "file.txt").write_text(str(i), encoding="utf-8")
+        barrier.wait()  # every writer renames into place at about the same moment
+        return {"writer": i}
+
+    def put(i):
+        try:
+            results.append(cache.put(run, lambda d: compute(d, i)))
+        except Exception as exc:  # noqa: BLE001 — collected for the assertion
+            errors.append(exc)
+
+    threads = [threading.Thread(target=put, args=(i,)) for i in range(writers)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors, errors
+    stored = cache.get(run)
+    assert len(results) == writers and all(r == stored for r in results)  # the first one kept
+    assert (cache.entry(run) / "file.txt").read_text(encoding="utf-8") == str(stored["writer"])
+    assert [p.name for p in (tmp_path / "runs").iterdir()] == [cache.entry(run).name]
+
+    stale = json.loads((cache.entry(run) / "result.json").read_text(encoding="utf-8"))
+    stale["key"] = "0" * 64  # stored by other code under the same label and key prefix
+    (cache.entry(run) / "result.json").write_text(json.dumps(stale), encoding="utf-8")
+    assert cache.put(run, lambda d: {"writer": "new"})["writer"] == "new"
+    assert cache.get(run)["writer"] == "new"
+    assert [p.name for p in (tmp_path / "runs").iterdir()] == [cache.entry(run).name]
