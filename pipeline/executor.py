@@ -17,7 +17,8 @@ from urllib.parse import urlparse
 
 from spsc.core.errors import ParameterError
 
-__all__ = ["dask_client", "check_workers", "check_scheduler", "default_workers"]
+__all__ = ["dask_client", "check_cluster", "check_workers", "check_scheduler",
+           "default_workers"]
 
 #: Environment of every local worker process: single-threaded BLAS/OpenMP (see module docstring;
 #: distributed's default ``nanny.pre-spawn-environ`` does the same, this keeps it if a user's Dask
@@ -80,6 +81,19 @@ def check_scheduler(address: str, timeout: float = 3.0) -> str:
         raise ParameterError("scheduler", address,
                              f"{allowed}; nothing answered there ({reason})") from None
     return f"{url.scheme}://{url.hostname}:{port}"
+
+
+def check_cluster(workers=None, scheduler=None) -> tuple[int | None, str | None]:
+    """A verb's ``--workers`` and ``--scheduler`` checked together, before any work:
+    ``(n, None)`` for a local cluster of ``n`` workers (``workers`` None: one per core),
+    ``(None, address)`` for a scheduler that answers now. Both at once is refused: the
+    scheduler's cluster has its own workers."""
+    if scheduler is None:
+        return check_workers(workers), None
+    if workers is not None:
+        raise ParameterError("workers", workers, "only without a scheduler (its cluster has "
+                             "its own workers)")
+    return None, check_scheduler(scheduler)
 
 
 @contextlib.contextmanager
