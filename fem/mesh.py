@@ -23,6 +23,9 @@ import hashlib
 import itertools
 import json
 import math
+import os
+import uuid
+import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -72,8 +75,19 @@ class TetMesh:
         return grid
 
     def save(self, path) -> None:
-        np.savez_compressed(path, nodes=self.nodes, tets=self.tets, symmetry=self.symmetry,
-                            **{f"facets_{k}": v for k, v in self.facets.items()})
+        """Write the mesh as ``.npz`` at ``path`` (exactly that name), through a temporary file
+        beside it renamed over it: a process loading it at the same time (another worker
+        sharing the mesh cache) reads the old file or the new one, never half of one."""
+        path = Path(path)
+        tmp = path.with_name(f".{path.name}.{uuid.uuid4().hex[:12]}.tmp")
+        try:
+            with open(tmp, "xb") as f:
+                np.savez_compressed(f, nodes=self.nodes, tets=self.tets, symmetry=self.symmetry,
+                                    **{f"facets_{k}": v for k, v in self.facets.items()})
+            os.replace(tmp, path)
+        except BaseException:
+            tmp.unlink(missing_ok=True)
+            raise
 
     @classmethod
     def load(cls, path) -> "TetMesh":
@@ -328,7 +342,10 @@ def cached_mesh(builder, *, cache_dir=None, **params) -> TetMesh:
     digest = hashlib.sha256(key.encode()).hexdigest()[:16]
     path = Path(cache_dir or CACHE_DIR) / f"{builder.__name__}-{digest}.npz"
     if path.exists():
-        return TetMesh.load(path)
+        try:
+            return TetMesh.load(path)
+        except (OSError, ValueError, KeyError, zipfile.BadZipFile):
+            pass  # a damaged file (e.g. from a version that wrote in place): build it again
     mesh = builder(**params)
     path.parent.mkdir(parents=True, exist_ok=True)
     mesh.save(path)

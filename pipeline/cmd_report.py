@@ -1,13 +1,19 @@
 """``spsc report``: run the validation study (cached) and write the HTML report.
 
     spsc report [--quick] [--out DIR] [--cache DIR] [--no-fem] [--types ABCD] [--quiet]
-                [--allow-dirty]
+                [--workers N | --scheduler ADDRESS] [--allow-dirty]
 
 Default: the full study into ``reports/validation/``; ``--quick`` (coarse FEM mesh, fewer
 points and pressures; CI) into ``build/report-quick/``. Runs are cached under
 ``build/cache/runs`` by a hash of their inputs and of the code that computes them, so a second
 call with nothing changed takes seconds. A failed run is listed in the report and the others
 go on. Exit 0 when every run succeeded, 1 when some failed (the report is still written).
+
+The runs are independent and run in parallel on Dask (:mod:`.executor`): by default on an
+in-process LocalCluster with one single-threaded worker process per core, ``--workers N`` for
+another count (1: in this process, one run after another), ``--scheduler ADDRESS`` on an
+existing cluster (its workers must see the cache folder at the same path and run this code).
+No cluster is started when every run is in the cache.
 
 Provenance: the report names the commit it was built from. Into the committed
 ``reports/validation/`` it is built only from a clean tree (exit 2 otherwise) unless
@@ -26,6 +32,7 @@ from pathlib import Path
 
 from spsc.core.errors import ParameterError
 
+from .executor import check_cluster, default_workers
 from .options import check_output_dir, number
 
 DEFAULT_OUT = {False: Path("reports/validation"), True: Path("build/report-quick")}
@@ -44,6 +51,14 @@ def register(subparsers) -> None:
                    help="no 3D FEM: the membrane, simplified and wall models only")
     p.add_argument("--types", help="subset of the types, e.g. BD (default ABCD)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    d = p.add_argument_group("where the runs are computed (Dask; no cluster is started when "
+                             "every run is cached)")
+    d.add_argument("--workers", metavar="N",
+                   help=f"local worker processes, one run each at a time (default: one per "
+                        f"core, here {default_workers()}; 1: in this process, no cluster)")
+    d.add_argument("--scheduler", metavar="ADDRESS",
+                   help="an existing Dask scheduler, e.g. tcp://10.0.0.5:8786, instead of "
+                        "local workers; its workers must see --cache at the same path")
     b = p.add_argument_group("your bench test (optional): calibrate the material on it and "
                              "compare with the paper's identification")
     b.add_argument("--bench", metavar="CSV", help="bench CSV: y_mm, force_N[, pressure_kPa]")
@@ -69,6 +84,7 @@ def run(args) -> int:
     from .study import full_study, quick_study
 
     t0 = time.perf_counter()
+    cluster, executor = _cluster(args)
     types = _types(args.types)
     out = check_output_dir("--out", args.out if args.out is not None
                            else DEFAULT_OUT[bool(args.quick)])
@@ -83,14 +99,15 @@ def run(args) -> int:
     if committed and not args.allow_dirty and not _clean_or_say_why(provenance()):
         return 2
     cache = Cache(args.cache)
-    outcomes = run_all(study.runs(), cache, progress=not args.quiet)
+    outcomes = run_all(study.runs(), cache, progress=not args.quiet, cluster=cluster)
     source = provenance()  # as it is when the report is written: the tree may have changed
     if committed and not args.allow_dirty and not _clean_or_say_why(source):
         return 2
     out.mkdir(parents=True, exist_ok=True)
     path = build_report(study, outcomes, out, command=_command(args),
                         fig_cache=cache.root / "figures", source=source,
-                        wall_seconds=time.perf_counter() - t0, bench=bench)
+                        wall_seconds=time.perf_counter() - t0, bench=bench,
+                        executor=executor)
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
@@ -102,6 +119,23 @@ def run(args) -> int:
         print(f"spsc report: failed runs: {', '.join(failed)}", file=sys.stderr)
         return 1
     return 0
+
+
+def _cluster(args):
+    """``--workers`` / ``--scheduler`` checked → (the runner's cluster factory or None for
+    this process, how the runs are computed, for the report)."""
+    import functools
+
+    from .executor import dask_client
+
+    workers, scheduler = check_cluster(args.workers, args.scheduler)
+    if scheduler is not None:
+        return (functools.partial(dask_client, scheduler=scheduler),
+                f"on the Dask scheduler at {scheduler}")
+    if workers == 1:
+        return None, "in one process"
+    return (functools.partial(dask_client, workers=workers),
+            f"on {workers} local Dask worker processes")
 
 
 def _bench(args):
@@ -164,6 +198,9 @@ def _reconstruct(args) -> str:
         parts += ["--cache", args.cache]
     if args.no_fem:
         parts.append("--no-fem")
+    for opt in ("workers", "scheduler"):
+        if getattr(args, opt) is not None:
+            parts += [f"--{opt}", str(getattr(args, opt))]
     if args.bench is not None:
         parts += ["--bench", str(args.bench), "--bench-type", str(args.bench_type),
                   "--bench-pressure", f"{args.bench_pressure:g}"]

@@ -17,7 +17,8 @@ from urllib.parse import urlparse
 
 from spsc.core.errors import ParameterError
 
-__all__ = ["dask_client", "check_workers", "check_scheduler", "default_workers"]
+__all__ = ["dask_client", "check_cluster", "check_workers", "check_scheduler",
+           "default_workers"]
 
 #: Environment of every local worker process: single-threaded BLAS/OpenMP (see module docstring;
 #: distributed's default ``nanny.pre-spawn-environ`` does the same, this keeps it if a user's Dask
@@ -25,6 +26,9 @@ __all__ = ["dask_client", "check_workers", "check_scheduler", "default_workers"]
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
               "PYTHONUTF8": "1"}
 _MAX_LOCAL_WORKERS = 256
+#: the scheduler always serves HTTP (health checks); without a dashboard it would still take
+#: port 8787 or warn "Port 8787 is already in use" on stderr: a free port on loopback instead
+_NO_DASHBOARD = {"dashboard": False, "dashboard_address": "127.0.0.1:0"}
 
 
 def default_workers() -> int:
@@ -79,6 +83,19 @@ def check_scheduler(address: str, timeout: float = 3.0) -> str:
     return f"{url.scheme}://{url.hostname}:{port}"
 
 
+def check_cluster(workers=None, scheduler=None) -> tuple[int | None, str | None]:
+    """A verb's ``--workers`` and ``--scheduler`` checked together, before any work:
+    ``(n, None)`` for a local cluster of ``n`` workers (``workers`` None: one per core),
+    ``(None, address)`` for a scheduler that answers now. Both at once is refused: the
+    scheduler's cluster has its own workers."""
+    if scheduler is None:
+        return check_workers(workers), None
+    if workers is not None:
+        raise ParameterError("workers", workers, "only without a scheduler (its cluster has "
+                             "its own workers)")
+    return None, check_scheduler(scheduler)
+
+
 @contextlib.contextmanager
 def dask_client(workers: int | None = None, scheduler: str | None = None):
     """A ``distributed.Client``: on ``scheduler`` if given (``workers`` is then ignored: the
@@ -98,7 +115,7 @@ def dask_client(workers: int | None = None, scheduler: str | None = None):
     n = check_workers(workers)
     cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                            dashboard_address=None, silence_logs=logging.ERROR,
-                           env=dict(WORKER_ENV))
+                           env=dict(WORKER_ENV), scheduler_kwargs=_NO_DASHBOARD)
     try:
         with Client(cluster) as client:
             yield client

@@ -30,14 +30,15 @@ __all__ = ["build_report", "write_run_data"]
 
 def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
                  wall_seconds: float | None = None, render: bool = True, fig_cache=None,
-                 source: Provenance | None = None, bench=None) -> Path:
+                 source: Provenance | None = None, bench=None, executor: str = "") -> Path:
     """Write ``out_dir/index.html`` with ``figures/``, ``data/`` and ``summary.json`` beside
     it; returns the HTML path. ``outcomes`` is :func:`~.runner.run_all`'s result;
     ``fig_cache``: a directory where figures are kept by a hash of what they show (None:
     always drawn); ``render``: draw the FEM shapes; ``source``: the commit and tree state the
     report is built from (default: this checkout's, now); ``bench``: a
     :class:`~.bench_section.BenchSpec` of the user's bench test, calibrated and compared with
-    the paper's identification in its own section (None: no such section)."""
+    the paper's identification in its own section (None: no such section); ``executor``: how
+    the runs were computed (e.g. "on 2 local Dask worker processes"), beside the wall time."""
     out = Path(out_dir)
     figs, data = out / "figures", out / "data"
     for d in (figs, data):
@@ -50,6 +51,7 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
     write_run_data(outcomes, data)
     ctx = {"study": study, "study_rows": _study_rows(study), "command": command,
            "generated": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "wall_seconds": wall_seconds,
+           "executor": executor,
            "provenance": {"commit": source.commit, "clean": source.clean,
                           "describe": source.describe()},
            "runs": runs_section(outcomes), "paper": paper_bench(),
@@ -76,6 +78,7 @@ def _summary(ctx: dict) -> dict:
     """What ``summary.json`` keeps: the numbers of every section, the study, the provenance."""
     runs = ctx["runs"]
     return {"study": asdict(ctx["study"]), "command": ctx["command"],
+            "executor": ctx["executor"],
             "provenance": ctx["provenance"], "failed": runs["failed"], "runs": runs["rows"],
             "comparison": ctx["comparison"]["summary"],
             "headline": {mat: h["summary"] for mat, h in ctx["headline"].items()},

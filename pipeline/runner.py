@@ -1,10 +1,13 @@
-"""Run a study's runs through the cache: cad → membrane / simplified / FEM.
+"""Run a study's runs through the cache: cad → membrane / simplified / wall / FEM, here or on
+a Dask cluster (:mod:`.executor`).
 
 Each run is computed once per (inputs, code version) and stored by :class:`~.cache.Cache`; a
-re-run with nothing changed only reads JSON. A run that raises is recorded as failed (its
-reason kept for the report) and the others go on; failures are not cached, so the next run
-retries them. A solver that returns a non-converged result is not a failure: its curve (NaN
-where not reached) and message are stored like any other.
+re-run with nothing changed only reads JSON (and starts no cluster). A run that raises is
+recorded as failed (its reason kept for the report) and the others go on; failures are not
+cached, so the next run retries them. A solver that returns a non-converged result is not a
+failure: its curve (NaN where not reached) and message are stored like any other. On a
+cluster the runs are independent tasks, the longest first, each storing its own result in the
+cache; the client only reads hits and collects outcomes.
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ from spsc.core.curve import Curve, SolveInfo
 from .cache import Cache
 from .study import Run
 
-__all__ = ["Outcome", "compute", "curve_model", "run_all"]
+__all__ = ["Outcome", "compute", "curve_model", "estimated_seconds", "run_all"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -161,10 +164,35 @@ def compute(run: Run, directory: Path, progress=None, *, mesh_dir=None) -> dict:
     return out
 
 
-def run_all(runs, cache: Cache, *, compute=compute, progress: bool = True,
-            stream=None) -> dict[Run, Outcome]:
-    """Every run through the cache, in order, with a tqdm bar; failures are isolated and
-    reported on ``stream`` (stderr). Returns {run: Outcome} in the order given."""
+#: rough compute seconds per plate position at a 1 mm mesh with 2 layers (the full study on
+#: the 2-core machine), for ordering the runs on a cluster; unknown models count as the wall
+_SECONDS_PER_POINT = {"membrane": 0.025, "simplified": 0.004, "wall": 0.9, "fem": 12.0}
+
+
+def estimated_seconds(run: Run) -> float:
+    """A rough compute time of ``run`` (s), used only to start the longest runs first: per
+    plate position by model, scaled by the mesh's unknowns (∝ layers / size², a wall meshed
+    through its thickness) and doubled for the open FEM chamber (more Newton steps)."""
+    s = _SECONDS_PER_POINT.get(run.model, _SECONDS_PER_POINT["wall"]) * run.points
+    if run.mesh_mm:
+        s *= run.layers / 2 / run.mesh_mm**2
+    if run.model == "fem" and run.mode == "open":
+        s *= 2
+    return s
+
+
+def run_all(runs, cache: Cache, *, compute=compute, progress: bool = True, stream=None,
+            cluster=None) -> dict[Run, Outcome]:
+    """Every run through the cache with a tqdm bar; failures are isolated and reported on
+    ``stream`` (stderr). Returns {run: Outcome} in the order given.
+
+    Cache hits are read here. ``cluster`` None: the misses are computed here, in order;
+    else a zero-argument factory returning a context manager that yields a
+    ``distributed.Client`` (``functools.partial(executor.dask_client, workers=2)``), entered
+    only if something is missing: the misses go to its workers longest first (FEM, then the
+    wall, then the membrane models, so the workers stay busy to the end), each worker stores
+    its run in the cache (which must be at the same path on every worker) and the outcomes
+    are collected as they complete."""
     from tqdm import tqdm
 
     stream = stream or sys.stderr
@@ -172,35 +200,128 @@ def run_all(runs, cache: Cache, *, compute=compute, progress: bool = True,
     out: dict[Run, Outcome] = {}
     bar = tqdm(total=len(runs), desc="spsc report", unit="run", disable=not progress,
                file=stream, dynamic_ncols=True)
+
+    def record(oc: Outcome) -> None:
+        out[oc.run] = oc
+        bar.set_postfix_str(oc.run.label, refresh=False)
+        if not oc.ok:
+            bar.write(f"spsc report: run {oc.run.label} failed: {oc.error}", file=stream)
+        bar.update(1)
+
     try:
+        misses = []
         for run in runs:
-            bar.set_postfix_str(run.label, refresh=True)
-
-            def step(done, total, _run=run):
-                bar.set_postfix_str(f"{_run.label} [{done}/{total}]", refresh=True)
-
-            t0 = time.perf_counter()
-            try:
-                hit = cache.get(run)
-                if hit is not None:
-                    out[run] = Outcome(run, True, hit, cached=True,
-                                       seconds=float(hit.get("seconds", math.nan)))
-                    bar.update(1)
-                    continue
-                payload = cache.put(run, lambda d, _run=run: compute(
-                    _run, d, step, mesh_dir=cache.mesh_dir))
-                out[run] = Outcome(run, True, payload,
-                                   seconds=float(payload.get("seconds", time.perf_counter() - t0)))
-            except Exception as exc:  # noqa: BLE001 — isolate any failure of one run
-                why = f"{type(exc).__name__}: {exc}"
-                tb = traceback.extract_tb(exc.__traceback__)
-                if tb:
-                    why += f" (at {Path(tb[-1].filename).name}:{tb[-1].lineno})"
-                out[run] = Outcome(run, False, None, error=why,
-                                   seconds=time.perf_counter() - t0)
-                bar.write(f"spsc report: run {run.label} failed: {why}", file=stream)
-            bar.update(1)
+            hit = _lookup(run, cache)
+            if hit is None:
+                misses.append(run)
+            else:
+                record(hit)
+        if cluster is None:
+            for run in misses:
+                record(_attempt(run, cache, compute, _step(bar, run)))
+        elif misses:
+            _on_cluster(misses, cache, compute, cluster, record)
     finally:
         bar.close()
-    return out
+    return {run: out[run] for run in runs}
 
+
+def _step(bar, run: Run):
+    """The progress callback of one run computed here: its label and load point on the bar."""
+    bar.set_postfix_str(run.label, refresh=True)
+
+    def step(done, total):
+        bar.set_postfix_str(f"{run.label} [{done}/{total}]", refresh=True)
+
+    return step
+
+
+def _lookup(run: Run, cache: Cache) -> Outcome | None:
+    """The cached outcome of ``run``, None if it is not cached, a failure if reading fails
+    (e.g. its inputs do not resolve)."""
+    t0 = time.perf_counter()
+    try:
+        hit = cache.get(run)
+    except Exception as exc:  # noqa: BLE001 — isolate any failure of one run
+        return _failure(run, exc, time.perf_counter() - t0)
+    if hit is None:
+        return None
+    return Outcome(run, True, hit, cached=True, seconds=float(hit.get("seconds", math.nan)))
+
+
+def _attempt(run: Run, cache: Cache, compute, progress=None) -> Outcome:
+    """Compute ``run`` into ``cache``; its outcome, a failure if anything raises."""
+    t0 = time.perf_counter()
+    try:
+        payload = cache.put(run, lambda d: compute(run, d, progress, mesh_dir=cache.mesh_dir))
+    except Exception as exc:  # noqa: BLE001 — isolate any failure of one run
+        return _failure(run, exc, time.perf_counter() - t0)
+    return Outcome(run, True, payload,
+                   seconds=float(payload.get("seconds", time.perf_counter() - t0)))
+
+
+def _failure(run: Run, exc: BaseException, seconds: float) -> Outcome:
+    """A failed outcome saying why: the exception and where it was raised."""
+    why = f"{type(exc).__name__}: {exc}"
+    tb = traceback.extract_tb(exc.__traceback__)
+    if tb:
+        why += f" (at {Path(tb[-1].filename).name}:{tb[-1].lineno})"
+    return Outcome(run, False, None, error=why, seconds=seconds)
+
+
+def _remote_attempt(run: Run, key: str, root: str, compute) -> Outcome:
+    """A worker's task: :func:`_attempt` into the cache at ``root``, unless this worker's code
+    gives the run another key than the client's (other sources: its result would be stored
+    under a key the client never reads)."""
+    if run.key() != key:
+        return _failure(run, RuntimeError(
+            f"the worker's code differs from the client's (cache key {run.key()[:16]}, "
+            f"expected {key[:16]}): run the workers on this checkout"), 0.0)
+    return _attempt(run, Cache(root), compute)
+
+
+def _on_cluster(misses, cache: Cache, compute, cluster, record) -> None:
+    """Compute ``misses`` on the cluster ``cluster()`` opens, longest first; ``record`` each
+    outcome as it completes. A lost worker fails the run it had (after Dask's retries on
+    others); a cluster that fails fails only the runs not finished."""
+    root = str(cache.root.resolve())
+    pending = dict.fromkeys(sorted(misses, key=estimated_seconds, reverse=True))
+    try:
+        with cluster() as client:
+            for oc in _longest_first(client, list(pending), root, compute):
+                pending.pop(oc.run)
+                record(oc)
+    except Exception as exc:  # noqa: BLE001 — the cluster itself: fail what is left
+        for run in list(pending):
+            record(_failure(run, RuntimeError(f"Dask cluster: {type(exc).__name__}: {exc}"),
+                            math.nan))
+
+
+def _longest_first(client, order, root: str, compute):
+    """Outcomes of ``order``'s runs as they complete, with one run in flight per worker
+    thread: the next (longest remaining) run goes to the first free worker. (Dask's own
+    queueing holds tasks back only for large groups; a few misses would be spread over the
+    workers at once, and one worker could end with two long runs while the other idles.)"""
+    from distributed import as_completed
+
+    todo = list(order)
+    futures = {}
+    done = as_completed()
+
+    def top_up():
+        while todo and len(futures) < max(1, sum(client.nthreads().values())):
+            run = todo.pop(0)
+            future = client.submit(_remote_attempt, run, run.key(), root, compute, pure=False)
+            futures[future] = run
+            done.add(future)
+
+    top_up()
+    for future in done:
+        run = futures.pop(future)
+        try:
+            oc = future.result()
+        except Exception as exc:  # noqa: BLE001 — a lost worker, a task not unpickled
+            oc = _failure(run, exc, math.nan)
+        future.release()
+        top_up()
+        yield oc

@@ -57,6 +57,7 @@ OUT_OF_RANGE = {
     "pocket-depth": ("0", "-1", "100"),
     "min-wall": ("0", "-1"),
     "bladder-volume": ("0", "-1"),
+    "workers": ("0", "-1", "2.5", "1e3", "257", "1e9"),
 }
 
 GEOMETRY = ("w", "h", "l", "t0", "n1", "n2", "cy")
@@ -373,6 +374,14 @@ def invalid_cases(tmp: Path) -> list[Case]:
               Case(rb + ("--bench-material", "rubber"), "unknown bench material", "material"),
               Case(b["report"] + ("--bench", str(tmp / "missing.csv"), "--bench-type", "B",
                                   "--bench-pressure", "40"), "missing bench", "missing.csv")]
+    cases += _numbers(b["report"], ("workers",))
+    closed = f"tcp://127.0.0.1:{_closed_port()}"
+    cases += [Case(b["report"] + ("--scheduler", closed), "no scheduler answers", "scheduler"),
+              Case(b["report"] + ("--workers", "2", "--scheduler", closed),
+                   "workers with a scheduler", "workers")]
+    cases += [Case(b["report"] + ("--scheduler", v), f"--scheduler {v!r}", "scheduler")
+              for v in ("", " ", "http://127.0.0.1:8786", "tcp://", "tcp://127.0.0.1",
+                        "tcp://127.0.0.1:port", "127.0.0.1:99999")]
     cases += _out_dirs(("report", "--cache", str(tmp / "cache")), "--out", f)
     cases += _out_dirs(("report", "--out", str(tmp / "out")), "--cache", f)
     # argparse's own mistakes, every verb
@@ -384,6 +393,15 @@ def invalid_cases(tmp: Path) -> list[Case]:
               Case(("nothing",), "unknown verb", None),
               Case((), "no verb", None)]
     return cases
+
+
+def _closed_port() -> int:
+    """A local TCP port nothing listens on (bound, then released)."""
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
 
 
 def _fit_material_cases(f, b, tmp) -> list[Case]:

@@ -70,3 +70,21 @@ def test_worker_count_defaults_to_usable_cores():
     assert check_workers(None) >= 1
     assert check_workers(3) == 3
     assert check_workers("2") == 2
+
+
+def test_cluster_options_are_checked_together():
+    from spsc.pipeline.executor import check_cluster, default_workers
+
+    assert check_cluster() == (default_workers(), None)
+    assert check_cluster("3") == (3, None)
+    with socket.socket() as server:
+        server.bind(("127.0.0.1", 0))
+        server.listen()
+        port = server.getsockname()[1]
+        assert check_cluster(None, f"127.0.0.1:{port}") == (None, f"tcp://127.0.0.1:{port}")
+        with pytest.raises(ParameterError, match="^workers = .*without a scheduler"):
+            check_cluster(2, f"127.0.0.1:{port}")
+    with pytest.raises(ParameterError, match="^workers = "):
+        check_cluster("0")
+    with pytest.raises(ParameterError, match="^scheduler = .*nothing answered"):
+        check_cluster(None, f"tcp://127.0.0.1:{_closed_port()}")

@@ -77,3 +77,41 @@ def test_mesh_cache(tmp_path):
     assert isinstance(b, TetMesh)
     np.testing.assert_array_equal(a.tets, b.tets)
     np.testing.assert_array_equal(a.facets["cavity"], b.facets["cavity"])
+
+
+def test_mesh_save_is_atomic_and_a_damaged_cache_file_is_rebuilt(tmp_path, monkeypatch):
+    """Workers share the mesh cache: a write that fails half-way leaves the old file whole and
+    no debris (temporary file renamed over it); a damaged file is built again, not loaded."""
+    old, new = block((1.0, 1.0, 1.0), (1, 1, 1)), block((2.0, 1.0, 1.0), (2, 1, 1))
+    path = tmp_path / "m.npz"
+    old.save(path)
+
+    def half_written(f, **arrays):
+        if not hasattr(f, "write"):  # given a path: writing in place
+            with open(f, "wb") as g:
+                g.write(b"PK\x03\x04 half a zip")
+        else:
+            f.write(b"PK\x03\x04 half a zip")
+        raise OSError("disk full")
+
+    monkeypatch.setattr(np, "savez_compressed", half_written)
+    with pytest.raises(OSError, match="disk full"):
+        new.save(path)
+    monkeypatch.undo()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m.npz"]
+    np.testing.assert_array_equal(TetMesh.load(path).tets, old.tets)
+    new.save(path)
+    np.testing.assert_array_equal(TetMesh.load(path).tets, new.tets)
+
+    calls = []
+
+    def builder(cells):
+        calls.append(cells)
+        return block((1.0, 1.0, 1.0), (cells, 1, 1))
+
+    cached_mesh(builder, cache_dir=tmp_path, cells=2)
+    (cached,) = tmp_path.glob("builder-*.npz")
+    cached.write_bytes(b"PK\x03\x04 truncated")
+    m = cached_mesh(builder, cache_dir=tmp_path, cells=2)
+    assert calls == [2, 2] and m.n_tets == 12
+    np.testing.assert_array_equal(TetMesh.load(cached).tets, m.tets)

@@ -268,3 +268,35 @@ def _report_error(tmp_path, argv) -> str:
                    "--quiet", *argv])
     assert rc == 2
     return err.getvalue()
+
+
+def test_spsc_report_runs_on_the_cluster_its_options_name(tmp_path, monkeypatch):
+    """--workers N: a LocalCluster of N (1: this process, no cluster); --scheduler: that
+    scheduler; neither: one worker per core. The report says where its runs were computed."""
+    import functools
+    import socket
+
+    from spsc.pipeline import provenance, runner
+    from spsc.pipeline.executor import dask_client, default_workers
+
+    monkeypatch.setattr(provenance, "provenance", lambda *a: CLEAN)
+    seen = []
+    monkeypatch.setattr(runner, "run_all",
+                        lambda runs, *a, cluster=None, **k: seen.append(cluster) or {})
+    base = ["report", "--no-fem", "--types", "C", "--cache", str(tmp_path / "c"), "--quiet",
+            "--out", str(tmp_path / "r")]
+    with socket.socket() as server:  # something listening where the scheduler is said to be
+        server.bind(("127.0.0.1", 0))
+        server.listen()
+        address = "tcp://127.0.0.1:%d" % server.getsockname()[1]
+        for extra in (["--workers", "1"], ["--workers", "3"], [], ["--scheduler", address]):
+            assert main(base + extra) == 0
+    page = (tmp_path / "r" / "index.html").read_text(encoding="utf-8")
+    assert f"on the Dask scheduler at {address}" in page
+    local, three, default, remote = seen
+    assert local is None
+    for factory, kw in ((three, {"workers": 3}), (remote, {"scheduler": address})):
+        assert isinstance(factory, functools.partial) and factory.func is dask_client
+        assert factory.keywords == kw and not factory.args
+    n = default_workers()
+    assert default is None if n == 1 else default.keywords == {"workers": n}
