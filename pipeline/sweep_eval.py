@@ -120,16 +120,14 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
     return curves
 
 
-def _printability(geometry, process: str) -> tuple[bool | None, str]:
-    """(printable, verdict) of the chamber for ``process``, from the design facts."""
-    try:
-        from spsc.cad.printability import printability
-    except ModuleNotFoundError as exc:
-        if exc.name != "spsc.cad.printability":
-            raise
-        return None, "not judged: spsc.cad.printability is not installed"
+def _printability(geometry, process: str) -> tuple[bool, str]:
+    """(printable, verdict) of the chamber for ``process``, from the design facts
+    (:func:`spsc.cad.printability.printability`, milliseconds, no solid built): the verdict's
+    summary when it passes (every check with its value and limit), its reasons when not."""
+    from spsc.cad.printability import printability
+
     v = printability(geometry, process)
-    return bool(v.ok), v.summary if v.ok or not v.reasons else "; ".join(v.reasons)
+    return bool(v.ok), v.summary if v.ok else "; ".join(v.reasons)
 
 
 def evaluate(design: dict, model: str, process: str, points: int | None = None,

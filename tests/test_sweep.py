@@ -149,6 +149,24 @@ def test_membrane_row_uses_the_model_table_like_spsc_curve():
     assert row["stiffness_high"] == pytest.approx(high.mean_stiffness(), rel=1e-9)
 
 
+@pytest.mark.parametrize("t0,process,printable", [(1.0, "fdm", True), (0.6, "fdm", False),
+                                                  (0.6, "sla", True), (0.9, "molding", False)])
+def test_printability_column_is_the_process_verdict(t0, process, printable):
+    from spsc.cad.printability import printability
+
+    design = dict(B, t0=t0)
+    row = evaluate(design, **dict(FAST, process=process))
+    verdict = printability(resolve_design(design)[0], process)
+    assert row["printable"] is printable is verdict.ok
+    if printable:
+        assert row["printability"] == verdict.summary
+        assert row["printability"].startswith(f"{process}: wall {t0:.3f}")
+    else:
+        assert row["printability"] == "; ".join(verdict.reasons)
+        assert f"wall {t0:.3f} mm" in row["printability"]
+    assert row["status"] == "ok"  # an unprintable chamber is still a valid design
+
+
 def test_no_reservoir_means_both_modes_closed_and_no_jnd():
     row = evaluate(dict(B, reservoir=0.0), **FAST)
     assert row["status"] == "ok"
@@ -377,7 +395,7 @@ def test_cli_sweep_end_to_end(tmp_path, cluster, capsys):
             str(csv), "--scheduler", cluster, "--quiet"]
     assert main(argv) == 0
     o, e = capsys.readouterr()
-    assert "12 designs: 12 ok, 0 partial, 0 invalid, 0 failed" in o
+    assert "12 designs: 12 ok, 0 partial, 0 invalid, 0 failed; printable (fdm): 12 of 12" in o
     assert str(out) in o and e == ""
     df = read_table(out)
     assert len(df) == 12 and list(df.columns) == list(COLUMNS)
@@ -390,7 +408,8 @@ def test_cli_sweep_with_invalid_designs_exits_1_and_keeps_the_rows(tmp_path, clu
     assert main(["sweep", "--type", "B", "--t0", "1,20", "--model", "simplified", "--points",
                  "5", "--out", str(out), "--scheduler", cluster, "--quiet"]) == 1
     o, e = capsys.readouterr()
-    assert "2 designs: 1 ok, 0 partial, 1 invalid, 0 failed" in o
+    assert "2 designs: 1 ok, 0 partial, 1 invalid, 0 failed; printable (fdm): 1 of 2 (1 not " \
+        "judged)" in o
     assert e.startswith("spsc sweep: 1 invalid (rows kept); first: t0 = 20.0 is invalid")
     assert len(read_table(out)) == 2
 
