@@ -155,9 +155,12 @@ def evaluate(design: dict, model: str, process: str, points: int | None = None,
 
 
 def _outcome(curves: dict, geometry) -> tuple[str, str]:
-    stopped = [f"{mode} mode: {c.solver.message if not c.solver.converged else _first(c)}"
-               for mode, c in curves.items()
-               if not (c.solver.converged and c.all_converged)]
+    stopped, seen = [], set()
+    for mode, c in curves.items():
+        if id(c) not in seen and not (c.solver.converged and c.all_converged):
+            stopped.append(f"{mode} mode: "
+                           f"{c.solver.message if not c.solver.converged else _first(c)}")
+        seen.add(id(c))  # a curve shared by both modes (no reservoir) is named once
     if stopped:
         return "partial", "; ".join(stopped)
     return "ok", "; ".join(f"warning: {w}" for w in geometry.design_space_warnings())

@@ -203,8 +203,10 @@ def test_a_solve_that_stops_early_is_a_partial_row_with_what_it_reached(monkeypa
                         curve_models.Model(**{**entry.__dict__, "compute": stops}))
     row = evaluate(B, **FAST)
     assert row["status"] == "partial"
-    assert "high mode: no equilibrium" in row["message"]
+    assert row["message"] == "high mode: no equilibrium; low mode: no equilibrium"
     assert np.isfinite(row["stiffness_high"])  # over the stroke it reached
+    closed = evaluate(dict(B, reservoir=0.0), **FAST)  # one curve for both modes, said once
+    assert closed["message"] == "high mode: no equilibrium"
 
 
 def test_an_unexpected_exception_is_a_failed_row_never_raised(monkeypatch):
@@ -430,3 +432,27 @@ def test_cli_refuses_before_any_work(argv, name, tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and err.startswith(f"spsc sweep: error: {name} = "), err
     assert not out.exists() and not journal_path(out).exists()
+
+
+def test_readme_sweep_examples_are_valid_and_their_counts_right(tmp_path):
+    """Every ``spsc sweep`` example of the README's Sweeps section passes the command's checks
+    and has the number of designs its comment states (they are not run: minutes each)."""
+    import re
+    import shlex
+    from pathlib import Path
+
+    from spsc.pipeline.cli import build_parser
+    from spsc.pipeline.cmd_sweep import prepare
+
+    text = (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
+    section = text.split("## Sweeps", 1)[1].split("\n## ", 1)[0]
+    examples = re.findall(r"# [^\n]*?= ([\d,]+) designs[^\n]*\n(spsc sweep (?:[^\n]*\\\n)*[^\n]*)",
+                          section)
+    assert len(examples) == 3
+    for count, command in examples:
+        argv = shlex.split(command.replace("\\\n", " "))[1:]
+        for opt, name in (("--out", "x.parquet"), ("--csv", "x.csv")):
+            if opt in argv:
+                argv[argv.index(opt) + 1] = str(tmp_path / name)
+        args = build_parser().parse_args(argv)
+        assert len(prepare(args)) == int(count.replace(",", "")), command
