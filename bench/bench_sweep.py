@@ -39,7 +39,7 @@ class MemorySampler(threading.Thread):
         import psutil
 
         self.me, self.journal, self.every = psutil.Process(), journal, every
-        self.samples, self._stop = [], threading.Event()
+        self.samples, self._halt = [], threading.Event()
 
     def _workers(self):
         for p in self.me.children(recursive=True):
@@ -56,14 +56,14 @@ class MemorySampler(threading.Thread):
             return 0
 
     def run(self):
-        while not self._stop.is_set():
+        while not self._halt.is_set():
             workers = list(self._workers())
             self.samples.append((self._rows(), self.me.memory_info().rss,
                                  max(workers, default=0), len(workers)))
-            self._stop.wait(self.every)
+            self._halt.wait(self.every)
 
     def stop(self):
-        self._stop.set()
+        self._halt.set()
         self.join()
         self.run_once()
 

@@ -1,5 +1,6 @@
 """Run a sweep on Dask: every design evaluated by :func:`~.sweep_eval.evaluate` on the workers
-of :func:`~.executor.dask_client`, each row stored as it arrives (:class:`~.sweep_store.SweepStore`).
+of :func:`~.executor.dask_client`, each row stored as it arrives
+(:class:`~.sweep_store.SweepStore`).
 
 A bounded number of designs is in flight at any time (a few per worker thread), refilled as
 rows come back, so the client's memory does not grow with the sweep. A worker that dies (killed,
