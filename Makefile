@@ -67,7 +67,7 @@ bench-compare: $(STAMP)
 	$(BIN)/python bench/bench_fem_compare.py
 
 # spsc sweep on Dask: designs/s with 1 and 2 workers, memory at 25/50/100 % (MEMBRANE=1000
-# WALL=200 by default, about 15 + 90 min on an idle 2-core machine; MEMBRANE=100 WALL=20 to check)
+# WALL=200 by default, about 25 min + 3 h on an idle 2-core machine; MEMBRANE=100 WALL=8 to check)
 MEMBRANE ?= 1000
 WALL     ?= 200
 bench-sweep: $(STAMP)

@@ -12,9 +12,10 @@ designs/s over the evaluation (cluster start excluded, shown apart), speed-up ov
 worker count, peak RSS of the client and of the largest worker, and both at 25, 50 and 100 % of
 the sweep: flat columns mean memory does not grow with the sweep.
 
-Full run (the issue's figures): 1000 membrane + 200 wall designs, 1 and 2 workers: about
-15 min for the membrane and 90 min for the wall (stadium chambers, ~8 s a curve) on an idle
-2-core machine. A check that it works: ``--membrane 100 --wall 20``.
+Full run (the issue's figures): 1000 membrane + 200 wall designs, 1 and 2 workers. On an idle
+2-core machine a membrane design takes about 1 s (two curves of 41 positions) and a wall design
+(Table 1 stadium, two curves of 25 positions) about 40 s: roughly 25 min for the membrane runs
+and 3 h for the wall runs. A check that it works: ``--membrane 100 --wall 8``.
 """
 
 from __future__ import annotations
@@ -111,22 +112,28 @@ def one_run(model: str, designs: int, workers: int, points, out_dir: Path) -> di
             "at": [sampler.at(f, n) for f in (0.25, 0.5, 1.0)], "samples": len(sampler.samples)}
 
 
-def table(results: list[dict]) -> None:
-    print()
-    print(f"{'model':10} {'designs':>7} {'wk':>2} {'eval s':>8} {'start s':>7} {'designs/s':>9} "
+HEADER = (f"{'model':10} {'designs':>7} {'wk':>2} {'eval s':>8} {'start s':>7} {'designs/s':>9} "
           f"{'speed-up':>8} {'client peak':>11} {'worker peak':>11}   "
           f"{'client MB @25/50/100 %':>22}   {'worker MB @25/50/100 %':>22}   status")
+
+
+def line(r: dict, base: float) -> str:
+    """One run as a table row; ``base``: designs/s of the first worker count (speed-up 1)."""
+    client = "/".join(f"{c:.0f}" for c, _ in r["at"])
+    worker = "/".join(f"{w:.0f}" for _, w in r["at"])
+    status = ", ".join(f"{v} {k}" for k, v in sorted(r["status"].items()))
+    return (f"{r['model']:10} {r['designs']:7d} {r['workers']:2d} {r['compute_s']:8.1f} "
+            f"{r['start_s']:7.1f} {r['rate']:9.3f} {r['rate'] / base:7.2f}x "
+            f"{r['peak'][0]:8.0f} MB {r['peak'][1]:8.0f} MB   {client:>22}   {worker:>22}   "
+            f"{status}")
+
+
+def table(results: list[dict]) -> None:
+    print()
+    print(HEADER)
     base = {}
     for r in results:
-        key = (r["model"], r["designs"])
-        base.setdefault(key, r["rate"])
-        client = "/".join(f"{c:.0f}" for c, _ in r["at"])
-        worker = "/".join(f"{w:.0f}" for _, w in r["at"])
-        status = ", ".join(f"{v} {k}" for k, v in sorted(r["status"].items()))
-        print(f"{r['model']:10} {r['designs']:7d} {r['workers']:2d} {r['compute_s']:8.1f} "
-              f"{r['start_s']:7.1f} {r['rate']:9.3f} {r['rate'] / base[key]:7.2f}x "
-              f"{r['peak'][0]:8.0f} MB {r['peak'][1]:8.0f} MB   {client:>22}   {worker:>22}   "
-              f"{status}")
+        print(line(r, base.setdefault((r["model"], r["designs"]), r["rate"])))
     print("(designs/s over the evaluation, cluster start apart; RSS sampled every 0.25 s; "
           "worker = the largest worker process)")
 
@@ -151,6 +158,8 @@ def main(argv=None) -> None:
         for w in counts if n else ():
             print(f"== {model}: {n} designs, {w} worker(s)", flush=True)
             results.append(one_run(model, n, w, args.points, out_dir))
+            first = next(r for r in results if r["model"] == model)
+            print(HEADER + "\n" + line(results[-1], first["rate"]), flush=True)
     table(results)
     print("load average after: " + " ".join(f"{x:.2f}" for x in os.getloadavg()))
 
