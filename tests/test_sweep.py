@@ -365,7 +365,9 @@ def test_a_design_that_keeps_killing_its_worker_is_a_failed_row(tmp_path):
     assert list(poisoned["status"]) == ["failed"]
     assert poisoned["message"].iloc[0].startswith("KilledWorker")
     assert (df[df["w"] != sweep_tasks.POISON_W]["status"] == "ok").all(), df["message"].tolist()
-    assert df.attrs["sweep"]["retried_killed"] == 1
+    # the poisoned design had its second chance (a design that only shared a dying worker
+    # would have one too, and pass it)
+    assert df.attrs["sweep"]["retried_killed"] >= 1
     again = run_sweep(space, **FAST, out=out, workers=1, progress=False)
     assert again.attrs["sweep"]["evaluated"] == 1 and (again["status"] == "ok").all()
 
