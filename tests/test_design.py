@@ -1,0 +1,136 @@
+"""spsc design: the goal and the search space as the command line writes them, the Optuna loop
+on a small in-process Dask cluster (reproducible with a seed and a worker count, continued
+from its journal, printability as a constraint), and the command end to end."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from spsc.core.errors import ParameterError
+from spsc.pipeline.design_goal import Goal, Target, parse_goal, parse_target, parse_tol
+from spsc.pipeline.design_space import parse_space
+
+
+# -- the goal ----------------------------------------------------------------------------------
+def test_targets_parse_and_miss_is_relative():
+    eq, ge, le = (parse_target(t) for t in ("stiffness_high=6", "sensitivity_high >= 5",
+                                            "jnd_mm<=3"))
+    assert (eq.metric, eq.relation, eq.value) == ("stiffness_high", "=", 6.0)
+    assert (ge.relation, le.relation) == (">=", "<=")
+    assert eq.miss({"stiffness_high": 4.5}) == pytest.approx(0.25)
+    assert eq.miss({"stiffness_high": 7.5}) == pytest.approx(0.25)
+    assert ge.miss({"sensitivity_high": 4.0}) == pytest.approx(0.2)
+    assert ge.miss({"sensitivity_high": 9.0}) == 0.0  # an inequality misses only below
+    assert le.miss({"jnd_mm": 2.0}) == 0.0 and le.miss({"jnd_mm": 4.5}) == pytest.approx(0.5)
+    assert math.isnan(eq.miss({"stiffness_high": math.nan}))
+    assert parse_target("cavity_mm3==4000").relation == "="
+
+
+def test_single_objective_is_the_largest_miss_and_met_within_tol():
+    g = parse_goal(["stiffness_high=6", "sensitivity_high>=5"], tol=0.01)
+    assert not g.multi and g.directions == ["minimize"]
+    m = {"stiffness_high": 6.03, "sensitivity_high": 4.0}
+    assert g.values(m) == [pytest.approx(0.2)]
+    assert not g.met(m)
+    assert g.met({"stiffness_high": 6.05, "sensitivity_high": 5.0})  # 0.83 % <= 1 %
+    assert not g.met({"stiffness_high": 6.07, "sensitivity_high": 5.0})
+    assert g.constraints(m) == {}
+
+
+def test_objectives_make_targets_constraints():
+    g = parse_goal(["sensitivity_high>=5"], minimize=["cavity_mm3"],
+                   maximize=["stiffness_high"], tol=0.02)
+    assert g.multi and g.directions == ["minimize", "maximize"]
+    m = {"cavity_mm3": 4000.0, "stiffness_high": 7.0, "sensitivity_high": 4.8}
+    assert g.values(m) == [4000.0, 7.0]
+    assert g.constraints(m) == {"target:sensitivity_high>=5": pytest.approx(0.04 - 0.02)}
+    assert parse_goal([], minimize=["cavity_mm3,jnd_mm"]).minimize == ("cavity_mm3", "jnd_mm")
+
+
+@pytest.mark.parametrize("text", ["stiffness=6", "stiffness_high", "stiffness_high>6",
+                                  "stiffness_high=abc", "stiffness_high=0", "stiffness_high=-2",
+                                  "stiffness_high=inf", "stiffness_high=nan", "=6", ""])
+def test_bad_target_is_one_line_naming_target(text):
+    with pytest.raises(ParameterError, match=r"^target = ") as err:
+        parse_target(text)
+    assert "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("kw,name", [({"minimize": ["volume"]}, "minimize"),
+                                     ({"maximize": [""]}, "maximize"),
+                                     ({"minimize": ["jnd_mm"], "maximize": ["jnd_mm"]},
+                                      "maximize"),
+                                     ({"minimize": ["jnd_mm", "jnd_mm"]}, "minimize"),
+                                     ({}, "goal")])
+def test_bad_objectives(kw, name):
+    with pytest.raises(ParameterError, match=rf"^{name} = "):
+        parse_goal(**kw)
+
+
+def test_tol_in_percent():
+    assert parse_tol("1") == 0.01 and parse_tol("0.5 %") == 0.005
+    for bad in ("-1", "100", "abc", "nan"):
+        with pytest.raises(ParameterError, match="^tol = "):
+            parse_tol(bad)
+
+
+def test_goal_round_trips_through_its_dict():
+    g = parse_goal(["stiffness_high=6", "jnd_mm<=3"], maximize=["sensitivity_high"], tol=0.05)
+    assert Goal.from_dict(g.to_dict()) == g
+    assert Target("jnd_mm", "<=", 3.0) in g.targets
+
+
+# -- the space ---------------------------------------------------------------------------------
+def test_default_space():
+    s = parse_space({}, "fdm")
+    assert s.to_dict() == {"type": "A,B,C,D", "w": "8:14", "h": "8:16", "l": "0:6",
+                           "t0": "0.8:2", "material": "tpu60a", "pressure": "40",
+                           "reservoir": "40000"}
+    assert [d.name for d in s.searched] == ["type", "w", "h", "l", "t0"]
+    assert parse_space({}, "sla")["t0"].values == (0.5, 2.0)  # the process's minimum wall
+
+
+def test_space_forms_and_the_reservoir_as_a_continuous_variable():
+    s = parse_space({"type": "d", "w": "9,11", "n1": "2:4", "reservoir": "0:40000",
+                     "material": "TPU60A"})
+    assert (s["type"].kind, s["type"].values) == ("fixed", ("D",))
+    assert (s["w"].kind, s["w"].values) == ("choice", (9.0, 11.0))
+    assert (s["n1"].kind, s["reservoir"].kind) == ("interval", "interval")
+    assert "n2" not in s and "cy" not in s  # the type's preset
+    assert s["material"].values == ("tpu60a",)
+
+
+def test_suggested_values_are_short_decimals():
+    import optuna
+
+    optuna.logging.set_verbosity(optuna.logging.WARNING)
+    s = parse_space({"reservoir": "0:40000", "pressure": "10:40"})
+    study = optuna.create_study(sampler=optuna.samplers.RandomSampler(seed=3))
+    for _ in range(20):
+        d = s.suggest(study.ask())
+        for k in ("w", "h", "l", "t0"):
+            assert d[k] == round(d[k], 3) and float(repr(d[k])) == d[k]
+        assert d["reservoir"] == int(d["reservoir"]) and 0 <= d["reservoir"] <= 40000
+        assert d["type"] in "ABCD" and d["n1"] is None
+
+
+def test_no_type_when_the_three_form_factors_are_given():
+    s = parse_space({"n1": "2", "n2": "2.2", "cy": "0:0.5"})
+    assert "type" not in s
+    assert s.representatives()[0]["type"] is None
+
+
+@pytest.mark.parametrize("name,text", [("w", "8:"), ("w", "14:8"), ("w", "8:8"),
+                                       ("w", "1:2:3"), ("w", "abc"), ("w", "0:5"),
+                                       ("h", "8:1e9"), ("t0", "0:1"), ("cy", "0:1"),
+                                       ("n1", "0.5:2"), ("l", "-1:2"), ("w", "8.0005:14"),
+                                       ("pressure", "-1"), ("pressure", "nan"),
+                                       ("reservoir", "-5:10"), ("reservoir", "inf"),
+                                       ("type", "E"), ("type", "A,A"), ("type", ""),
+                                       ("material", "rubber"), ("material", "tpu60a,as40")])
+def test_bad_space_is_one_line_naming_the_input(name, text):
+    with pytest.raises(ParameterError, match=rf"^{name} = ") as err:
+        parse_space({name: text})
+    assert "\n" not in str(err.value)
