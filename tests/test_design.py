@@ -134,3 +134,106 @@ def test_bad_space_is_one_line_naming_the_input(name, text):
     with pytest.raises(ParameterError, match=rf"^{name} = ") as err:
         parse_space({name: text})
     assert "\n" not in str(err.value)
+
+
+# -- the loop on Dask (closed-form stand-in for the models: tests/design_double.py) -------------
+@pytest.fixture(scope="module")
+def cluster():
+    """One small cluster of two single-threaded worker processes for the loop's tests (each
+    run reaches it by address, as --scheduler does)."""
+    from distributed import LocalCluster
+
+    from spsc.pipeline.executor import WORKER_ENV
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=":0", env=dict(WORKER_ENV)) as c:
+        yield c.scheduler_address
+
+
+def _problem(targets=("stiffness_high=6", "sensitivity_high>=5"), tol=0.01, space=None,
+             minimize=(), maximize=(), process="fdm"):
+    from spsc.pipeline.design import Problem
+
+    return Problem(parse_goal(list(targets), minimize, maximize, tol),
+                   parse_space(space or {}, process), "simplified", process, 5, 4.0)
+
+
+def _run(problem, out, cluster, trials=12, seed=3, **kw):
+    import design_double
+    from spsc.pipeline.design import run_design
+
+    return run_design(problem, out, trials=trials, seed=seed, scheduler=cluster,
+                      progress=False, evaluate=design_double.evaluate, **kw)
+
+
+def _trace(rows):
+    return [(r["trial"], r["state"], r["type"], r["w"], r["h"], r["l"], r["t0"], r["miss"])
+            for r in rows]
+
+
+def test_seed_and_workers_reproduce_the_study(cluster, tmp_path):
+    p = _problem(tol=0.0)  # never met: every trial runs
+    a = _run(p, tmp_path / "a", cluster)
+    b = _run(p, tmp_path / "b", cluster)
+    assert len(a.rows) == 12 and a.facts["workers"] == 2
+    assert _trace(a.rows) == _trace(b.rows)
+    c = _run(p, tmp_path / "c", cluster, seed=4)
+    assert _trace(c.rows) != _trace(a.rows)
+
+
+def test_stops_when_met_and_the_best_is_printable(cluster, tmp_path):
+    # thin walls are stiff enough here too, but t0 < 0.8 mm cannot be printed in FDM
+    p = _problem(["stiffness_high=4"], tol=0.02, space={"t0": "0.3:1.2"})
+    r = _run(p, tmp_path / "d", cluster, trials=60)
+    assert r.met and r.best["feasible"] and r.best["printable"]
+    assert r.best["t0"] >= 0.8 and r.best["miss"] <= 0.02
+    assert len(r.rows) < 60  # stopped once met (the trials in flight are told too)
+    infeasible = [x for x in r.rows if x["state"] == "COMPLETE" and not x["printable"]]
+    assert infeasible and all(not x["feasible"] for x in infeasible)
+
+
+def test_refused_designs_are_failed_trials_with_their_reason(cluster, tmp_path):
+    p = _problem(tol=0.0, space={"w": "13:14", "type": "B"})
+    r = _run(p, tmp_path / "e", cluster, trials=8)
+    failed = [x for x in r.rows if x["state"] == "FAIL"]
+    assert failed and all(x["w"] > 13.5 and x["reason"].startswith("invalid: w = ")
+                          for x in failed)
+    assert all(x["w"] <= 13.5 for x in r.rows if x["state"] == "COMPLETE")
+
+
+def test_a_run_continues_from_its_journal(cluster, tmp_path):
+    import optuna
+
+    from spsc.pipeline.design import INTERRUPTED, open_study
+
+    p = _problem(tol=0.0)
+    first = _run(p, tmp_path / "f", cluster, trials=5)
+    # a run killed with a trial in flight leaves it RUNNING in the journal
+    study, before = open_study(p, tmp_path / "f", sampler="tpe", seed=3, trials=5)
+    assert before == 5
+    study.ask()
+    again = _run(p, tmp_path / "f", cluster, trials=8)
+    assert _trace(again.rows[:5]) == _trace(first.rows)
+    left = again.rows[5]
+    assert left["state"] == "FAIL" and left["reason"] == INTERRUPTED
+    assert len(again.rows) == 9 and again.facts["evaluated"] == 3  # 8 counted, 1 interrupted
+    assert again.facts["trials_before"] == 6
+    done = _run(p, tmp_path / "f", cluster, trials=8)
+    assert done.facts["evaluated"] == 0 and len(done.rows) == 9
+    with pytest.raises(ParameterError, match=r"^out = .*goal"):
+        _run(_problem(["stiffness_high=7"]), tmp_path / "f", cluster, trials=8)
+    assert optuna.__version__.startswith("5.")
+
+
+def test_multi_objective_pareto_front_is_feasible_and_non_dominated(cluster, tmp_path):
+    p = _problem(["sensitivity_high>=5"], minimize=["cavity_mm3"], maximize=["stiffness_high"],
+                 space={"t0": "0.5:1.5"})
+    r = _run(p, tmp_path / "g", cluster, trials=24)
+    assert r.facts["sampler"] == "nsga2"
+    assert r.pareto and r.best in r.pareto
+    for x in r.pareto:
+        assert x["feasible"] and x["printable"] and x["sensitivity_high"] >= 5 * 0.99
+    pts = [(x["cavity_mm3"], -x["stiffness_high"]) for x in r.rows if x["feasible"]]
+    for x in r.pareto:
+        q = (x["cavity_mm3"], -x["stiffness_high"])
+        assert not any(a <= q[0] and b <= q[1] and (a, b) != q for a, b in pts)
