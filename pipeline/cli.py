@@ -32,6 +32,7 @@ COMMANDS = {
     "calibrate": "cmd_calibrate",
     "fit-material": "cmd_fit_material",
     "report": "cmd_report",
+    "sweep": "cmd_sweep",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

@@ -205,6 +205,8 @@ def _bases(f: dict[str, Path], tmp: Path) -> dict[str, tuple[str, ...]]:
                       "--quiet"),
         "report": ("report", "--out", out, "--cache", str(tmp / "cache"), "--quiet"),
         "fit-material": ("fit-material", str(f["tension.csv"]), "--law", "neo-hookean"),
+        "sweep": ("sweep", "--type", "B", "--model", "simplified", "--out",
+                  str(tmp / "sweep.parquet"), "--quiet"),
     }
     for model in ("membrane", "simplified", "wall", "fem"):
         bases[f"curve-{model}"] = ("curve", "--model", model, "--type", "B", "--quiet")
@@ -361,6 +363,7 @@ def invalid_cases(tmp: Path) -> list[Case]:
                    "predict-stroke"),
               Case(cal[:2] + ("--type", "B"), "no pressure", "pressure")]
     cases += _fit_material_cases(f, b, tmp)
+    cases += _sweep_cases(f, b, tmp)
     # report
     cases += [Case(b["report"] + ("--types", v), f"--types {v!r}", "types")
               for v in ("", "E", "AX", "A-B", "1")]
@@ -383,6 +386,59 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += [Case(("membrane", "--type"), "missing value", "type"),
               Case(("nothing",), "unknown verb", None),
               Case((), "no verb", None)]
+    return cases
+
+
+#: Values no sweep axis accepts (a value, a list, a grid or, with --samples, a range).
+SWEEP_NOT_A_SPEC = ("abc", "", " ", "nan", "inf", "-inf", "0x", "1,,2", ",", "1:2:0", "1:2:1",
+                    "2:1:3", "1:2:3:4", "1:2", "1:x:3", "1:2:2.5")
+#: Values out of a sweep input's own range (limits between inputs are a row's, not the CLI's).
+SWEEP_OUT_OF_RANGE = {"w": ("0", "-1", "1e9", "1e-9", "11,-1", "-1:20:3"),
+                      "h": ("0", "-1", "1e9"), "l": ("-1", "1e9"), "t0": ("0", "-1", "1e3"),
+                      "n1": ("0.5", "0", "1e9", "0.5:3:3"), "n2": ("0.5", "-2", "1e9"),
+                      "cy": ("-1", "1", "1.5", "0:1:3"), "pressure": ("-1", "1e5", "10,-1"),
+                      "reservoir": ("-1", "-1e-3", "-1:5:2")}
+
+
+def _sweep_cases(f, b, tmp) -> list[Case]:
+    """spsc sweep: every axis, the Latin hypercube options, the model's settings, where it runs
+    and its outputs."""
+    base = b["sweep"]
+    cases = []
+    for name, bad in SWEEP_OUT_OF_RANGE.items():
+        for v in SWEEP_NOT_A_SPEC + bad:
+            cases.append(Case(base + (f"--{name}", v), f"sweep --{name} {v!r}", name))
+    for opt, values in (("samples", ("0", "-1", "2.5", "abc", "")), ("seed", ("-1", "abc", "2.5")),
+                        ("points", ("0", "1", "-3", "2.5", "1e9", "abc", "")),
+                        ("stroke", ("abc", "", "nan", "inf", "-inf", "-1", "0")),
+                        ("workers", ("0", "-1", "2.5", "two", "10000", "")),
+                        ("process", ("cnc", "")), ("footprint", ("huge",)),
+                        ("type", ("E", "", "A:B", "A,,B", "A:B:3")),
+                        ("material", ("rubber", "", "tpu60a,rubber", str(tmp / "missing.json"),
+                                      str(f["bad.json"]), str(f["ogden.json"])))):
+        extra = ("--w", "9:11") if opt == "samples" else ()
+        cases += [Case(base + extra + (f"--{opt}", v), f"sweep --{opt} {v!r}", opt)
+                  for v in values]
+    cases += [Case(base + ("--model", v), f"sweep --model {v!r}", "model")
+              for v in ("fem", "nothing", "")]
+    for v in ("", "http://x:1", "tcp://", "tcp://host", "tcp://127.0.0.1:1"):
+        cases.append(Case(base + ("--scheduler", v), f"sweep --scheduler {v!r}", "scheduler"))
+    cases += [Case(base + ("--workers", "2", "--scheduler", "tcp://127.0.0.1:1"),
+                   "workers with a scheduler", "workers"),
+              Case(base + ("--w", "9:11:3", "--samples", "4"), "a grid with --samples", "w"),
+              Case(base + ("--samples", "4"), "--samples with no range", "samples"),
+              Case(base + ("--pressure", "0,40"), "a membrane without pressure", "pressure"),
+              Case(base[:3] + ("--out", str(tmp / "sweep.parquet"), "--pressure", "0"),
+                   "the default membrane without pressure", "pressure"),
+              Case(base + ("--type", "A,B,C,D", "--w", "1:20:60", "--h", "5:20:60"),
+                   "a sweep beyond the size limit", "sweep size"),
+              Case(("sweep", "--w", "11", "--out", str(tmp / "s.parquet")), "no type, not all "
+                   "seven parameters", "geometry"),
+              Case(base[:5], "no --out", "out"),
+              Case(base[:5] + ("--out", str(tmp / "sweep.csv")), "--out not Parquet", "out"),
+              Case(base + ("--csv", str(tmp / "sweep.txt")), "--csv not .csv", "csv")]
+    cases += _outputs(base[:5], "--out", f, tmp, ".parquet")
+    cases += _outputs(base, "--csv", f, tmp, ".csv")
     return cases
 
 

@@ -82,6 +82,9 @@ KEY_OPTIONS = {
     "calibrate": ["--pressure", "--reservoir", "--material", "--mesh-size", "--layers",
                   "--predict-pressures", "--predict-reservoirs", "--predict-stroke", "--json",
                   "--png", "--out", "--quiet"],
+    "sweep": ["--type", "--w", "--t0", "--cy", "--material", "--pressure", "--reservoir",
+              "--samples", "--seed", "--model", "--process", "--points", "--stroke", "--out",
+              "--csv", "--workers", "--scheduler", "--force", "--quiet"],
     "fit-material": ["--test", "--law", "--ogden-terms", "--range", "--strain-unit",
                      "--stress-unit", "--json", "--png", "--out", "--list-catalogue"],
 }

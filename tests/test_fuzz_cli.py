@@ -54,6 +54,8 @@ WORK = {
     "spsc.fem.calibrate": ["calibrate"],
     "spsc.pipeline.runner": ["run_all"],
     "spsc.membrane.fit": ["fit_law", "fit_laws"],
+    "spsc.pipeline.sweep": ["run_sweep"],
+    "spsc.pipeline.executor": ["dask_client"],
 }
 
 
