@@ -46,6 +46,10 @@ DESIGN_SPACE = {
 }
 
 
+#: Points of the profile polylines of the export mesh (:mod:`spsc.cad.meshbuild`, the mesh the
+#: printability gate checks): spacing ~0.2 mm on Table 1 chambers, sag < 0.002 mm.
+MESH_PROFILE_POINTS = 161
+
 #: Lengths below this (mm) are zero: OCCT's Precision::Confusion.
 LENGTH_CONFUSION_MM = 1e-7
 
@@ -253,8 +257,13 @@ class SPSCGeometry:
         """The outer wall surface: the profile offset by t0 along its normal, from (0, h + t0)
         down to the base plane z = 0. Where the offset ends above z = 0 (Type C) it is prolonged
         along its end tangent; where it dips below (Type D) it is cut there (DESIGN.md)."""
-        pts, nrm = self.profile_points(n)
-        pts, nrm = _fan_corners(pts, nrm)
+        return self.wall_profiles(n)[1]
+
+    def wall_profiles(self, n: int = 121) -> tuple[np.ndarray, np.ndarray]:
+        """The cavity profile of :meth:`profile_points` and the outer wall of
+        :meth:`outer_profile_points` (points (x, z) in mm, apex first) from one evaluation."""
+        inner, nrm = self.profile_points(n)
+        pts, nrm = _fan_corners(inner, nrm)
         off = pts + self.t0 * nrm
         below = np.nonzero(off[:, 1] < 0.0)[0]
         if below.size:
@@ -274,25 +283,32 @@ class SPSCGeometry:
             off = np.vstack([off, end])
         else:
             off[-1, 1] = 0.0
-        return off[_distinct(off, 1e-6 * self.w)]
+        return inner, off[_distinct(off, 1e-6 * self.w)]
 
 
 def _distinct(pts: np.ndarray, tol: float) -> np.ndarray:
     """Mask keeping the first and last point and every point farther than ``tol`` from the last
     kept one (near-coincident points break spline interpolation, e.g. c_y → 0 with n2 = 1)."""
-    keep = np.zeros(len(pts), dtype=bool)
-    keep[0] = True
+    keep = np.ones(len(pts), dtype=bool)
+    step = np.hypot(*np.diff(pts[:-1], axis=0).T)
+    to_end = np.hypot(*(pts[-1] - pts[1:-1]).T)
+    if np.all(step > tol) and np.all(to_end > tol):
+        return keep  # nothing to drop: the usual case, without the walk below
+    keep[1:-1] = False
     last = pts[0]
     for i in range(1, len(pts) - 1):
         if np.hypot(*(pts[i] - last)) > tol and np.hypot(*(pts[-1] - pts[i])) > tol:
             keep[i], last = True, pts[i]
-    keep[-1] = True
     return keep
 
 
 def _fan_corners(pts, nrm, max_turn=math.radians(3.0)):
     """Where the normal jumps between two coincident points (a corner of the profile, n2 = 1 with
     c_y > 0), insert normals sweeping the gap, so the offset is a round arc and not a chord."""
+    turn = np.abs(np.diff(np.arctan2(nrm[:, 1], nrm[:, 0])))
+    gap = np.hypot(*np.diff(pts, axis=0).T)
+    if not np.any((turn > 0.99 * max_turn) & (gap < 1.01e-3 * np.maximum(1.0, turn))):
+        return pts.copy(), nrm.copy()  # no corner: the usual case, without the walk below
     out_p, out_n = [pts[0]], [nrm[0]]
     for k in range(1, len(pts)):
         a0, a1 = math.atan2(nrm[k - 1, 1], nrm[k - 1, 0]), math.atan2(nrm[k, 1], nrm[k, 0])

@@ -17,15 +17,13 @@ import numpy as np
 
 from .bladder import BladderSpec, flange_hole_centres, widest_outer_radius
 from .export import TriMesh
-from .geometry import SPSCGeometry
+from .geometry import MESH_PROFILE_POINTS, SPSCGeometry
 
 __all__ = ["bladder_mesh", "chamber_manifold", "SAG_MM"]
 
 #: Chord sag (mm) of every circle of the mesh: volume error ~2·sag/R ≈ 0.05 %, far inside the
 #: 0.2 % the issue allows, and a wall error far under the gate's 0.01 mm allowance.
 SAG_MM = 0.004
-#: Profile polyline points: spacing ~0.2 mm on Table 1 chambers, sag < 0.002 mm.
-MESH_PROFILE_POINTS = 161
 
 
 def _segments(radius: float, degrees: float = 360.0) -> int:
@@ -93,8 +91,7 @@ def bladder_mesh(spec: BladderSpec) -> TriMesh:
     """The printable bladder of :func:`spsc.cad.bladder.build_bladder` as a closed mesh."""
     g: SPSCGeometry = spec.geometry
     f, p = spec.flange, spec.port
-    inner, _ = g.profile_points(MESH_PROFILE_POINTS)
-    outer = g.outer_profile_points(MESH_PROFILE_POINTS)
+    inner, outer = g.wall_profiles(MESH_PROFILE_POINTS)
     r_wall = widest_outer_radius(g)
     r_flange = r_wall + f.width
     y_edge = -(g.l / 2 + r_flange)

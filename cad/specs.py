@@ -42,6 +42,12 @@ class PortSpec:
     def barb_diameter(self) -> float:
         return self.barb_ratio * self.tube_id
 
+    @property
+    def wall(self) -> float:
+        """Radial wall of the nipple's shaft around the bore, (tube_id − bore) / 2 (mm): the
+        thinnest air-tight wall of the port (the barbs only add to it)."""
+        return (self.tube_id - self.bore) / 2
+
 
 @dataclass(frozen=True)
 class FlangeSpec:
@@ -59,6 +65,12 @@ class FlangeSpec:
                 unit="mm, < flange.width")
         if self.holes not in (0, 2, 4):
             raise ParameterError("flange.holes", self.holes, "0, 2 or 4")
+
+    @property
+    def ligament(self) -> float:
+        """Flange material on either side of a screw hole, (width − hole_diameter) / 2 (mm): the
+        holes sit midway across the flange (:func:`spsc.cad.bladder.flange_hole_centres`)."""
+        return (self.width - self.hole_diameter) / 2
 
 
 @dataclass(frozen=True)
@@ -80,6 +92,13 @@ class BladderSpec:
     def port_axis_z(self) -> float:
         """Height of the port axis: the barbs touch the build plane z = −thickness."""
         return -self.flange.thickness + self.port.barb_diameter / 2
+
+    @property
+    def bore_roof(self) -> float:
+        """Material over the horizontal bore up to the base plane z = 0 (mm): the cavity floor
+        inside the wall and, between the wall and the flange edge, the only wall between the
+        bore's air and the outside. Construction requires it > 0."""
+        return -(self.port_axis_z + self.port.bore / 2)
 
 
 @dataclass(frozen=True)
