@@ -182,13 +182,15 @@ def _evaluator():
 
 
 def run_design(problem: Problem, out, *, trials: int, seed: int, sampler: str | None = None,
-               workers: int | None = None, scheduler: str | None = None, progress=True,
-               evaluate=None) -> DesignRun:
+               workers: int | None = None, scheduler: str | None = None, client=None,
+               progress=True, evaluate=None) -> DesignRun:
     """Run (or continue) the study of ``problem`` in folder ``out`` until it has ``trials``
-    trials or, with a single objective, a feasible trial meets the goal; ``workers`` trials in
-    flight on a local cluster of that many workers, or on ``scheduler`` (as many as it has).
-    ``evaluate``: (design, model, process, points, stroke_mm) → row, default
-    :func:`~.sweep_eval.evaluate`."""
+    trials or, with a single objective, a feasible trial meets the goal. Trials in flight:
+    ``workers`` on a local cluster of that many workers, or as many as ``scheduler``'s cluster
+    (or ``client``'s, when given) has. ``evaluate``: (design, model, process, points,
+    stroke_mm) → row, default :func:`~.sweep_eval.evaluate`."""
+    import contextlib
+
     from .executor import dask_client
 
     out = Path(out)
@@ -198,8 +200,9 @@ def run_design(problem: Problem, out, *, trials: int, seed: int, sampler: str | 
     t_start = time.perf_counter()
     with _Lock(out):
         study, before = open_study(problem, out, sampler=sampler, seed=seed, trials=trials)
-        with dask_client(workers, scheduler) as client:
-            inflight = workers or max(1, len(client.scheduler_info()["workers"]))
+        with (contextlib.nullcontext(client) if client is not None
+              else dask_client(workers, scheduler)) as client:
+            inflight = max(1, len(client.scheduler_info()["workers"]))
             t_loop = time.perf_counter()
             evaluated = _loop(study, problem, client, evaluate, trials, inflight, progress)
             loop_s = time.perf_counter() - t_loop
