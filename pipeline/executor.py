@@ -25,6 +25,9 @@ __all__ = ["dask_client", "check_workers", "check_scheduler", "default_workers"]
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
               "PYTHONUTF8": "1"}
 _MAX_LOCAL_WORKERS = 256
+#: the scheduler always serves HTTP (health checks); without a dashboard it would still take
+#: port 8787 or warn "Port 8787 is already in use" on stderr: a free port on loopback instead
+_NO_DASHBOARD = {"dashboard": False, "dashboard_address": "127.0.0.1:0"}
 
 
 def default_workers() -> int:
@@ -98,7 +101,7 @@ def dask_client(workers: int | None = None, scheduler: str | None = None):
     n = check_workers(workers)
     cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                            dashboard_address=None, silence_logs=logging.ERROR,
-                           env=dict(WORKER_ENV))
+                           env=dict(WORKER_ENV), scheduler_kwargs=_NO_DASHBOARD)
     try:
         with Client(cluster) as client:
             yield client
