@@ -237,3 +237,87 @@ def test_multi_objective_pareto_front_is_feasible_and_non_dominated(cluster, tmp
     for x in r.pareto:
         q = (x["cavity_mm3"], -x["stiffness_high"])
         assert not any(a <= q[0] and b <= q[1] and (a, b) != q for a, b in pts)
+
+
+# -- the command end to end (the simplified model: milliseconds per curve) ----------------------
+def _design(tmp_path, *extra, name="run"):
+    from spsc.pipeline.cli import main
+
+    out = tmp_path / name
+    argv = ["design", "--model", "simplified", "--points", "7", "--workers", "2",
+            "--verify", "none", "--out", str(out), "--quiet", *extra]
+    return main(argv), out
+
+
+def test_command_writes_json_parquet_html_and_exits_1_when_not_met(tmp_path, capsys):
+    import json
+
+    import pandas as pd
+
+    rc, out = _design(tmp_path, "--target", "stiffness_high=6", "--target",
+                      "sensitivity_high>=5", "--tol", "0", "--trials", "6", "--seed", "1",
+                      "--no-build", "--json", str(tmp_path / "copy.json"),
+                      "--csv", str(tmp_path / "trials.csv"))
+    captured = capsys.readouterr()
+    assert rc == 1 and "goal not met" in captured.err
+    doc = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    assert (doc["schema"], doc["schema_version"]) == ("spsc.design", 1)
+    assert doc["trials"] == 6 and doc["met"] is False and doc["build"] is None
+    assert set(doc["best"]["params"]) == {"type", "w", "h", "l", "t0", "n1", "n2", "cy",
+                                          "material", "pressure", "reservoir"}
+    assert set(doc["best"]["metrics"]) == {"stiffness_high", "stiffness_low",
+                                           "sensitivity_high", "sensitivity_low", "jnd_mm",
+                                           "cavity_mm3"}
+    assert doc["pareto"] == [doc["best"]] and doc["run"]["seed"] == 1
+    assert json.loads((tmp_path / "copy.json").read_text(encoding="utf-8")) == doc
+    df = pd.read_parquet(out / "trials.parquet")
+    assert len(df) == 6 and df["miss"].min() == pytest.approx(doc["best"]["miss"])
+    assert len(pd.read_csv(tmp_path / "trials.csv")) == 6
+    html = (out / "index.html").read_text(encoding="utf-8")
+    for fig in ("history", "front", "parallel", "curves"):
+        assert f"figures/{fig}.png" in html and (out / "figures" / f"{fig}.png").stat().st_size
+    assert doc["rerun"]["high"] in html and doc["rerun"]["high"] in captured.out
+
+
+def test_the_printed_spsc_curve_commands_reproduce_the_best_metrics(tmp_path, capsys):
+    import json
+    import shlex
+
+    from spsc.core.curve import Curve
+    from spsc.pipeline.cli import main
+    from spsc.pipeline.design_verify import metrics_of
+
+    rc, out = _design(tmp_path, "--target", "stiffness_high=6", "--reservoir", "5000:40000",
+                      "--trials", "4", "--seed", "2", "--no-build")
+    doc = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    curves = {}
+    for mode, cmd in doc["rerun"].items():
+        argv = shlex.split(cmd)
+        assert argv[:2] == ["spsc", "curve"]
+        path = tmp_path / f"{mode}.json"
+        assert main(argv[1:] + ["--json", str(path), "--quiet"]) == 0
+        curves[mode] = Curve.from_json(path)
+    again = metrics_of(curves["high"], curves["low"])
+    for k, v in doc["best"]["metrics"].items():
+        assert again[k] == pytest.approx(v, rel=1e-12, abs=0), k
+    assert curves["low"].setup["reservoir_mm3"] == doc["best"]["params"]["reservoir"] > 0
+
+
+def test_met_goal_and_a_part_that_passes_the_gate_exit_0(tmp_path, capsys):
+    import json
+
+    rc, out = _design(tmp_path, "--target", "sensitivity_high>=1", "--type", "D", "--trials",
+                      "10", "--seed", "3")
+    doc = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    assert rc == 0, capsys.readouterr().err
+    assert doc["met"] and doc["trials"] == 2  # met at once: the trial in flight is told too
+    assert doc["build"]["gate"]["passed"]
+    for f in doc["build"]["files"].values():
+        assert (out / "part" / f).stat().st_size > 0
+    assert (out / "figures" / "part.png").stat().st_size > 0
+    # a re-run on the same folder continues the study: nothing more to do
+    rc, out = _design(tmp_path, "--target", "sensitivity_high>=1", "--type", "D", "--trials",
+                      "10", "--seed", "3", "--no-build")
+    again = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    assert rc == 0 and again["trials"] == 2 and again["run"]["evaluated"] == 0
+    assert again["best"] == doc["best"]
