@@ -17,7 +17,6 @@ the study. Exit 0 when the goal is met and the part passes the printability gate
 
 from __future__ import annotations
 
-import argparse
 import secrets
 import shlex
 import sys
@@ -28,7 +27,8 @@ from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import POINTS_MAX
 
 from .design_goal import METRIC_NAMES
-from .options import _HELP, PARAMS, add_quiet_option, check_output_dir, check_output_file, integer, number
+from .options import (_HELP, PARAMS, add_quiet_option, check_output_dir, check_output_file,
+                      integer, number)
 
 __all__ = ["register", "run", "prepare", "DESIGN_MODELS"]
 
@@ -42,48 +42,9 @@ def register(subparsers) -> None:
     p = subparsers.add_parser("design", help="inverse design with Optuna on Dask: targets on "
                               "the metrics in, a printable chamber out",
                               description=__doc__.split("\n\n")[0])
-    g = p.add_argument_group("the goal (metrics: " + ", ".join(METRIC_NAMES) + ")")
-    g.add_argument("--target", action="append", default=[], metavar="M=V|M>=V|M<=V",
-                   help="a target on a metric (repeat for several); the miss is relative")
-    g.add_argument("--minimize", action="append", default=[], metavar="M",
-                   help="a metric to minimise (targets become constraints; NSGA-II)")
-    g.add_argument("--maximize", action="append", default=[], metavar="M",
-                   help="a metric to maximise")
-    g.add_argument("--tol", default="1", metavar="PCT",
-                   help="a target is met within this relative miss, %% (default 1)")
-    s = p.add_argument_group(f"the search space: each input {_FORMS}")
-    s.add_argument("--type", default=None, metavar="A,B,C,D",
-                   help="preset types (default all four); n1, n2, cy are the type's unless given")
-    for name in PARAMS:
-        default = {"w": "8:14", "h": "8:16", "l": "0:6", "t0": "the process's wall:2"}.get(
-            name, "the type's")
-        s.add_argument(f"--{name}", default=None, metavar="SPEC",
-                       help=f"{_HELP[name]} (default {default})")
-    s.add_argument("--material", default=None, metavar="NAME|FILE.json",
-                   help="catalogue material or material file (default tpu60a)")
-    s.add_argument("--pressure", default=None, metavar="KPA",
-                   help="setup pressure, kPa gauge (default 40)")
-    s.add_argument("--reservoir", default=None, metavar="MM3",
-                   help="reservoir of the low mode, mm³ (default 40000; an interval lo:hi "
-                   "searches it as a continuous variable)")
-    e = p.add_argument_group("evaluation and search")
-    e.add_argument("--model", choices=DESIGN_MODELS, default="wall",
-                   help="fast model of both modes (default wall)")
-    e.add_argument("--process", default="fdm", metavar="fdm|sla|molding",
-                   help="printing process: its printability is a constraint, its gate is run "
-                   "on the part (default fdm)")
-    e.add_argument("--points", type=integer("points"), default=None, metavar="N",
-                   help="plate positions per curve (default the model's: wall 25, membrane "
-                   "and simplified 41)")
-    e.add_argument("--stroke", type=number("stroke", "mm"), default=6.0, metavar="MM",
-                   help="plate travel of the metrics, mm (default 6)")
-    e.add_argument("--trials", type=integer("trials"), default=100, metavar="N",
-                   help="trials in the study, those of an earlier run included (default 100)")
-    e.add_argument("--seed", type=integer("seed"), default=None, metavar="S",
-                   help="sampler seed (default: drawn and recorded); with the worker count, "
-                   "it reproduces the study")
-    e.add_argument("--sampler", choices=("tpe", "nsga2"), default=None,
-                   help="default tpe for targets only, nsga2 with --minimize/--maximize")
+    _goal_options(p.add_argument_group("the goal (metrics: " + ", ".join(METRIC_NAMES) + ")"))
+    _space_options(p.add_argument_group(f"the search space: each input {_FORMS}"))
+    _search_options(p.add_argument_group("evaluation and search"))
     v = p.add_argument_group("the best design")
     v.add_argument("--verify", choices=("fem", "none"), default="fem",
                    help="re-run the best with the 3D FEM and compare (default fem)")
@@ -104,6 +65,54 @@ def register(subparsers) -> None:
                    help="address of a running Dask scheduler (tcp://host:8786) instead")
     add_quiet_option(p)
     p.set_defaults(func=run)
+
+
+def _goal_options(g) -> None:
+    g.add_argument("--target", action="append", default=[], metavar="M=V|M>=V|M<=V",
+                   help="a target on a metric (repeat for several); the miss is relative")
+    g.add_argument("--minimize", action="append", default=[], metavar="M",
+                   help="a metric to minimise (targets become constraints; NSGA-II)")
+    g.add_argument("--maximize", action="append", default=[], metavar="M",
+                   help="a metric to maximise")
+    g.add_argument("--tol", default="1", metavar="PCT",
+                   help="a target is met within this relative miss, %% (default 1)")
+
+
+def _space_options(s) -> None:
+    s.add_argument("--type", default=None, metavar="A,B,C,D",
+                   help="preset types (default all four); n1, n2, cy are the type's unless given")
+    for name in PARAMS:
+        default = {"w": "8:14", "h": "8:16", "l": "0:6", "t0": "the process's wall:2"}.get(
+            name, "the type's")
+        s.add_argument(f"--{name}", default=None, metavar="SPEC",
+                       help=f"{_HELP[name]} (default {default})")
+    s.add_argument("--material", default=None, metavar="NAME|FILE.json",
+                   help="catalogue material or material file (default tpu60a)")
+    s.add_argument("--pressure", default=None, metavar="KPA",
+                   help="setup pressure, kPa gauge (default 40)")
+    s.add_argument("--reservoir", default=None, metavar="MM3",
+                   help="reservoir of the low mode, mm³ (default 40000; an interval lo:hi "
+                   "searches it as a continuous variable)")
+
+
+def _search_options(e) -> None:
+    e.add_argument("--model", choices=DESIGN_MODELS, default="wall",
+                   help="fast model of both modes (default wall)")
+    e.add_argument("--process", default="fdm", metavar="fdm|sla|molding",
+                   help="printing process: its printability is a constraint, its gate is run "
+                   "on the part (default fdm)")
+    e.add_argument("--points", type=integer("points"), default=None, metavar="N",
+                   help="plate positions per curve (default the model's: wall 25, membrane "
+                   "and simplified 41)")
+    e.add_argument("--stroke", type=number("stroke", "mm"), default=6.0, metavar="MM",
+                   help="plate travel of the metrics, mm (default 6)")
+    e.add_argument("--trials", type=integer("trials"), default=100, metavar="N",
+                   help="trials in the study, those of an earlier run included (default 100)")
+    e.add_argument("--seed", type=integer("seed"), default=None, metavar="S",
+                   help="sampler seed (default: drawn and recorded); with the worker count, "
+                   "it reproduces the study")
+    e.add_argument("--sampler", choices=("tpe", "nsga2"), default=None,
+                   help="default tpe for targets only, nsga2 with --minimize/--maximize")
 
 
 def prepare(args):

@@ -6,10 +6,8 @@ workers. Up to ``workers`` trials are in flight and they are told *in the order 
 asked*: a worker that finishes early waits for the oldest, so the sequence of asks and tells,
 hence the study, depends only on the seed and the worker count, never on timing.
 
-The study lives in ``OUT/study.journal`` (Optuna's JournalStorage on a file, which several
-processes may share). A run on a folder that holds a study of the same problem continues it
-(up to ``trials`` trials in all); trials left RUNNING by a run that was killed are marked FAIL
-first. A design that the printability verdict refuses is infeasible (an Optuna constraint), so
+The study lives in ``OUT/study.journal`` (:mod:`.design_study`); a run on a folder that holds
+a study of the same problem continues it, up to ``trials`` trials in all. A design that the printability verdict refuses is infeasible (an Optuna constraint), so
 it is never the best; an evaluation that fails, is refused by the model, stops short of the
 stroke or leaves a metric of the goal undefined is a FAIL trial with its reason.
 """
@@ -17,8 +15,6 @@ stroke or leaves a metric of the goal undefined is a FAIL trial with its reason.
 from __future__ import annotations
 
 import math
-import os
-import socket
 import sys
 import time
 from collections import deque
@@ -29,15 +25,12 @@ from spsc.core.errors import ParameterError
 
 from .design_goal import METRIC_NAMES, Goal
 from .design_space import INPUTS, Space
+from .design_study import (INTERRUPTED, JOURNAL, STUDY_NAME, Lock, check_resumable, open_study,
+                           optuna_module)
 
-__all__ = ["Problem", "DesignRun", "STUDY_NAME", "JOURNAL", "open_study", "run_design",
-           "trial_rows", "select", "full_params"]
+__all__ = ["Problem", "DesignRun", "STUDY_NAME", "JOURNAL", "INTERRUPTED", "open_study",
+           "check_resumable", "run_design", "trial_rows", "select", "full_params"]
 
-STUDY_NAME = "spsc-design"
-JOURNAL = "study.journal"
-_LOCK = ".design.lock"
-#: A trial the run that asked it never told (killed, interrupted): marked FAIL with this.
-INTERRUPTED = "interrupted: the run that asked it stopped before its result"
 
 
 @dataclass(frozen=True)
@@ -72,108 +65,6 @@ class DesignRun:
     facts: dict = field(default_factory=dict)
 
 
-# -- the study ---------------------------------------------------------------------------------
-def _optuna():
-    import optuna
-
-    optuna.logging.set_verbosity(optuna.logging.WARNING)
-    return optuna
-
-
-def _storage(out: Path):
-    optuna = _optuna()
-    from optuna.storages.journal import JournalFileBackend
-
-    return optuna.storages.JournalStorage(JournalFileBackend(str(out / JOURNAL)))
-
-
-def check_resumable(out: Path, problem: Problem) -> int:
-    """Trials already in ``out``'s study (0 if none); ParameterError when it holds a study of
-    another problem. Cheap: the command calls it before any work."""
-    out = Path(out)
-    if not (out / JOURNAL).exists():
-        return 0
-    optuna = _optuna()
-    try:
-        study = optuna.load_study(study_name=STUDY_NAME, storage=_storage(out))
-    except KeyError:
-        return 0
-    stored = study.user_attrs.get("problem")
-    if stored is not None and stored != _json_safe(problem.to_dict()):
-        diff = [k for k in stored if stored.get(k) != _json_safe(problem.to_dict()).get(k)]
-        raise ParameterError("out", str(out), "a new folder, or one whose study has the same "
-                             f"goal, space, model, process, points and stroke (this one's "
-                             f"{', '.join(diff)} differ)")
-    return len(study.trials)
-
-
-def _sampler(name: str, goal: Goal, seed: int, trials: int):
-    optuna = _optuna()
-    if name == "nsga2":
-        population = max(8, min(50, trials // 4))
-        return optuna.samplers.NSGAIISampler(population_size=population, seed=seed)
-    return optuna.samplers.TPESampler(seed=seed, multivariate=True, constant_liar=True)
-
-
-def open_study(problem: Problem, out: Path, *, sampler: str, seed: int, trials: int):
-    """The study of ``out`` (created, or loaded to continue), its sampler seeded from ``seed``
-    and the number of trials already there (a continued study reseeds with that count, so a
-    continued run is reproducible too). Trials left RUNNING are marked FAIL."""
-    import warnings
-
-    optuna = _optuna()
-    storage = _storage(out)
-    before = check_resumable(out, problem)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", optuna.exceptions.ExperimentalWarning)
-        smp = _sampler(sampler, problem.goal, (seed + 7919 * before) % 2**32, trials)
-    study = optuna.create_study(storage=storage, sampler=smp, study_name=STUDY_NAME,
-                                directions=problem.goal.directions, load_if_exists=True)
-    if before == 0:
-        study.set_user_attr("problem", _json_safe(problem.to_dict()))
-    for t in study.get_trials(deepcopy=False, states=(optuna.trial.TrialState.RUNNING,)):
-        storage.set_trial_user_attr(t._trial_id, "reason", INTERRUPTED)
-        storage.set_trial_state_values(t._trial_id, optuna.trial.TrialState.FAIL)
-    return study, before
-
-
-class _Lock:
-    """``out/.design.lock`` while a run writes the study: a second run on the same folder is
-    refused (it would mark the first one's running trials as failed)."""
-
-    def __init__(self, out: Path):
-        self.path = Path(out) / _LOCK
-
-    def __enter__(self):
-        me = f"{socket.gethostname()} {os.getpid()}"
-        for _ in range(2):
-            try:
-                fd = os.open(self.path, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
-            except FileExistsError:
-                if self._alive():
-                    raise ParameterError("out", str(self.path.parent), "a folder no other "
-                                         f"spsc design is writing ({self.path.read_text()})")
-                self.path.unlink(missing_ok=True)
-                continue
-            with os.fdopen(fd, "w") as f:
-                f.write(me)
-            return self
-        raise ParameterError("out", str(self.path.parent), "a folder whose lock can be taken")
-
-    def _alive(self) -> bool:
-        try:
-            host, pid = self.path.read_text().split()
-            if host != socket.gethostname():
-                return True  # another machine's run: cannot tell, assume alive
-            os.kill(int(pid), 0)
-            return True
-        except (ValueError, OSError):
-            return False
-
-    def __exit__(self, *exc):
-        self.path.unlink(missing_ok=True)
-
-
 # -- the loop ----------------------------------------------------------------------------------
 def _evaluator():
     from .sweep_eval import evaluate
@@ -198,7 +89,7 @@ def run_design(problem: Problem, out, *, trials: int, seed: int, sampler: str | 
     sampler = sampler or ("nsga2" if problem.goal.multi else "tpe")
     evaluate = evaluate or _evaluator()
     t_start = time.perf_counter()
-    with _Lock(out):
+    with Lock(out):
         study, before = open_study(problem, out, sampler=sampler, seed=seed, trials=trials)
         with (contextlib.nullcontext(client) if client is not None
               else dask_client(workers, scheduler)) as client:
@@ -232,7 +123,7 @@ def _loop(study, problem: Problem, client, evaluate, trials: int, inflight: int,
           progress) -> int:
     from tqdm import tqdm
 
-    optuna = _optuna()
+    optuna = optuna_module()
     done = _counted(study)
     stop = _goal_met_already(study, problem.goal)
     pending: deque = deque()
@@ -297,7 +188,7 @@ def _printable(row: dict, design: dict, process: str) -> tuple[bool, str]:
 def _tell(study, problem: Problem, trial, design: dict, row: dict) -> bool:
     """Record ``row`` on ``trial`` and tell it; True when it is feasible and meets a
     single-objective goal (the loop then stops asking)."""
-    optuna = _optuna()
+    optuna = optuna_module()
     goal = problem.goal
     metrics = {m: (float(row[m]) if _finite(row.get(m)) else None) for m in METRIC_NAMES}
     status = str(row.get("status") or "failed")
@@ -414,10 +305,3 @@ def select(rows: list[dict], goal: Goal) -> tuple[dict | None, list[dict]]:
 
 def _dominates(q, p) -> bool:
     return all(a <= b for a, b in zip(q, p)) and any(a < b for a, b in zip(q, p))
-
-
-def _json_safe(obj):
-    """The problem as it reads back from the journal (tuples as lists)."""
-    import json
-
-    return json.loads(json.dumps(obj))

@@ -321,3 +321,29 @@ def test_met_goal_and_a_part_that_passes_the_gate_exit_0(tmp_path, capsys):
     again = json.loads((out / "design.json").read_text(encoding="utf-8"))
     assert rc == 0 and again["trials"] == 2 and again["run"]["evaluated"] == 0
     assert again["best"] == doc["best"]
+
+
+@pytest.mark.slow
+def test_verify_fem_on_a_coarse_mesh(tmp_path, capsys):
+    """The FEM check end to end: both modes on the workers, the four curves written, the
+    wall model's metrics compared with the coarse 3D FEM's (a 2 mm mesh: within 10 %)."""
+    import json
+
+    from spsc.pipeline.cli import main
+
+    out = tmp_path / "fem"
+    rc = main(["design", "--target", "sensitivity_high>=1", "--type", "B", "--w", "10",
+               "--h", "10", "--l", "0", "--t0", "1", "--model", "wall", "--stroke", "3",
+               "--mesh-size", "2", "--trials", "1", "--workers", "2", "--no-build",
+               "--out", str(out), "--quiet"])
+    doc = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    v = doc["verify"]
+    assert rc == 0, capsys.readouterr().err
+    assert v["converged"] and v["points"] == {"fast": 25, "fem": 7}
+    for name in v["files"].values():
+        assert (out / "verify" / name).exists()
+    assert v["metrics"]["fast"] == pytest.approx(doc["best"]["metrics"], rel=1e-12)
+    for k in ("stiffness_high", "stiffness_low", "sensitivity_high", "sensitivity_low"):
+        assert abs(v["difference_pct"][k]) < 10.0, (k, v["difference_pct"][k])
+    assert v["difference_pct"]["cavity_mm3"] == 0.0
+    assert "3D FEM" in (out / "index.html").read_text(encoding="utf-8")
