@@ -147,8 +147,8 @@ def _loop(study, problem: Problem, client, evaluate, trials: int, inflight: int,
             feasible_met = _tell(study, problem, trial, design, row)
             done += 1
             evaluated += 1
-            bar.update(1)
             bar.set_postfix_str(_postfix(study, problem.goal), refresh=False)
+            bar.update(1)
             stop = stop or feasible_met
     finally:
         bar.close()
