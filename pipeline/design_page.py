@@ -84,9 +84,10 @@ def _targets(goal: Goal) -> dict:
 
 
 def _top(rows, goal: Goal) -> list[dict]:
-    """The best complete trials: printable first, then by miss (or the first objective)."""
+    """The best complete trials: feasible first, then by miss (several objectives: by the
+    first objective)."""
     done = [r for r in rows if r["state"] == "COMPLETE"]
-    if goal.multi and not goal.targets:
+    if goal.multi:  # feasible first, then by the first objective
         m, d = goal.objectives[0]
         key = (lambda r: (not r["feasible"], r[m] if d == "minimize" else -r[m], r["trial"]))
     else:
