@@ -33,6 +33,7 @@ COMMANDS = {
     "fit-material": "cmd_fit_material",
     "report": "cmd_report",
     "sweep": "cmd_sweep",
+    "design": "cmd_design",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

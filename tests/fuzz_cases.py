@@ -208,6 +208,8 @@ def _bases(f: dict[str, Path], tmp: Path) -> dict[str, tuple[str, ...]]:
         "fit-material": ("fit-material", str(f["tension.csv"]), "--law", "neo-hookean"),
         "sweep": ("sweep", "--type", "B", "--model", "simplified", "--out",
                   str(tmp / "sweep.parquet"), "--quiet"),
+        "design": ("design", "--target", "stiffness_high=6", "--model", "simplified",
+                   "--out", str(tmp / "design"), "--quiet"),
     }
     for model in ("membrane", "simplified", "wall", "fem"):
         bases[f"curve-{model}"] = ("curve", "--model", model, "--type", "B", "--quiet")
@@ -365,6 +367,7 @@ def invalid_cases(tmp: Path) -> list[Case]:
               Case(cal[:2] + ("--type", "B"), "no pressure", "pressure")]
     cases += _fit_material_cases(f, b, tmp)
     cases += _sweep_cases(f, b, tmp)
+    cases += _design_cases(f, b, tmp)
     # report
     cases += [Case(b["report"] + ("--types", v), f"--types {v!r}", "types")
               for v in ("", "E", "AX", "A-B", "1")]
@@ -456,6 +459,59 @@ def _sweep_cases(f, b, tmp) -> list[Case]:
               Case(base[:5] + ("--out", str(tmp / "sweep.csv")), "--out not Parquet", "out"),
               Case(base + ("--csv", str(tmp / "sweep.txt")), "--csv not .csv", "csv")]
     cases += _outputs(base[:5], "--out", f, tmp, ".parquet")
+    cases += _outputs(base, "--csv", f, tmp, ".csv")
+    return cases
+
+
+#: Values no design input accepts (a value, a choice a,b or an interval lo:hi).
+DESIGN_NOT_A_SPEC = ("abc", "", " ", "nan", "inf", "-inf", "0x", "1,,2", ",", "1:2:3", "2:1",
+                     "1:1", "1:x", ":", "1:", "1.0005:2")
+
+
+def _design_cases(f, b, tmp) -> list[Case]:
+    """spsc design: the goal, every input of the space, the search's and the check's settings,
+    where it runs and its outputs."""
+    base = b["design"]
+    cases = []
+    for name, bad in SWEEP_OUT_OF_RANGE.items():
+        for v in DESIGN_NOT_A_SPEC + bad:
+            cases.append(Case(base + (f"--{name}", v), f"design --{name} {v!r}", name))
+    for v in ("stiffness=6", "stiffness_high", "stiffness_high>6", "stiffness_high=abc",
+              "stiffness_high=0", "stiffness_high=-1", "stiffness_high=inf", "=6", ""):
+        cases.append(Case(base[:1] + ("--target", v) + base[3:], f"--target {v!r}", "target"))
+    for opt, values in (("minimize", ("volume", "", "cavity_mm3,")),
+                        ("maximize", ("stiffness", "")), ("tol", ("abc", "-1", "100", "nan")),
+                        ("trials", ("0", "-1", "2.5", "abc", "", "1e9", "1000000")),
+                        ("seed", ("-1", "abc", "2.5", "5000000000")),
+                        ("points", ("0", "1", "-3", "2.5", "1e9", "abc", "")),
+                        ("stroke", ("abc", "", "nan", "inf", "-inf", "-1", "0", "8", "100")),
+                        ("workers", ("0", "-1", "2.5", "two", "10000", "")),
+                        ("process", ("cnc", "")), ("mesh-size", ("0", "-1", "abc", "nan", "inf")),
+                        ("type", ("E", "", "A:B", "A,,B", "A,A", "AB")),
+                        ("material", ("rubber", "", "tpu60a,as40", str(tmp / "missing.json"),
+                                      str(f["bad.json"]), str(f["ogden.json"])))):
+        cases += [Case(base + (f"--{opt}", v), f"design --{opt} {v!r}", opt) for v in values]
+    for opt, values in (("model", ("fem", "nothing", "")), ("sampler", ("cmaes", "")),
+                        ("verify", ("wall", ""))):
+        cases += [Case(base + (f"--{opt}", v), f"design --{opt} {v!r}", opt) for v in values]
+    for v in ("", "http://x:1", "tcp://", "tcp://host", "tcp://127.0.0.1:1"):
+        cases.append(Case(base + ("--scheduler", v), f"design --scheduler {v!r}", "scheduler"))
+    cases += [Case(base + ("--workers", "2", "--scheduler", "tcp://127.0.0.1:1"),
+                   "workers with a scheduler", "workers"),
+              Case(base[:1] + base[3:], "no goal", "goal"),
+              Case(base + ("--minimize", "jnd_mm", "--maximize", "jnd_mm"),
+                   "a metric minimised and maximised", "maximize"),
+              Case(base + ("--pressure", "0"), "a membrane model without pressure", "pressure"),
+              Case(base + ("--h", "3:5"), "stroke above the smallest h", "stroke"),
+              Case(base + ("--w", "1:3", "--h", "20:30", "--stroke", "2"),
+                   "h/w beyond its limit at the space's middle", "h"),
+              Case(base + ("--verify", "fem", "--mesh-size", "1e-4"), "a FEM mesh too fine",
+                   "mesh size"),
+              Case(base[:5], "no --out", "out"),
+              Case(base + ("--json", str(tmp / "design.txt")), "--json not .json", "json"),
+              Case(base + ("--csv", str(tmp / "design.txt")), "--csv not .csv", "csv")]
+    cases += _out_dirs(base[:5], "--out", f)
+    cases += _outputs(base, "--json", f, tmp)
     cases += _outputs(base, "--csv", f, tmp, ".csv")
     return cases
 

@@ -86,6 +86,10 @@ KEY_OPTIONS = {
     "sweep": ["--type", "--w", "--t0", "--cy", "--material", "--pressure", "--reservoir",
               "--samples", "--seed", "--model", "--process", "--points", "--stroke", "--out",
               "--csv", "--workers", "--scheduler", "--force", "--quiet"],
+    "design": ["--target", "--minimize", "--maximize", "--tol", "--type", "--w", "--t0",
+               "--reservoir", "--material", "--pressure", "--model", "--process", "--trials",
+               "--seed", "--sampler", "--verify", "--mesh-size", "--no-build", "--points",
+               "--stroke", "--out", "--json", "--csv", "--workers", "--scheduler", "--quiet"],
     "fit-material": ["--test", "--law", "--ogden-terms", "--range", "--strain-unit",
                      "--stress-unit", "--json", "--png", "--out", "--list-catalogue"],
 }
