@@ -8,31 +8,35 @@ import time
 import pytest
 
 from spsc.core.errors import ParameterError
-from spsc.pipeline.executor import check_scheduler, check_workers, dask_client
+from spsc.pipeline.executor import _NO_DASHBOARD, check_scheduler, check_workers, dask_client
 
 
 def _worker_facts(_):
     time.sleep(0.2)  # long enough that both workers take a task
-    return os.getpid(), os.environ.get("OPENBLAS_NUM_THREADS")
+    return os.getpid(), os.environ.get("OPENBLAS_NUM_THREADS"), \
+        os.environ.get("MALLOC_TRIM_THRESHOLD_")
 
 
-def test_local_cluster_runs_on_separate_single_threaded_processes():
+def test_local_cluster_runs_on_separate_single_threaded_processes(monkeypatch):
+    # (an earlier cluster of another kind may have put Dask's value in this process's environ)
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
     with dask_client(workers=2) as client:
         info = client.scheduler_info()
         assert len(info["workers"]) == 2
         assert all(w["nthreads"] == 1 for w in info["workers"].values())
         facts = client.gather(client.map(_worker_facts, range(6), pure=False))
-    pids = {pid for pid, _ in facts}
+    pids = {pid for pid, _, _ in facts}
     assert os.getpid() not in pids
     assert len(pids) == 2
-    assert {blas for _, blas in facts} == {"1"}
+    assert {blas for _, blas, _ in facts} == {"1"}
+    assert {trim for _, _, trim in facts} == {None}  # glibc's own malloc thresholds
 
 
 def test_existing_scheduler_is_used_by_address():
     from distributed import LocalCluster
 
     with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, protocol="tcp",
-                      dashboard_address=None) as cluster:
+                      dashboard_address=None, scheduler_kwargs=_NO_DASHBOARD) as cluster:
         with dask_client(workers=5, scheduler=cluster.scheduler_address) as client:
             # the cluster's own single worker, not five new ones
             assert len(client.scheduler_info()["workers"]) == 1
