@@ -58,6 +58,9 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
     done earlier, evaluated, retried_killed, workers) and seconds (start_s: the cluster,
     compute_s: first submission to last row, seconds: all).
     """
+    import pandas  # noqa: F401  (the table's writers, loaded now: missing, the sweep stops
+    import pyarrow  # noqa: F401  before any work; present, the client's memory is set at start)
+
     store = SweepStore(out)
     if iter(designs) is designs:  # a one-shot iterator: it is walked twice
         designs = list(designs)
