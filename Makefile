@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder fingertip gate test test-slow bench bench-compare bench-wall bench-material clean
+.PHONY: help venv bladder fingertip gate test test-slow bench bench-compare bench-wall bench-material bench-sweep clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -69,6 +69,13 @@ bench-wall: $(STAMP)
 
 bench-compare: $(STAMP)
 	$(BIN)/python bench/bench_fem_compare.py
+
+# spsc sweep on Dask: designs/s with 1 and 2 workers, memory at 25/50/100 % (MEMBRANE=1000
+# WALL=200 by default, about 25 min + 3 h on an idle 2-core machine; MEMBRANE=100 WALL=8 to check)
+MEMBRANE ?= 1000
+WALL     ?= 200
+bench-sweep: $(STAMP)
+	$(BIN)/python bench/bench_sweep.py --membrane $(MEMBRANE) --wall $(WALL)
 
 # validation report: reports/validation/index.html; QUICK=1 -> build/report-quick/ (CI)
 .PHONY: report

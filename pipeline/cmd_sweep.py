@@ -21,7 +21,8 @@ from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import POINTS_MAX
 
 from .curve_models import MODELS
-from .options import _HELP, PARAMS, _RenamedSize, add_quiet_option, check_output_file, integer, number
+from .options import (_HELP, PARAMS, _RenamedSize, add_quiet_option, check_output_file,
+                      integer, number)
 from .sweep_eval import INPUTS, STATUSES
 
 __all__ = ["register", "run", "SWEEP_MODELS"]
@@ -134,10 +135,15 @@ def summary(df, args) -> int:
                  + (f" ({len(df) - len(judged)} not judged)" if len(judged) < len(df) else ""))
     print(f"{len(df):,} designs: {by_status}{printable}")
     n, t = stats.get("evaluated", 0), stats.get("compute_s", 0.0)
-    rate = f" ({n / t:.3g} designs/s)" if n and t > 0 else ""
-    print(f"evaluated {n:,} in {t:.1f} s on {stats.get('workers', 0)} worker(s){rate}, "
-          f"cluster start {stats.get('start_s', 0.0):.1f} s; {stats.get('skipped', 0):,} "
-          "done earlier and skipped")
+    skipped = stats.get("skipped", 0)
+    earlier = f"{skipped:,} done earlier and skipped"
+    if n:
+        w = stats.get("workers", 0)
+        print(f"evaluated {n:,} in {t:.1f} s on {w} worker{'s' * (w != 1)} "
+              f"({n / t:.3g} designs/s; cluster start {stats.get('start_s', 0.0):.1f} s); "
+              + earlier)
+    else:
+        print(f"nothing to evaluate: {earlier}")
     print(f"written: {args.out} (journal {stats.get('journal', '')})"
           + (f", {args.csv}" if args.csv else ""))
     for s in STATUSES[1:]:

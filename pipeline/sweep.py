@@ -1,5 +1,6 @@
 """Run a sweep on Dask: every design evaluated by :func:`~.sweep_eval.evaluate` on the workers
-of :func:`~.executor.dask_client`, each row stored as it arrives (:class:`~.sweep_store.SweepStore`).
+of :func:`~.executor.dask_client`, each row stored as it arrives
+(:class:`~.sweep_store.SweepStore`).
 
 A bounded number of designs is in flight at any time (a few per worker thread), refilled as
 rows come back, so the client's memory does not grow with the sweep. A worker that dies (killed,
@@ -22,7 +23,7 @@ from .executor import dask_client
 from .sweep_eval import design_key, evaluate, failed_row
 from .sweep_store import SweepStore
 
-__all__ = ["run_sweep", "RETRIES", "IN_FLIGHT_PER_THREAD"]
+__all__ = ["run_sweep", "RETRIES", "IN_FLIGHT_PER_THREAD", "LOCAL_CLUSTER_CONFIG"]
 
 #: Re-runs of a task that raised (evaluate itself never raises: this covers the task not
 #: arriving, e.g. a worker that cannot import it).
@@ -30,6 +31,12 @@ RETRIES = 1
 #: Designs in flight per worker thread (more than two keeps Dask's scheduler queueing them, so
 #: each worker holds one at a time and a dying worker takes only its own design down).
 IN_FLIGHT_PER_THREAD = 4
+#: Dask settings of the in-process LocalCluster (an existing cluster keeps its own): one queued
+#: task per single-threaded worker, so a worker's death implicates its own design only; no
+#: statistical profiler in the workers (its hour of call-tree history grew a worker by 40 kB a
+#: design in a sweep, measured, and sampling the stack every 10 ms costs CPU).
+LOCAL_CLUSTER_CONFIG = {"distributed.scheduler.worker-saturation": 1.0,
+                        "distributed.worker.profile.enabled": False}
 #: Seconds between rewrites of the table from the journal during a sweep.
 CHECKPOINT_S = 120.0
 
@@ -51,6 +58,9 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
     done earlier, evaluated, retried_killed, workers) and seconds (start_s: the cluster,
     compute_s: first submission to last row, seconds: all).
     """
+    import pandas  # noqa: F401  (the table's writers, loaded now: missing, the sweep stops
+    import pyarrow  # noqa: F401  before any work; present, the client's memory is set at start)
+
     store = SweepStore(out)
     if iter(designs) is designs:  # a one-shot iterator: it is walked twice
         designs = list(designs)
@@ -131,8 +141,7 @@ def _run(pending, total, store, settings, stats, *, workers, scheduler, progress
     keys, every = checkpoint
     t_start = time.perf_counter()
     with ExitStack() as stack:
-        # one queued task per single-threaded worker: a worker's death implicates one design
-        stack.enter_context(dask.config.set({"distributed.scheduler.worker-saturation": 1.0}))
+        stack.enter_context(dask.config.set(LOCAL_CLUSTER_CONFIG))
         client = stack.enter_context(dask_client(workers=workers, scheduler=scheduler))
         bar = stack.enter_context(tqdm(total=total, desc="spsc sweep", unit="design",
                                        disable=not progress, file=sys.stderr,

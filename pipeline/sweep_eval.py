@@ -120,16 +120,14 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
     return curves
 
 
-def _printability(geometry, process: str) -> tuple[bool | None, str]:
-    """(printable, verdict) of the chamber for ``process``, from the design facts."""
-    try:
-        from spsc.cad.printability import printability
-    except ModuleNotFoundError as exc:
-        if exc.name != "spsc.cad.printability":
-            raise
-        return None, "not judged: spsc.cad.printability is not installed"
+def _printability(geometry, process: str) -> tuple[bool, str]:
+    """(printable, verdict) of the chamber for ``process``, from the design facts
+    (:func:`spsc.cad.printability.printability`, milliseconds, no solid built): the verdict's
+    summary when it passes (every check with its value and limit), its reasons when not."""
+    from spsc.cad.printability import printability
+
     v = printability(geometry, process)
-    return bool(v.ok), v.summary if v.ok or not v.reasons else "; ".join(v.reasons)
+    return bool(v.ok), v.summary if v.ok else "; ".join(v.reasons)
 
 
 def evaluate(design: dict, model: str, process: str, points: int | None = None,
@@ -157,9 +155,12 @@ def evaluate(design: dict, model: str, process: str, points: int | None = None,
 
 
 def _outcome(curves: dict, geometry) -> tuple[str, str]:
-    stopped = [f"{mode} mode: {c.solver.message if not c.solver.converged else _first(c)}"
-               for mode, c in curves.items()
-               if not (c.solver.converged and c.all_converged)]
+    stopped, seen = [], set()
+    for mode, c in curves.items():
+        if id(c) not in seen and not (c.solver.converged and c.all_converged):
+            stopped.append(f"{mode} mode: "
+                           f"{c.solver.message if not c.solver.converged else _first(c)}")
+        seen.add(id(c))  # a curve shared by both modes (no reservoir) is named once
     if stopped:
         return "partial", "; ".join(stopped)
     return "ok", "; ".join(f"warning: {w}" for w in geometry.design_space_warnings())

@@ -33,3 +33,12 @@ def poison_evaluate(design, **settings):
     if design.get("w") == POISON_W:
         os._exit(13)
     return evaluate(design, **settings)
+
+
+def config_evaluate(design, **settings):
+    """evaluate, with the worker's profiler setting as the row's message."""
+    import dask
+
+    row = evaluate(design, **settings)
+    row["message"] = f"profile {dask.config.get('distributed.worker.profile.enabled')}"
+    return row
