@@ -66,7 +66,7 @@ class Verdict:
     reasons: tuple[str, ...]
     summary: str
     process: str = ""
-    measures: dict = field(default_factory=dict)
+    measures: dict = field(default_factory=dict, hash=False)
 
 
 def printability(geometry: SPSCGeometry, process: str | Process = "fdm", *,
@@ -175,18 +175,19 @@ def _wall(g: SPSCGeometry, bore: float):
 def _point_polyline(p: np.ndarray, line: np.ndarray, k: int = 10):
     """Distance of each point ``p`` (x, z) to the polyline ``line`` and the nearest point on it
     (complex x + iz), exact: measured to the segments next to the ``k`` nearest vertices, and to
-    every segment for a point where another could be nearer (its ends lie beyond the k-th
-    nearest vertex, so it is at least that far less half the longest segment)."""
+    every segment long enough to be nearer than that from beyond the k-th nearest vertex (its
+    ends lie farther, so it is at least that far less half its length)."""
     k = min(k, len(line))
     dv, iv = cKDTree(line).query(p, k=k)
     dv, iv = dv.reshape(len(p), k), iv.reshape(len(p), k)
     P, L = p[:, 0] + 1j * p[:, 1], line[:, 0] + 1j * line[:, 1]
     d, near = _point_segments(P, L, np.clip(np.concatenate([iv - 1, iv], axis=1), 0, len(L) - 2))
-    half = 0.5 * np.abs(np.diff(L)).max() if len(L) > 1 else 0.0
-    unsure = np.flatnonzero(dv[:, -1] - half < d) if k < len(L) else []
-    if len(unsure):
-        every = np.broadcast_to(np.arange(max(len(L) - 1, 1)), (len(unsure), max(len(L) - 1, 1)))
-        d[unsure], near[unsure] = _point_segments(P[unsure], L, every)
+    if k < len(L):
+        long = np.flatnonzero(0.5 * np.abs(np.diff(L)) > (dv[:, -1] - d).min())
+        if long.size:
+            d2, near2 = _point_segments(P, L, np.broadcast_to(long, (len(P), long.size)))
+            closer = d2 < d
+            d[closer], near[closer] = d2[closer], near2[closer]
     return d, near
 
 
