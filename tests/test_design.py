@@ -342,8 +342,10 @@ def test_verify_fem_on_a_coarse_mesh(tmp_path, capsys):
     assert v["converged"] and v["points"] == {"fast": 25, "fem": 7}
     for name in v["files"].values():
         assert (out / "verify" / name).exists()
-    assert v["metrics"]["fast"] == pytest.approx(doc["best"]["metrics"], rel=1e-12)
+    for k, x in doc["best"]["metrics"].items():  # the check re-runs the trial's model exactly
+        assert v["metrics"]["fast"][k] == (pytest.approx(x, rel=1e-12) if x is not None
+                                           else None), k
     for k in ("stiffness_high", "stiffness_low", "sensitivity_high", "sensitivity_low"):
         assert abs(v["difference_pct"][k]) < 10.0, (k, v["difference_pct"][k])
-    assert v["difference_pct"]["cavity_mm3"] == 0.0
+    assert abs(v["difference_pct"]["cavity_mm3"]) < 0.01  # the same cavity, meshed by the FEM
     assert "3D FEM" in (out / "index.html").read_text(encoding="utf-8")
