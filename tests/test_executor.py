@@ -32,6 +32,20 @@ def test_local_cluster_runs_on_separate_single_threaded_processes(monkeypatch):
     assert {trim for _, _, trim in facts} == {None}  # glibc's own malloc thresholds
 
 
+def _worker_config():
+    import dask
+
+    return (dask.config.get("distributed.worker.profile.enabled"),
+            dask.config.get("distributed.admin.tick.interval"))
+
+
+def test_local_workers_do_not_profile():
+    # the statistical profiler and a 20 ms watchdog cost CPU the models need (executor docstring)
+    with dask_client(workers=1) as client:
+        config = set(client.run(_worker_config).values())
+    assert config == {(False, "200ms")}
+
+
 def test_existing_scheduler_is_used_by_address():
     from distributed import LocalCluster
 
