@@ -232,10 +232,15 @@ class SPSCGeometry:
         return math.pi * area + 2.0 * self.l * width
 
     # -- polylines for the CAD --------------------------------------------------------------------
-    def profile_points(self, n: int = 121) -> tuple[np.ndarray, np.ndarray]:
+    def profile_points(self, n: int = 121, *,
+                       with_corners: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """``n`` points (x, z) of the cavity profile from the apex (0, h) to the edge (w, 0) and
         their unit outward normals, spaced evenly in the arc length of the offset curve
-        (ds + t0·dθ), so both the profile and its offset by t0 are resolved where they bend."""
+        (ds + t0·dθ), so both the profile and its offset by t0 are resolved where they bend.
+
+        Points closer than 1e-6·w are merged. ``with_corners``: the corner at the widest point
+        (:attr:`has_corner`) is given twice, with the normals above and below it, for the
+        offset's arc (so not a polyline a spline may interpolate)."""
         u = _dense_u(self)
         X, Y = self.profile(u)
         X[0], Y[0], X[-1], Y[-1] = 0.0, self.h, self.w, 0.0
@@ -250,8 +255,31 @@ class SPSCGeometry:
         X[0], Y[0], X[-1], Y[-1] = 0.0, self.h, self.w, 0.0
         nx, nz = self.outward_normal(X, Y)
         nx[0], nz[0] = 0.0, 1.0
-        keep = _distinct(np.column_stack([X, Y]), 1e-6 * self.w)
-        return np.column_stack([X, Y])[keep], np.column_stack([nx, nz])[keep]
+        pts, nrm = np.column_stack([X, Y]), np.column_stack([nx, nz])
+        keep = _distinct(pts, 1e-6 * self.w)
+        pts, nrm = pts[keep], nrm[keep]
+        if with_corners and self.has_corner:
+            pts, nrm = self._with_corner(pts, nrm)
+        return pts, nrm
+
+    @property
+    def has_corner(self) -> bool:
+        """The profile has a corner at its widest point (w̄, c_y·h̄): n2 = 1 with 0 < c_y·h̄ < h
+        (the upper and lower branches meet there at an angle)."""
+        return self.n2 <= 1.0 and 0.0 < self.z_widest < self.h
+
+    def _with_corner(self, pts, nrm):
+        """``pts``, ``nrm`` with the corner point (w̄, c_y·h̄) in its place twice, with the upper
+        branch's normal and then the lower's (near samples of it dropped): the turn of the
+        normal that :func:`_fan_corners` fills with an arc."""
+        corner = np.array([self.w_bar, self.z_widest])
+        up = np.array(self.outward_normal(corner[0], corner[1]), dtype=float)
+        low = up * np.array([1.0, -1.0])  # the lower branch's one-sided normal
+        near = np.hypot(*(pts - corner).T) <= 1e-6 * self.w
+        k = int(np.searchsorted(-pts[:, 1], -corner[1]))  # apex first: z decreasing
+        pts = np.vstack([pts[:k][~near[:k]], corner, corner, pts[k:][~near[k:]]])
+        nrm = np.vstack([nrm[:k][~near[:k]], up, low, nrm[k:][~near[k:]]])
+        return pts, nrm
 
     def outer_profile_points(self, n: int = 121) -> np.ndarray:
         """The outer wall surface: the profile offset by t0 along its normal, from (0, h + t0)
@@ -262,8 +290,8 @@ class SPSCGeometry:
     def wall_profiles(self, n: int = 121) -> tuple[np.ndarray, np.ndarray]:
         """The cavity profile of :meth:`profile_points` and the outer wall of
         :meth:`outer_profile_points` (points (x, z) in mm, apex first) from one evaluation."""
-        inner, nrm = self.profile_points(n)
-        pts, nrm = _fan_corners(inner, nrm)
+        inner, _ = self.profile_points(n)
+        pts, nrm = _fan_corners(*self.profile_points(n, with_corners=True))
         off = pts + self.t0 * nrm
         below = np.nonzero(off[:, 1] < 0.0)[0]
         if below.size:
