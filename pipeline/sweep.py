@@ -6,8 +6,9 @@ A bounded number of designs is in flight at any time (a few per worker thread), 
 rows come back, so the client's memory does not grow with the sweep. A worker that dies (killed,
 out of memory, a crash in compiled code) is replaced by its nanny and Dask runs its task
 elsewhere; a task whose workers died ``allowed-failures + 1`` times (Dask's KilledWorker, 4 by
-default) is given one more chance under a new key (it may have shared a dying worker with the
-real culprit) and then recorded as a failed row. A task that raises is retried ``retries``
+default) may only have shared a dying worker with the real culprit (Dask blames every task a
+dead worker held), so it is given one more chance once the rest of the sweep is done, alone on
+the cluster, where a death can only be its own; then it is recorded as a failed row. A task that raises is retried ``retries``
 times. No design is lost and none is stored twice.
 """
 
@@ -32,11 +33,10 @@ RETRIES = 1
 #: each worker holds one at a time and a dying worker takes only its own design down).
 IN_FLIGHT_PER_THREAD = 4
 #: Dask settings of the in-process LocalCluster (an existing cluster keeps its own): one queued
-#: task per single-threaded worker, so a worker's death implicates its own design only; no
-#: statistical profiler in the workers (its hour of call-tree history grew a worker by 40 kB a
-#: design in a sweep, measured, and sampling the stack every 10 ms costs CPU).
-LOCAL_CLUSTER_CONFIG = {"distributed.scheduler.worker-saturation": 1.0,
-                        "distributed.worker.profile.enabled": False}
+#: task per single-threaded worker, so a worker's death implicates its own design only. (The
+#: executor also turns the workers' statistical profiler off: its hour of call-tree history grew
+#: a worker by 40 kB a design in a sweep, measured.)
+LOCAL_CLUSTER_CONFIG = {"distributed.scheduler.worker-saturation": 1.0}
 #: Seconds between rewrites of the table from the journal during a sweep.
 CHECKPOINT_S = 120.0
 
@@ -150,13 +150,13 @@ def _run(pending, total, store, settings, stats, *, workers, scheduler, progress
         stats.update(workers=len(client.nthreads()), start_s=time.perf_counter() - t_start)
         flight = _Flight(client, task, settings, IN_FLIGHT_PER_THREAD * max(1, threads))
         flight.refill(pending)
-        failed, last = 0, time.perf_counter()
+        failed, last, suspects = 0, time.perf_counter(), []
         for f in flight.completed:
             key, design, attempt = flight.designs.pop(f.key)
             row = _row(f, key, design)
             if row is None and attempt == 0:  # perhaps it only shared a dying worker
                 stats["retried_killed"] += 1
-                flight.submit([(key, design)], attempt=1)
+                suspects.append((key, design))
             elif row is None:
                 row = failed_row(design, _one_line(f.exception()), key=key)
             f.release()
@@ -167,6 +167,8 @@ def _run(pending, total, store, settings, stats, *, workers, scheduler, progress
                 bar.set_postfix(failed=failed, refresh=False)
                 bar.update(1)
             flight.refill(pending)
+            if suspects and not flight.designs:  # the rest is done: each suspect alone
+                flight.submit([suspects.pop(0)], attempt=1)
             if time.perf_counter() - last > every:
                 store.write(keys)
                 last = time.perf_counter()
