@@ -5,7 +5,8 @@ design (inputs, metrics, printability, status).
                [--n2 ...] [--cy ...] [--material tpu60a,elastic50a] [--pressure 10,40]
                [--reservoir 0,40000] [--samples N --seed S] [--model membrane|wall|simplified]
                [--process fdm|sla|molding] [--points N] [--stroke MM] --out FILE.parquet
-               [--csv FILE] [--workers N | --scheduler ADDR] [--force] [--quiet]
+               [--csv FILE] [--html DIR [--front M:max|min,M:max|min]]
+               [--workers N | --scheduler ADDR] [--force] [--quiet]
 
 Each input takes a value X, a list a,b,c, a grid lo:hi:n or, with --samples, a range lo:hi.
 A re-run with the same --out skips what is done and retries what failed. Exit 0 when every
@@ -21,8 +22,8 @@ from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import POINTS_MAX
 
 from .curve_models import MODELS
-from .options import (_HELP, PARAMS, _RenamedSize, add_quiet_option, check_output_file,
-                      integer, number)
+from .options import (_HELP, PARAMS, _RenamedSize, add_quiet_option, check_output_dir,
+                      check_output_file, integer, number)
 from .sweep_eval import INPUTS, STATUSES
 
 __all__ = ["register", "run", "SWEEP_MODELS"]
@@ -70,6 +71,12 @@ def register(subparsers) -> None:
     o.add_argument("--out", required=True, metavar="FILE.parquet",
                    help="the table (its journal FILE.journal.jsonl beside it; a re-run resumes)")
     o.add_argument("--csv", default=None, metavar="FILE.csv", help="the table as CSV too")
+    o.add_argument("--html", default=None, metavar="DIR", help="an HTML page of the sweep "
+                   "in DIR (both modes, a Pareto front, each metric against each input, "
+                   "parallel coordinates, the best designs; DIR/index.html)")
+    o.add_argument("--front", default=None, metavar="M:max|min,M:max|min",
+                   help="the page's Pareto front: two metrics and their senses (default "
+                   "sensitivity_high:max,cavity_mm3:min)")
     o.add_argument("--workers", default=None, metavar="N",
                    help="local worker processes (default: one per core)")
     o.add_argument("--scheduler", default=None, metavar="ADDR",
@@ -87,9 +94,17 @@ def prepare(args):
     from .executor import check_scheduler, check_workers
     from .sweep_space import build_space
 
+    from .sweep_figures import Front
+    from .sweep_page import DEFAULT_FRONT
+
     check_output_file("--out", args.out, (".parquet",))
     if args.csv is not None:
         check_output_file("--csv", args.csv, (".csv",))
+    if args.html is not None:
+        check_output_dir("--html", args.html)
+    elif args.front is not None:
+        raise ParameterError("front", args.front, "only with --html (it shapes the page)")
+    args.front = Front.parse(DEFAULT_FRONT if args.front is None else args.front)
     if args.scheduler is not None and args.workers is not None:
         raise ParameterError("workers", args.workers, "only without --scheduler (the "
                              "cluster has its own workers)")
@@ -121,7 +136,25 @@ def run(args) -> int:
     df = sweep.run_sweep(space, model=args.model, process=args.process, points=args.points,
                          stroke_mm=args.stroke, out=args.out, workers=args.workers,
                          scheduler=args.scheduler, progress=not args.quiet, csv=args.csv)
-    return summary(df, args)
+    code = summary(df, args)
+    if args.html is not None:
+        from .sweep_page import write_page
+
+        page = write_page(df, args.html, model=args.model, process=args.process,
+                          stroke_mm=args.stroke, points=args.points, front=args.front,
+                          command=_command(), table=str(args.out),
+                          searched=[a.name for a in space.axes])
+        print(f"page: {page}")
+    return code
+
+
+def _command() -> str:
+    """The command line as typed (for the page), with the program as ``spsc``."""
+    import shlex
+    from pathlib import Path
+
+    named = sys.argv and Path(sys.argv[0]).name == "spsc"
+    return "spsc " + shlex.join(sys.argv[1:]) if named else ""
 
 
 def summary(df, args) -> int:

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from .design_goal import Goal
+from .parallel import parallel_coordinates
 
 __all__ = ["history_figure", "front_figure", "parallel_figure", "curves_figure", "render_part"]
 
@@ -170,52 +171,16 @@ def parallel_figure(path, rows: list[dict], searched: list[str], goal: Goal,
     if not done:
         return None
     axes = list(searched) + list(goal.needed) + (["miss"] if goal.targets else [])
-    cols, ticks = [], []
-    for name in axes:
-        vals = [r[name] for r in done]
-        if name in ("type", "material"):
-            cats = sorted({str(v) for v in vals})
-            col = np.array([cats.index(str(v)) for v in vals], float)
-            ticks.append((cats, len(cats) - 1 or 1))
-        else:
-            col = np.array([np.nan if v is None else float(v) for v in vals], float)
-            ticks.append(None)
-        lo, hi = np.nanmin(col), np.nanmax(col)
-        cols.append((col - lo) / (hi - lo) if hi > lo else np.full_like(col, 0.5))
-        if ticks[-1] is None:
-            ticks[-1] = (lo, hi)
-    data = np.array(cols).T
     key = "miss" if goal.targets else goal.objectives[0][0]
-    score = np.array([float(r[key]) for r in done])
-    cmap = plt.get_cmap("viridis_r" if key == "miss" or goal.objectives[0][1] == "minimize"
-                        else "viridis")
-    norm = plt.Normalize(np.nanmin(score), np.nanmax(score))
+    low = key == "miss" or goal.objectives[0][1] == "minimize"
     fig, a = plt.subplots(figsize=(max(7, 1.25 * len(axes)), 4.6), constrained_layout=True)
-    x = np.arange(len(axes))
-    order = np.argsort(-score if key == "miss" else score)
-    for k in order:
-        r = done[k]
-        style = dict(color=cmap(norm(score[k])), lw=0.9, alpha=0.8) if r["feasible"] else \
-            dict(color="0.75", lw=0.6, alpha=0.6)
-        a.plot(x, data[k], **style)
-    if best is not None:
-        k = next(i for i, r in enumerate(done) if r["trial"] == best["trial"])
-        a.plot(x, data[k], color="C3", lw=2.5, label=f"best (trial {best['trial']})")
-        a.legend(fontsize=8, loc="upper right")
-    for i, (name, t) in enumerate(zip(axes, ticks)):
-        a.axvline(i, color="k", lw=0.6)
-        if isinstance(t[0], list):
-            for j, c in enumerate(t[0]):
-                a.text(i, j / t[1], f" {c}", fontsize=8, va="center")
-        else:
-            a.text(i, -0.06, f"{t[0]:.3g}", ha="center", va="top", fontsize=7)
-            a.text(i, 1.04, f"{t[1]:.3g}", ha="center", va="bottom", fontsize=7)
-    a.set_xticks(x, [n.replace("_", " ") for n in axes], fontsize=8)
-    a.set_yticks([])
-    a.set_ylim(-0.12, 1.1)
-    for s in ("top", "right", "left"):
-        a.spines[s].set_visible(False)
-    fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=a, label=_LABEL.get(key, key))
+    k = None if best is None else next(i for i, r in enumerate(done)
+                                       if r["trial"] == best["trial"])
+    parallel_coordinates(fig, a, done, axes, [float(r[key]) for r in done],
+                         [r["feasible"] for r in done], cmap="viridis_r" if low else "viridis",
+                         label=_LABEL.get(key, key), better="low" if low else "high",
+                         highlight=k, highlight_label="" if best is None
+                         else f"best (trial {best['trial']})")
     return _save(fig, path)
 
 

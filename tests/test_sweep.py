@@ -39,8 +39,10 @@ def cluster():
     (reached by address, as --scheduler would)."""
     from distributed import LocalCluster
 
+    from spsc.pipeline.executor import _NO_DASHBOARD
+
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as c:
+                      dashboard_address=None, scheduler_kwargs=_NO_DASHBOARD) as c:
         yield c.scheduler_address
 
 
@@ -418,6 +420,18 @@ def test_cli_sweep_end_to_end(tmp_path, cluster, capsys):
     assert "12 done earlier and skipped" in capsys.readouterr().out
 
 
+def test_cli_sweep_writes_its_page(tmp_path, cluster, capsys):
+    out, page = tmp_path / "c.parquet", tmp_path / "page"
+    assert main(["sweep", "--type", "A,B", "--t0", "0.5,1", "--model", "simplified",
+                 "--points", "5", "--stroke", "4", "--out", str(out), "--html", str(page),
+                 "--front", "stiffness_high:max,jnd_mm:min", "--scheduler", cluster,
+                 "--quiet"]) == 0
+    assert f"page: {page / 'index.html'}" in capsys.readouterr().out
+    html = (page / "index.html").read_text(encoding="utf-8")
+    assert "Pareto front: highest stiffness, high mode against lowest JND depth" in html
+    assert len((page / "table.csv").read_text(encoding="utf-8").splitlines()) == 5
+
+
 def test_cli_sweep_with_invalid_designs_exits_1_and_keeps_the_rows(tmp_path, cluster, capsys):
     out = tmp_path / "c.parquet"
     assert main(["sweep", "--type", "B", "--t0", "1,20", "--model", "simplified", "--points",
@@ -437,6 +451,9 @@ def test_cli_sweep_with_invalid_designs_exits_1_and_keeps_the_rows(tmp_path, clu
     (["--type", "B", "--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "workers"),
     (["--type", "B", "--scheduler", "tcp://127.0.0.1:1"], "scheduler"),
     (["--type", "B", "--pressure", "0,40"], "pressure"),
+    (["--type", "B", "--front", "jnd_mm:min,cavity_mm3:min"], "front"),
+    (["--type", "B", "--html", "/dev/null"], "--html"),
+    (["--type", "B", "--html", "x", "--front", "speed:max,jnd_mm:min"], "front"),
     (["--type", "A,B,C,D", "--w", "1:20:60", "--h", "5:20:60"], "sweep size"),
 ])
 def test_cli_refuses_before_any_work(argv, name, tmp_path, capsys):
