@@ -1,13 +1,17 @@
 """``spsc report``: run the validation study (cached) and write the HTML report.
 
-    spsc report [--quick] [--out DIR] [--cache DIR] [--no-fem] [--types ABCD] [--quiet]
-                [--workers N | --scheduler ADDRESS] [--allow-dirty]
+    spsc report [--quick] [--out DIR] [--cache DIR] [--no-fem] [--no-sweep] [--types ABCD]
+                [--quiet] [--workers N | --scheduler ADDRESS] [--allow-dirty]
 
 Default: the full study into ``reports/validation/``; ``--quick`` (coarse FEM mesh, fewer
 points and pressures; CI) into ``build/report-quick/``. Runs are cached under
 ``build/cache/runs`` by a hash of their inputs and of the code that computes them, so a second
 call with nothing changed takes seconds. A failed run is listed in the report and the others
 go on. Exit 0 when every run succeeded, 1 when some failed (the report is still written).
+
+The report also sweeps the design space of its types with the membrane model
+(:mod:`.report_sweep`: w and t0 grids, 112 designs, 24 with ``--quick``) and links the sweep's
+own page (``OUT/sweep/index.html``); ``--no-sweep`` leaves it out.
 
 The runs are independent and run in parallel on Dask (:mod:`.executor`): by default on an
 in-process LocalCluster with one single-threaded worker process per core, ``--workers N`` for
@@ -49,6 +53,8 @@ def register(subparsers) -> None:
     p.add_argument("--cache", default="build/cache", help="cache directory (default build/cache)")
     p.add_argument("--no-fem", action="store_true",
                    help="no 3D FEM: the membrane, simplified and wall models only")
+    p.add_argument("--no-sweep", action="store_true",
+                   help="no design-space sweep (its section and page)")
     p.add_argument("--types", help="subset of the types, e.g. BD (default ABCD)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     d = p.add_argument_group("where the runs are computed (Dask; no cluster is started when "
@@ -84,7 +90,7 @@ def run(args) -> int:
     from .study import full_study, quick_study
 
     t0 = time.perf_counter()
-    cluster, executor = _cluster(args)
+    cluster, executor, where = _cluster(args)
     types = _types(args.types)
     out = check_output_dir("--out", args.out if args.out is not None
                            else DEFAULT_OUT[bool(args.quick)])
@@ -100,6 +106,11 @@ def run(args) -> int:
         return 2
     cache = Cache(args.cache)
     outcomes = run_all(study.runs(), cache, progress=not args.quiet, cluster=cluster)
+    sweep = None
+    if not args.no_sweep:
+        from .report_sweep import run_report_sweep
+
+        sweep = run_report_sweep(study, cache.root, progress=not args.quiet, **where)
     source = provenance()  # as it is when the report is written: the tree may have changed
     if committed and not args.allow_dirty and not _clean_or_say_why(source):
         return 2
@@ -107,7 +118,7 @@ def run(args) -> int:
     path = build_report(study, outcomes, out, command=_command(args),
                         fig_cache=cache.root / "figures", source=source,
                         wall_seconds=time.perf_counter() - t0, bench=bench,
-                        executor=executor)
+                        executor=executor, sweep=sweep)
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
@@ -123,19 +134,21 @@ def run(args) -> int:
 
 def _cluster(args):
     """``--workers`` / ``--scheduler`` checked → (the runner's cluster factory or None for
-    this process, how the runs are computed, for the report)."""
+    this process, how the runs are computed, for the report, the sweep's ``workers`` and
+    ``scheduler``)."""
     import functools
 
     from .executor import dask_client
 
     workers, scheduler = check_cluster(args.workers, args.scheduler)
+    where = {"workers": workers, "scheduler": scheduler}
     if scheduler is not None:
         return (functools.partial(dask_client, scheduler=scheduler),
-                f"on the Dask scheduler at {scheduler}")
+                f"on the Dask scheduler at {scheduler}", where)
     if workers == 1:
-        return None, "in one process"
+        return None, "in one process", where
     return (functools.partial(dask_client, workers=workers),
-            f"on {workers} local Dask worker processes")
+            f"on {workers} local Dask worker processes", where)
 
 
 def _bench(args):
@@ -198,6 +211,8 @@ def _reconstruct(args) -> str:
         parts += ["--cache", args.cache]
     if args.no_fem:
         parts.append("--no-fem")
+    if args.no_sweep:
+        parts.append("--no-sweep")
     for opt in ("workers", "scheduler"):
         if getattr(args, opt) is not None:
             parts += [f"--{opt}", str(getattr(args, opt))]

@@ -108,7 +108,8 @@ def test_spsc_report_refuses_the_committed_report_from_a_dirty_tree(tmp_path, mo
     monkeypatch.setattr(provenance, "committed_report_dir", lambda *a: tmp_path / "committed")
     ran = []
     monkeypatch.setattr(runner, "run_all", lambda runs, *a, **k: ran.append(1) or {})
-    args = ["report", "--no-fem", "--types", "C", "--cache", str(tmp_path / "c"), "--quiet"]
+    args = ["report", "--no-fem", "--no-sweep", "--types", "C", "--cache", str(tmp_path / "c"),
+            "--quiet"]
     assert main(args + ["--out", str(tmp_path / "committed")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "clean tree" in err[0] and "--allow-dirty" in err[0]
@@ -149,9 +150,18 @@ def test_spsc_report_verb_membrane_only(tmp_path, capsys):
     assert main(args) == 0
     assert (out / "index.html").is_file()
     assert "0 from the cache" in capsys.readouterr().out
+    # the design-space sweep: its page linked, its table cached by its space and code
+    page = (out / "index.html").read_text(encoding="utf-8")
+    assert '<a href="sweep/index.html">' in page and (out / "sweep" / "index.html").is_file()
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))["sweep"]
+    assert summary["designs"] == 6 and summary["ok"] == 6  # C × 3 widths × 2 walls
+    tables = list((cache / "sweeps").glob("report-quick-*.parquet"))
+    assert len(tables) == 1
     assert main(args) == 0
     # membrane, simplified and wall × 2 pressures × 2 modes
     assert "12 from the cache" in capsys.readouterr().out
+    again = json.loads((out / "summary.json").read_text(encoding="utf-8"))["sweep"]
+    assert (summary["evaluated"], again["evaluated"], again["ok"]) == (6, 0, 6)
     from spsc.pipeline.cmd_report import DEFAULT_OUT
     assert DEFAULT_OUT == {False: Path("reports/validation"), True: Path("build/report-quick")}
 
@@ -283,8 +293,8 @@ def test_spsc_report_runs_on_the_cluster_its_options_name(tmp_path, monkeypatch)
     seen = []
     monkeypatch.setattr(runner, "run_all",
                         lambda runs, *a, cluster=None, **k: seen.append(cluster) or {})
-    base = ["report", "--no-fem", "--types", "C", "--cache", str(tmp_path / "c"), "--quiet",
-            "--out", str(tmp_path / "r")]
+    base = ["report", "--no-fem", "--no-sweep", "--types", "C", "--cache", str(tmp_path / "c"),
+            "--quiet", "--out", str(tmp_path / "r")]
     with socket.socket() as server:  # something listening where the scheduler is said to be
         server.bind(("127.0.0.1", 0))
         server.listen()
