@@ -9,8 +9,8 @@ wall       the gate's ``min_wall``: the closest distance from the cavity surface
            the outer surface. Bodies of revolution and extrusion have their nearest points in the
            meridian plane, so it is the distance between the two profile polylines the export
            mesh is built from (:meth:`SPSCGeometry.wall_profiles` at ``MESH_PROFILE_POINTS``),
-           exact for polylines: t0 on a smooth profile, less where the construction thins the
-           wall (a chord across the offset of a profile corner, n2 = 1 with c_y > 0). Passes at
+           exact for polylines: t0 (less a chord's sagitta) on a smooth profile and round a
+           profile corner (n2 = 1 with c_y > 0, whose offset is an arc of t0). Passes at
            >= the process minimum less the gate's ``WALL_TOL_MM``. The mesh's circles add at most
            ``meshbuild.SAG_MM`` (0.004 mm) of thinning, which the gate sees and this does not.
 overhang   the steepest downward-facing outer wall, in degrees from the vertical, for the part
