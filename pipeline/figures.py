@@ -86,6 +86,12 @@ def render_vtu(vtu, png, *, plate: bool = False, window=(640, 480)) -> Path:
     parts = [warped, warped.reflect((1, 0, 0), point=(0, 0, 0)),
              warped.reflect((0, 1, 0), point=(0, 0, 0))]
     parts.append(parts[1].reflect((0, 1, 0), point=(0, 0, 0)))
+    with pv.vtk_verbosity("off"):  # VTK's notice of no X display when it falls back off screen
+        _render_parts(pv, parts, warped, png, plate, window)
+    return Path(png)
+
+
+def _render_parts(pv, parts, warped, png, plate, window) -> None:
     pl = pv.Plotter(off_screen=True, window_size=window)
     for p in parts:
         pl.add_mesh(p, scalars="|u| (mm)", clim=(0.0, max(float(warped["|u| (mm)"].max()), 1e-9)),
@@ -102,7 +108,6 @@ def render_vtu(vtu, png, *, plate: bool = False, window=(640, 480)) -> Path:
     pl.set_background("white")
     pl.screenshot(str(png))
     pl.close()
-    return Path(png)
 
 
 def shapes_figure(path, title: str, *, renders=(), membrane=None, fem=None,
