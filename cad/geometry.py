@@ -232,15 +232,11 @@ class SPSCGeometry:
         return math.pi * area + 2.0 * self.l * width
 
     # -- polylines for the CAD --------------------------------------------------------------------
-    def profile_points(self, n: int = 121, *,
-                       with_corners: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    def profile_points(self, n: int = 121) -> tuple[np.ndarray, np.ndarray]:
         """``n`` points (x, z) of the cavity profile from the apex (0, h) to the edge (w, 0) and
         their unit outward normals, spaced evenly in the arc length of the offset curve
         (ds + t0·dθ), so both the profile and its offset by t0 are resolved where they bend.
-
-        Points closer than 1e-6·w are merged. ``with_corners``: the corner at the widest point
-        (:attr:`has_corner`) is given twice, with the normals above and below it, for the
-        offset's arc (so not a polyline a spline may interpolate)."""
+        Points closer than 1e-6·w are merged."""
         u = _dense_u(self)
         X, Y = self.profile(u)
         X[0], Y[0], X[-1], Y[-1] = 0.0, self.h, self.w, 0.0
@@ -257,10 +253,7 @@ class SPSCGeometry:
         nx[0], nz[0] = 0.0, 1.0
         pts, nrm = np.column_stack([X, Y]), np.column_stack([nx, nz])
         keep = _distinct(pts, 1e-6 * self.w)
-        pts, nrm = pts[keep], nrm[keep]
-        if with_corners and self.has_corner:
-            pts, nrm = self._with_corner(pts, nrm)
-        return pts, nrm
+        return pts[keep], nrm[keep]
 
     @property
     def has_corner(self) -> bool:
@@ -290,8 +283,11 @@ class SPSCGeometry:
     def wall_profiles(self, n: int = 121) -> tuple[np.ndarray, np.ndarray]:
         """The cavity profile of :meth:`profile_points` and the outer wall of
         :meth:`outer_profile_points` (points (x, z) in mm, apex first) from one evaluation."""
-        inner, _ = self.profile_points(n)
-        pts, nrm = _fan_corners(*self.profile_points(n, with_corners=True))
+        inner, nrm = self.profile_points(n)
+        pts = inner
+        if self.has_corner:  # both normals at the corner, for the offset's arc
+            pts, nrm = self._with_corner(inner, nrm)
+        pts, nrm = _fan_corners(pts, nrm)
         off = pts + self.t0 * nrm
         below = np.nonzero(off[:, 1] < 0.0)[0]
         if below.size:

@@ -28,7 +28,7 @@ from spsc.core.loadcase import POINTS_MAX
 
 from .design_goal import METRIC_NAMES
 from .options import (_HELP, PARAMS, add_quiet_option, check_output_dir, check_output_file,
-                      integer, number)
+                      integer, number, typed_command)
 
 __all__ = ["register", "run", "prepare", "DESIGN_MODELS"]
 
@@ -243,9 +243,9 @@ def _exit(doc, args) -> int:
 
 
 def _command(args) -> str:
-    argv = sys.argv[1:] if sys.argv and Path(sys.argv[0]).name == "spsc" else None
-    if argv:
-        return "spsc " + shlex.join(argv)
+    typed = typed_command()
+    if typed:
+        return typed
     parts = ["design"]
     for t in args.target:
         parts += ["--target", t]

@@ -37,7 +37,7 @@ from pathlib import Path
 from spsc.core.errors import ParameterError
 
 from .executor import check_cluster, default_workers
-from .options import check_output_dir, number
+from .options import check_output_dir, number, typed_command
 
 DEFAULT_OUT = {False: Path("reports/validation"), True: Path("build/report-quick")}
 
@@ -193,8 +193,7 @@ def _same_dir(a: Path, b: Path | None) -> bool:
 
 
 def _command(args) -> str:
-    argv = sys.argv[1:] if sys.argv and Path(sys.argv[0]).name == "spsc" else None
-    command = "spsc " + (shlex.join(argv) if argv else _reconstruct(args))
+    command = typed_command() or "spsc " + _reconstruct(args)
     if os.environ.get("MAKELEVEL"):  # started by make: say so, the way the user typed it
         command = f"make report{' QUICK=1' if args.quick else ''}  ({command})"
     return command

@@ -23,7 +23,7 @@ from spsc.core.loadcase import POINTS_MAX
 
 from .curve_models import MODELS
 from .options import (_HELP, PARAMS, _RenamedSize, add_quiet_option, check_output_dir,
-                      check_output_file, integer, number)
+                      check_output_file, integer, number, typed_command)
 from .sweep_eval import INPUTS, STATUSES
 
 __all__ = ["register", "run", "SWEEP_MODELS"]
@@ -142,19 +142,11 @@ def run(args) -> int:
 
         page = write_page(df, args.html, model=args.model, process=args.process,
                           stroke_mm=args.stroke, points=args.points, front=args.front,
-                          command=_command(), table=str(args.out),
+                          command=typed_command() or "", table=str(args.out),
                           searched=[a.name for a in space.axes])
         print(f"page: {page}")
     return code
 
-
-def _command() -> str:
-    """The command line as typed (for the page), with the program as ``spsc``."""
-    import shlex
-    from pathlib import Path
-
-    named = sys.argv and Path(sys.argv[0]).name == "spsc"
-    return "spsc " + shlex.join(sys.argv[1:]) if named else ""
 
 
 def summary(df, args) -> int:

@@ -11,8 +11,6 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import numpy as np
-
 from .design_goal import Goal
 from .parallel import parallel_coordinates
 

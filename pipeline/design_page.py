@@ -11,7 +11,7 @@ from collections import Counter
 from pathlib import Path
 
 from .design_goal import METRIC_NAMES, Goal
-from .render import render_page
+from .render import draw_figures, render_page
 
 __all__ = ["write_page", "TOP_ROWS"]
 
@@ -29,26 +29,18 @@ def write_page(doc: dict, rows: list[dict], curves: dict | None, out) -> Path:
     searched = [k for k, v in doc["space"].items() if ("," in v or ":" in v)]
     best = _row(rows, doc["best"])
     pareto = [_row(rows, e) for e in doc["pareto"]]
-    figures, notes = {}, []
+    from . import design_figures as f
 
-    def draw(name, make, *a):
-        from . import design_figures as f
-
-        try:
-            p = getattr(f, make)(figs / f"{name}.png", *a)
-            if p is not None:
-                figures[name] = f"figures/{Path(p).name}"
-        except Exception as exc:  # a figure is not worth the run: say so on the page
-            notes.append(f"{name} figure not drawn: {type(exc).__name__}: {exc}")
-
-    draw("history", "history_figure", rows, goal)
-    draw("front", "front_figure", rows, goal, pareto, best)
-    draw("parallel", "parallel_figure", rows, searched, goal, best)
+    specs = [("history", f.history_figure, rows, goal),
+             ("front", f.front_figure, rows, goal, pareto, best),
+             ("parallel", f.parallel_figure, rows, searched, goal, best)]
     if curves:
-        draw("curves", "curves_figure", curves["fast"], curves.get("fem"), doc["model"])
+        specs.append(("curves", f.curves_figure, curves["fast"], curves.get("fem"),
+                      doc["model"]))
     build = doc.get("build")
     if build:
-        draw("part", "render_part", out / "part" / build["files"]["stl"])
+        specs.append(("part", f.render_part, out / "part" / build["files"]["stl"]))
+    figures, notes = draw_figures(figs, specs)
     ctx = {"doc": doc, "goal": goal, "figures": figures, "notes": notes,
            "metrics": METRIC_NAMES, "targets": _targets(goal),
            "top": _top(rows, goal), "searched": searched,

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 from pathlib import Path
 
 from spsc.core.errors import ParameterError
@@ -19,7 +20,8 @@ from spsc.cad.geometry import SIZES, SPSCGeometry, preset
 
 __all__ = ["PARAMS", "add_geometry_options", "add_setup_options", "add_gas_options",
            "add_output_options", "add_quiet_option", "check_output_file", "check_output_dir",
-           "geometry_from_args", "geometry_given", "integer", "number", "warn"]
+           "geometry_from_args", "geometry_given", "integer", "number", "typed_command",
+           "warn"]
 
 PARAMS = ("w", "h", "l", "t0", "n1", "n2", "cy")
 _HELP = {"w": "cavity semi-width at the base, mm", "h": "cavity height, mm",
@@ -220,3 +222,13 @@ def warn(verb: str, message: str) -> None:
     import sys
 
     print(f"spsc {verb}: warning: {message}", file=sys.stderr)
+
+
+def typed_command() -> str | None:
+    """The command line as the user typed it (``spsc ...``), or None when not run as ``spsc``
+    (tests, ``python -m``): callers then rebuild it from their arguments."""
+    if not (sys.argv and Path(sys.argv[0]).name == "spsc"):
+        return None
+    import shlex
+
+    return "spsc " + shlex.join(sys.argv[1:])

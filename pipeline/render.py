@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-__all__ = ["environment", "num", "render_page"]
+__all__ = ["environment", "num", "render_page", "draw_figures"]
 
 TEMPLATES = Path(__file__).with_name("templates")
 
@@ -36,3 +36,19 @@ def environment():
 def render_page(context: dict, template: str = "report.html.j2") -> str:
     """The report page from ``context`` (see :func:`~.report.build_report`)."""
     return environment().get_template(template).render(**context)
+
+
+def draw_figures(figs: Path, specs) -> tuple[dict, list[str]]:
+    """Draw each ``(name, function, *args)`` of ``specs`` as ``function(figs / name.png,
+    *args)`` (a function may return None: nothing to draw). Returns ``{name: "figures/FILE"}``
+    and a note per figure that could not be drawn (e.g. a render without an OpenGL context):
+    a figure is not worth the page it is on."""
+    figures, notes = {}, []
+    for name, function, *args in specs:
+        try:
+            p = function(figs / f"{name}.png", *args)
+            if p is not None:
+                figures[name] = f"figures/{Path(p).name}"
+        except Exception as exc:
+            notes.append(f"{name} figure not drawn: {type(exc).__name__}: {exc}")
+    return figures, notes

@@ -12,6 +12,7 @@ from collections import Counter
 from pathlib import Path
 
 from .design_output import rerun_commands
+from .render import draw_figures, render_page
 from .sweep_eval import INPUTS, METRICS, STATUSES
 from .sweep_figures import LABEL, Front, pareto_mask
 
@@ -49,20 +50,10 @@ def write_page(df, out, *, model: str, process: str, stroke_mm: float, points: i
     good = [c and bool(r["printable"]) for c, r in zip(computed, rows)]
     values = [[r[m] if g else math.nan for m in front.metrics] for r, g in zip(rows, good)]
     mask = pareto_mask(values, front.senses) if rows else []
-    figures, notes = {}, []
-
-    def draw(name, make, *a):
-        try:
-            p = getattr(f, make)(figs / f"{name}.png", *a)
-            if p is not None:
-                figures[name] = f"figures/{Path(p).name}"
-        except Exception as exc:  # a figure is not worth the page: say so on it
-            notes.append(f"{name} figure not drawn: {type(exc).__name__}: {exc}")
-
-    draw("modes", "modes_figure", rows, by)
-    draw("front", "front_figure", rows, front, mask, by)
-    draw("effects", "effects_figure", rows, varied, by)
-    draw("parallel", "parallel_figure", rows, varied, front)
+    figures, notes = draw_figures(figs, [("modes", f.modes_figure, rows, by),
+                                         ("front", f.front_figure, rows, front, mask, by),
+                                         ("effects", f.effects_figure, rows, varied, by),
+                                         ("parallel", f.parallel_figure, rows, varied, front)])
     on_front = sorted((r for r, m in zip(rows, mask) if m), key=lambda r: r[front.metrics[0]],
                       reverse=front.senses[0] == "max")
     ctx = {"model": model, "process": process, "stroke_mm": stroke_mm, "points": points,
@@ -75,8 +66,6 @@ def write_page(df, out, *, model: str, process: str, stroke_mm: float, points: i
            "front_rows": [_with_rerun(r, model, points, stroke_mm) for r in on_front],
            "top": _top(rows, good, front), "problems": _problems(rows)}
     path = out / "index.html"
-    from .render import render_page
-
     path.write_text(render_page(ctx, "sweep.html.j2"), encoding="utf-8")
     for n in notes:
         print(f"spsc sweep: warning: {n}", file=sys.stderr)
