@@ -118,5 +118,9 @@ def build_bladder(spec: BladderSpec) -> Bladder:
         "exclude": [{"center": [0.0, y_riser, 0.0], "radius": p.bore / 2 + 0.5}],
         "bbox_mm": [[-r_flange, y_tip, -f.thickness], [r_flange, g.l / 2 + r_flange, g.h + g.t0]],
         "print": {"build_direction": [0.0, 0.0, 1.0], "plane": "i-k (x-y), base down"},
+        # spsc fem --part: the wall is clamped on its base plane (DESIGN.md), floor and flange
+        # below it held by the mount; a plate first touches the outer apex
+        "fem": {"mount": "z<=0",
+                "sites": {"apex": {"at": [0.0, 0.0, g.h + g.t0], "normal": [0.0, 0.0, -1.0]}}},
     }
     return Bladder(spec, solid, design)

@@ -123,6 +123,9 @@ class Curve:
         Per-point reason ("" where converged).
     solver : SolveInfo, optional
         How the solve went (default: derived from the per-point status).
+    series : dict of str to array_like, optional
+        Further per-point columns a model measures (e.g. ``force_pocket1_N``, the force through
+        a named contact surface), written after the five columns in JSON and CSV.
     """
 
     y_mm: np.ndarray
@@ -140,6 +143,7 @@ class Curve:
     converged: np.ndarray | None = None
     message: tuple[str, ...] | None = None
     solver: SolveInfo | None = None
+    series: dict = field(default_factory=dict)
 
     def __post_init__(self):
         n = None
@@ -167,6 +171,16 @@ class Curve:
         if len(msg) != n:
             raise ParameterError("len(message)", len(msg), f"= len(y_mm) = {n}")
         object.__setattr__(self, "message", msg)
+        series = {}
+        for name, values in dict(self.series or {}).items():
+            if name in CURVE_COLUMNS or name in ("converged", "message") or not str(name):
+                raise ParameterError("series name", name, "a column name other than "
+                                     + ", ".join(CURVE_COLUMNS + ("converged", "message")))
+            a = _array(name, values)
+            if a.size != n:
+                raise ParameterError(f"len({name})", a.size, f"= len(y_mm) = {n}")
+            series[str(name)] = a
+        object.__setattr__(self, "series", series)
         object.__setattr__(self, "geometry", dict(self.geometry))
         object.__setattr__(self, "setup", dict(self.setup))
         for name in ("nominal_volume_mm3", "inflated_volume_mm3", "inflated_height_mm"):
@@ -228,6 +242,7 @@ class Curve:
         out = {"schema": SCHEMA, "schema_version": SCHEMA_VERSION}
         out |= {k: getattr(self, k) for k in _META}
         curve = {k: getattr(self, k) for k in CURVE_COLUMNS}
+        curve |= self.series
         curve["converged"] = self.converged
         curve["message"] = list(self.message)
         out["curve"] = curve
@@ -263,9 +278,11 @@ class Curve:
         arrays = {k: [np.nan if v is None else v for v in c[k]] for k in CURVE_COLUMNS}
         meta = {k: data[k] for k in _META if k in data}
         solver = data.get("solver") if version >= 2 else None
+        series = {k: [np.nan if v is None else v for v in c[k]] for k in c
+                  if k not in CURVE_COLUMNS and k not in ("converged", "message")}
         return cls(**arrays, **meta, converged=c.get("converged"),
                    message=tuple(c["message"]) if "message" in c else None,
-                   solver=SolveInfo.from_dict(solver) if solver else None)
+                   solver=SolveInfo.from_dict(solver) if solver else None, series=series)
 
     @classmethod
     def from_json(cls, source: str | Path) -> "Curve":
@@ -281,9 +298,11 @@ class Curve:
         buf = io.StringIO()
         for k in _META:
             buf.write(f"# {k}: {json.dumps(to_jsonable(getattr(self, k)))}\n")
-        buf.write(",".join(CURVE_COLUMNS + ("converged",)) + "\n")
+        extra = tuple(self.series)
+        buf.write(",".join(CURVE_COLUMNS + extra + ("converged",)) + "\n")
         for i in range(len(self)):
             vals = [_fmt(getattr(self, k)[i]) for k in CURVE_COLUMNS]
+            vals += [_fmt(self.series[k][i]) for k in extra]
             buf.write(",".join(vals + [str(int(self.converged[i]))]) + "\n")
         text = buf.getvalue()
         if path is not None:
@@ -316,7 +335,9 @@ class Curve:
         conv = None
         if "converged" in header:
             conv = [bool(int(r[header.index("converged")])) for r in rows]
-        return cls(**cols, **meta, converged=conv)
+        series = {k: [float(r[header.index(k)]) for r in rows] for k in header
+                  if k not in CURVE_COLUMNS and k != "converged"}
+        return cls(**cols, **meta, converged=conv, series=series)
 
 
 def _gradient(f: np.ndarray, y: np.ndarray) -> np.ndarray:

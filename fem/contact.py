@@ -14,7 +14,7 @@ import numpy as np
 
 from .element import tri_p2, tri_rule
 
-__all__ = ["plate_force", "contact_forces", "contact_area", "update_active_set"]
+__all__ = ["plate_force", "group_forces", "contact_forces", "contact_area", "update_active_set"]
 
 
 def contact_forces(r, active) -> np.ndarray:
@@ -27,12 +27,21 @@ def plate_force(model, r, active) -> float:
     return float(contact_forces(r, active).sum()) * model.symmetry
 
 
+def group_forces(model, r, active) -> dict:
+    """Force (N, full part) through each named contact surface of the model: the nodal
+    contact forces of its active nodes, summed (× symmetry)."""
+    active = np.asarray(active)
+    lam = contact_forces(r, active)
+    return {name: float(lam[np.isin(active, nodes)].sum()) * model.symmetry
+            for name, nodes in model.groups.items()}
+
+
 def update_active_set(model, x, r, plate, active, force_tol, gap_tol):
     """The new active set, or None if it is unchanged (the PDAS fixed point)."""
     X = model.disc.X
     keep = contact_forces(r, active) >= -force_tol
     inactive = np.setdiff1d(model.contact_nodes, active)
-    z = X[inactive, 2] + x[3 * inactive + 2]
+    z = X[inactive, 2] + x[3 * inactive + 2] + model.gap[inactive]
     new = inactive[z > plate + gap_tol]
     if new.size == 0 and np.all(keep):
         return None

@@ -60,12 +60,21 @@ class FEMModel:
     fixed: np.ndarray = field(repr=False)  # bool over all unknowns
     contact_nodes: np.ndarray = field(repr=False)  # outer-surface nodes the plate may touch
     cavity_slots: np.ndarray = field(repr=False)
+    #: per node (mm): how far in front of the node the plate meets it (a rigid insert's
+    #: thickness, e.g. an FSR on a pocket floor); zero elsewhere
+    gap: np.ndarray = field(repr=False, default=None)
+    #: named contact surfaces: name -> their contact nodes (the force through each is reported)
+    groups: dict = field(repr=False, default_factory=dict)
 
     @classmethod
     def build(cls, mesh: TetMesh, material: Material, *, bulk_ratio: float = 2000.0,
-              supports: dict | None = None, order: int = 2) -> "FEMModel":
+              supports: dict | None = None, order: int = 2, clamped=None,
+              gap=None, groups: dict | None = None) -> "FEMModel":
         """``supports``: facet tag -> fixed displacement components (default: clamped base and
-        the two symmetry planes of the quarter model)."""
+        the two symmetry planes of the quarter model); ``clamped``: node indices fixed in all
+        three components (a part's mount); ``gap`` (per node, mm) and ``groups`` (name -> node
+        indices): contact surfaces met by the plate through a rigid insert of that thickness,
+        whose forces are reported by name."""
         supports = CLAMPED_QUARTER if supports is None else supports
         law = NearlyIncompressible(material, bulk_ratio)
         disc = discretise(mesh.nodes, mesh.tets, order=order)
@@ -75,12 +84,16 @@ class FEMModel:
                 nodes = mesh.nodes_on(tag)
                 for c in comps:
                     fixed[3 * nodes + c] = True
+        if clamped is not None and len(clamped):
+            fixed[(3 * np.asarray(clamped)[:, None] + np.arange(3)).ravel()] = True
         cavity = CavitySurface(mesh.facets.get("cavity", np.zeros((0, 6), np.int64)),
                                mesh.symmetry)
         contact = mesh.nodes_on("outer") if "outer" in mesh.facets else np.zeros(0, int)
         contact = contact[~fixed[3 * contact + 2]]
         slots = disc.pattern.slots_of(cavity.dofs)
-        return cls(mesh, law, disc, cavity, fixed, contact, slots)
+        gap = np.zeros(len(mesh.nodes)) if gap is None else np.asarray(gap, float)
+        groups = {k: np.intersect1d(v, contact) for k, v in (groups or {}).items()}
+        return cls(mesh, law, disc, cavity, fixed, contact, slots, gap, groups)
 
     @property
     def symmetry(self) -> int:

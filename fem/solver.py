@@ -21,7 +21,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .assembly import InvertedElement
-from .contact import contact_area, plate_force, update_active_set
+from .contact import contact_area, group_forces, plate_force, update_active_set
 from spsc.core.gaslaw import GasLaw
 from .linsolve import factorize, solve_rank_one
 from .model import FEMModel, Load
@@ -87,6 +87,8 @@ class Record:
     contact_area: float
     iterations: int
     unstable_modes: int | None = None  # negative pivots beyond the pressure block (None: n/a)
+    #: force (N) through each named contact surface of the model (e.g. an FSR pocket floor)
+    group_forces: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True, eq=False)
@@ -181,7 +183,8 @@ def newton(model: FEMModel, x0, load: Load, settings: Settings, active=None):
         # solve (K_ff Δx_f = −r_f − K_fc δ_c) instead of moving those nodes alone, which
         # would invert the elements under them
         presc = 3 * active + 2
-        jump = (load.plate - X[active, 2] - x[presc]) if load.plate is not None else np.zeros(0)
+        jump = (load.plate - model.gap[active] - X[active, 2] - x[presc]) \
+            if load.plate is not None else np.zeros(0)
         free = ~model.fixed
         free[presc] = False
         ev = carried if carried is not None else model.evaluate(x, load)
@@ -258,11 +261,13 @@ def _unstable_modes(model, negative, load) -> int | None:
 
 def _record(model, step, kind, x, ev, load, active, it, settings, negative=None) -> Record:
     force, area = 0.0, 0.0
+    groups = dict.fromkeys(model.groups, 0.0)
     if load.plate is not None and active.size:
         force = plate_force(model, ev.r, active)
         area = contact_area(model, x, load.plate)
+        groups = group_forces(model, ev.r, active)
     return Record(step, kind, x.copy(), ev.pressure, ev.volume, load.plate, force, area, it,
-                  _unstable_modes(model, negative, load))
+                  _unstable_modes(model, negative, load), groups)
 
 
 def _load_path(model, x, load, step):
@@ -274,7 +279,8 @@ def _load_path(model, x, load, step):
         return (lambda t: Load(pressure=start + t * (end - start), plate=load.plate)), "inflate"
     if isinstance(step, Press):
         pos = model.disc.X + model.displacement(x)
-        z0 = float(pos[model.contact_nodes, 2].max()) if load.plate is None else load.plate
+        z0 = float((pos[model.contact_nodes, 2] + model.gap[model.contact_nodes]).max()) \
+            if load.plate is None else load.plate
         stroke = float(step.stroke)
         return (lambda t: Load(load.pressure, load.gas, z0 - t * stroke)), "press"
     raise TypeError(f"unknown step {step!r}")

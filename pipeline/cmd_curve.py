@@ -158,9 +158,10 @@ def summary(curve) -> None:
             if "dofs" in d else "")
     print(f"{curve.model} model{size}, material {curve.material}, p_i = {s['p_i_kPa']:g} kPa, "
           f"V_r = {s['reservoir_mm3']:g} mm³")
+    apex = (f", apex at {curve.inflated_height_mm:.3f} mm"
+            if np.isfinite(curve.inflated_height_mm) else "")
     print(f"cavity volume {curve.nominal_volume_mm3:.1f} -> {curve.inflated_volume_mm3:.1f} mm³ "
-          f"({100 * (curve.inflated_volume_mm3 / curve.nominal_volume_mm3 - 1):+.2f} %), "
-          f"apex at {curve.inflated_height_mm:.3f} mm")
+          f"({100 * (curve.inflated_volume_mm3 / curve.nominal_volume_mm3 - 1):+.2f} %){apex}")
     print(f"{'y_mm':>7} {'force_N':>9} {'p_kPa':>8} {'A_mm2':>8} {'dV_mm3':>9}")
     step = max(1, (len(curve) - 1) // 10)
     rows = sorted(set(range(0, len(curve), step)) | {len(curve) - 1})
@@ -212,8 +213,11 @@ def plot(curve, result, path) -> None:
     else:
         a.axis("off")
     g = curve.geometry
-    fig.suptitle(f"{curve.model}: w={g.get('w')}, h={g.get('h')}, l={g.get('l')}, "
-                 f"n1={g.get('n1')}, n2={g.get('n2')}, cy={g.get('cy')}; {curve.material}, "
+    part = curve.setup.get("part")
+    what = (f"{part['file']} (fix {part['fix']})" if isinstance(part, dict) else
+            f"w={g.get('w')}, h={g.get('h')}, l={g.get('l')}, n1={g.get('n1')}, "
+            f"n2={g.get('n2')}, cy={g.get('cy')}")
+    fig.suptitle(f"{curve.model}: {what}; {curve.material}, "
                  f"p_i={curve.setup.get('p_i_kPa')} kPa, V_r={curve.setup.get('reservoir_mm3')} mm³")
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -1,0 +1,234 @@
+"""Any closed part in the 3D FEM: its surface read and checked, the enclosed cavity found, and a
+curved quadratic tetrahedral mesh with the cavity and outer surfaces tagged.
+
+The part is a closed, oriented 2-manifold triangle surface (STL, 3MF, or STEP tessellated)
+with exactly one enclosed cavity: a shell nested inside the outer skin (odd nesting depth,
+:func:`spsc.cad.meshtopo.nesting_depth`). A part exported by this toolchain opens its cavity
+through the inlet bore; its design file names the bore, which is plugged first (the tube that
+seals it in use), with the same boolean the printability gate uses
+(:func:`spsc.cad.meshtopo.cap_port`).
+
+The tetrahedra come from fTetWild (pytetwild) and are promoted to P2; the edge nodes of the
+boundary facets are then moved onto the part's surface (closest point), so the quadratic
+elements follow the curved walls instead of their chords (a chord's sag would shrink the cavity
+by about (2/3)·δ·A). A move that would spoil an element (its Jacobian at a corner or edge node
+below a quarter of the straight element's) is undone for that element's nodes.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from spsc.core.errors import ParameterError
+
+from .element import tet_p2
+from .mesh import TetMesh, boundary_facets, orient_tets
+from .tetwild import p1_to_p2
+
+__all__ = ["PART_SUFFIXES", "PartSurface", "read_surface", "part_surface", "load_part",
+           "part_mesh"]
+
+PART_SUFFIXES = (".stl", ".3mf", ".step", ".stp")
+#: chord sag (mm) of a STEP part's tessellation for the FEM
+STEP_TOLERANCE_MM = 0.005
+
+
+@dataclass(frozen=True, eq=False)
+class PartSurface:
+    """A checked closed part surface (mm): ``vertices`` (n, 3), ``faces`` (m, 3) oriented
+    outward from the solid, ``cavity`` the face indices of the one enclosed cavity shell,
+    ``source`` where it came from, ``capped`` whether an inlet bore was plugged."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    cavity: np.ndarray
+    source: str = ""
+    capped: bool = False
+
+    @property
+    def cavity_volume(self) -> float:
+        """Volume enclosed by the cavity shell (mm³), exact for the triangles."""
+        from spsc.cad.meshtopo import signed_volume
+
+        return abs(signed_volume(self.vertices, self.faces[self.cavity]))
+
+    @property
+    def bounds(self) -> np.ndarray:
+        """[[xmin, ymin, zmin], [xmax, ymax, zmax]] (mm)."""
+        return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
+
+    @property
+    def diagonal(self) -> float:
+        lo, hi = self.bounds
+        return float(np.linalg.norm(hi - lo))
+
+
+def read_surface(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
+    """(vertices, faces) of an STL, 3MF or STEP file (STEP tessellated with a chord sag of
+    :data:`STEP_TOLERANCE_MM`); one-line ParameterError naming ``part`` otherwise."""
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in PART_SUFFIXES:
+        raise ParameterError("part", str(path), "an .stl, .3mf, .step or .stp file")
+    if not path.is_file():
+        raise ParameterError("part", str(path), "an existing file")
+    if suffix in (".stl", ".3mf"):
+        from spsc.cad.meshload import load_mesh
+
+        return load_mesh(path)
+    import cadquery as cq
+
+    from spsc.cad.export import tessellate
+
+    try:
+        shape = cq.importers.importStep(str(path)).val()
+    except Exception as exc:  # OCCT raises its own types for unreadable files
+        raise ParameterError("part", str(path), f"a readable STEP file ({exc})") from None
+    if not isinstance(shape, cq.Shape) or shape.Volume() <= 0:
+        raise ParameterError("part", str(path), "a STEP file holding one solid")
+    mesh = tessellate(shape, STEP_TOLERANCE_MM)
+    return mesh.vertices, mesh.faces
+
+
+def part_surface(vertices, faces, *, port: dict | None = None, source: str = "part",
+                 name: str = "part") -> PartSurface:
+    """Check a part's surface and find its cavity; ``port`` (a design file's ``port``) is
+    plugged first. One-line ParameterError naming ``name`` if the surface is open,
+    non-manifold or self-intersecting, or has no enclosed cavity or more than one."""
+    import manifold3d as mf
+
+    from spsc.cad import meshtopo as mt
+
+    v = np.array(vertices, np.float64, order="C")  # writable: nanobind refuses read-only
+    f = np.array(faces, np.int64, order="C")
+    if len(f) < 4:
+        raise ParameterError(name, source, "a closed triangle surface (it has fewer than 4 "
+                             "triangles)")
+    m = mf.Manifold(mf.Mesh64(vert_properties=v, tri_verts=f.astype(np.uint64)))
+    if m.status() != mf.Error.NoError:
+        topo = mt.topology(v, f)
+        open_edges = int(topo.get("boundary_edges", 0))
+        nonmanifold = int(topo.get("non_two_manifold_edges", 0))
+        raise ParameterError(name, source, "a closed, oriented 2-manifold surface (it has "
+                             f"{open_edges} open edges, {nonmanifold} non-manifold edges; "
+                             f"manifold3d: {m.status().name})")
+    crossing = mt.self_intersecting_faces(v, f)
+    if crossing:
+        raise ParameterError(name, source, f"a surface that does not cross itself "
+                             f"({crossing} self-intersecting triangles)")
+    capped = False
+    if port is not None:
+        out = mt.cap_port(v, f, port)
+        if out is None:
+            raise ParameterError(name, source, "a surface manifold3d can plug the port of")
+        v, f = out
+        capped = True
+    parts = mt.shells(v, f)
+    depth = mt.nesting_depth(v, f, parts)
+    cavities = [p for p, d in zip(parts, depth) if d % 2 == 1]
+    if len(cavities) != 1:
+        hint = (" (with the port plugged)" if capped else
+                "; an exported bladder's cavity opens through its inlet: give --design "
+                "FILE.design.json to plug it") if not cavities else ""
+        raise ParameterError(name, source, "a part with exactly one enclosed cavity (found "
+                             f"{len(cavities)}{hint})")
+    return PartSurface(v, f, cavities[0], source, capped)
+
+
+def load_part(path, design: dict | None = None) -> PartSurface:
+    """Read and check the part at ``path``; ``design`` (its design dict) plugs the port."""
+    v, f = read_surface(path)
+    port = (design or {}).get("port")
+    return part_surface(v, f, port=port, source=str(path))
+
+
+# -- meshing ------------------------------------------------------------------------------------
+def _polydata(v, f):
+    import pyvista as pv
+
+    return pv.PolyData.from_regular_faces(np.asarray(v, np.float64), np.asarray(f, np.int64))
+
+
+def _distance(points, surface) -> np.ndarray:
+    import pyvista as pv
+
+    cloud = pv.PolyData(np.asarray(points, np.float64))
+    return np.abs(np.asarray(cloud.compute_implicit_distance(surface)["implicit_distance"]))
+
+
+def _classifier(surface: PartSurface):
+    """Facet centroids -> "cavity" or "outer", by which shell is nearer."""
+    mask = np.zeros(len(surface.faces), bool)
+    mask[surface.cavity] = True
+    cav = _polydata(surface.vertices, surface.faces[mask])
+    out = _polydata(surface.vertices, surface.faces[~mask])
+
+    def classify(c):
+        return np.where(_distance(c, cav) < _distance(c, out), "cavity", "outer").astype(object)
+
+    return classify
+
+
+def _jacobians(nodes, tets) -> np.ndarray:
+    """det J (nel, 10) at the ten nodes of each P2 tetrahedron."""
+    ref = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [.5, 0, 0], [.5, .5, 0],
+                    [0, .5, 0], [0, 0, .5], [.5, 0, .5], [0, .5, .5]], float)
+    _, dN = tet_p2(ref)
+    J = np.einsum("eai,qaj->eqij", nodes[tets], dN)
+    return np.linalg.det(J)
+
+
+def _curve_boundary(nodes, tets, n_vertices, surface: PartSurface) -> tuple[np.ndarray, int]:
+    """Move the edge nodes of boundary facets to the closest point of the part's surface;
+    undo it on elements it would spoil. Returns (nodes, edge nodes moved)."""
+    facets = boundary_facets(tets)
+    mid = np.unique(facets[:, 3:])
+    mid = mid[mid >= n_vertices]
+    surf = _polydata(surface.vertices, surface.faces)
+    _, closest = surf.find_closest_cell(nodes[mid], return_closest_point=True)
+    straight = _jacobians(nodes, tets)[:, 0]
+    new = nodes.copy()
+    new[mid] = closest
+    for _ in range(3):
+        bad = np.any(_jacobians(new, tets) < 0.25 * straight[:, None], axis=1)
+        if not bad.any():
+            break
+        back = np.intersect1d(tets[bad], mid)
+        new[back] = nodes[back]
+    moved = int(np.count_nonzero(np.any(new[mid] != nodes[mid], axis=1)))
+    return new, moved
+
+
+def part_mesh(surface: PartSurface, size: float, *, epsilon: float | None = None,
+              curved: bool = True, threads: int = 1) -> TetMesh:
+    """Quadratic tetrahedra of the part (target edge ``size`` mm), boundary facets tagged
+    ``cavity`` and ``outer``; ``epsilon``: fTetWild's envelope as a fraction of the bounding-box
+    diagonal (default: 0.02 mm or size/50, whichever is smaller); ``curved``: edge nodes on the
+    part's surface."""
+    import pytetwild
+
+    diag = surface.diagonal
+    if epsilon is None:
+        epsilon = min(0.02, size / 50) / diag
+    with tempfile.TemporaryDirectory() as tmp, contextlib.chdir(tmp):
+        nodes, tets4 = pytetwild.tetrahedralize(
+            surface.vertices, surface.faces.astype(np.int32), edge_length_abs=float(size),
+            epsilon=float(epsilon), optimize=True, num_threads=threads, quiet=True)
+    nodes = np.asarray(nodes, float)
+    tets4 = np.asarray(tets4, np.int64)
+    used, tets4 = np.unique(tets4, return_inverse=True)
+    nodes, tets4 = nodes[used], tets4.reshape(-1, 4)
+    n_vertices = len(nodes)
+    nodes, tets = p1_to_p2(nodes, tets4)
+    tets, _ = orient_tets(nodes, tets)
+    if curved:
+        nodes, _ = _curve_boundary(nodes, tets, n_vertices, surface)
+    facets = boundary_facets(tets)
+    tags = _classifier(surface)(nodes[facets[:, :3]].mean(axis=1))
+    return TetMesh(nodes, tets, {t: facets[tags == t] for t in ("cavity", "outer")}, 1)
