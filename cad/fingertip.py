@@ -144,7 +144,43 @@ def build_fingertip(spec: FingertipSpec = FingertipSpec()) -> Fingertip:
         raise RuntimeError("OCCT produced an invalid fingertip solid")
 
     design = _design(spec, cavity, pockets, y_riser, z_axis)
+    design["fem"] = _fem_facts(spec, pockets, b, y_rear, n_d)
     return Fingertip(spec, solid, cavity, design)
+
+
+#: Ohmite FSR05 (datasheet): sensor head Ø7.62 mm, 0.325 mm thick — the rigid insert in each
+#: pocket through which a plate presses the pocket floor
+FSR05_HEAD_RADIUS_MM = 7.62 / 2
+FSR05_THICKNESS_MM = 0.325
+
+
+def _fem_facts(spec, pockets, b, y_rear, n_d) -> dict:
+    """What ``spsc fem --part`` needs: the mount (the underside on the gripper finger and the
+    slot that holds it), plate sites (``pulp``: straight down on the pulp; ``distal``: along
+    the distal chamber's axis), and the five pocket floors as contact patches pressed through
+    an FSR05 (named pulp1..3 from the rear, distal1..2 from −x)."""
+    mt, pk = spec.mount, spec.pocket
+    slot = (f" | y<={y_rear + mt.length:.6g} & z<={-b + mt.slot_depth:.6g} & "
+            f"x>={-mt.slot_width / 2:.6g} & x<={mt.slot_width / 2:.6g}"
+            if mt.slot_width > 0 and mt.slot_depth > 0 else "")
+    names = ["pulp1", "pulp2", "pulp3", "distal1", "distal2"]
+    contacts, tops = [], {}
+    for name, (site, floor, normal, _) in zip(names, pockets):
+        contacts.append({"name": name, "center": [float(v) for v in floor],
+                         "normal": [float(v) for v in normal],
+                         "radius": FSR05_HEAD_RADIUS_MM, "insert_mm": FSR05_THICKNESS_MM})
+        # a point on the pad's rim, beside the pocket, opposite its lead channel
+        side = np.cross(normal, [1.0, 0.0, 0.0] if site == "pulp" else [0.0, 1.0, 0.0])
+        side = side / np.linalg.norm(side)
+        tops.setdefault(site, []).append(floor + normal * pk.depth
+                                         + side * (pk.diameter / 2 + pk.rim / 2))
+    pulp_at = tops["pulp"][1]
+    distal_at = tops["distal"][0]
+    return {"mount": f"z<={-b:.6g}{slot}",
+            "sites": {"pulp": {"at": [float(v) for v in pulp_at], "normal": [0.0, 0.0, -1.0]},
+                      "distal": {"at": [float(v) for v in distal_at],
+                                 "normal": [float(-v) for v in n_d]}},
+            "contacts": contacts}
 
 
 def _channel(spec, A, C, n_d):

@@ -8,11 +8,15 @@ through the inlet bore; its design file names the bore, which is plugged first (
 seals it in use), with the same boolean the printability gate uses
 (:func:`spsc.cad.meshtopo.cap_port`).
 
-The tetrahedra come from fTetWild (pytetwild) and are promoted to P2; the edge nodes of the
-boundary facets are then moved onto the part's surface (closest point), so the quadratic
-elements follow the curved walls instead of their chords (a chord's sag would shrink the cavity
-by about (2/3)·δ·A). A move that would spoil an element (its Jacobian at a corner or edge node
-below a quarter of the straight element's) is undone for that element's nodes.
+The tetrahedra come from fTetWild (pytetwild) and are promoted to P2. fTetWild's time grows with
+the input's triangle count, and an export STL is tessellated far finer (0.002 mm chord sag) than
+any element, so a surface with more triangles than the mesh size needs is first simplified for
+it (pymeshlab's quadric edge collapse, topology kept). The boundary nodes, vertices and edge
+nodes, are then moved onto the part's own surface (closest point), so the quadratic elements
+follow the curved walls instead of their chords (a chord's sag would shrink the cavity by about
+(2/3)·δ·A) and neither the simplification nor fTetWild's envelope shows in the geometry. A move
+that would spoil an element (its Jacobian at a node below a quarter of the straight element's)
+is undone for that element's nodes.
 """
 
 from __future__ import annotations
@@ -184,12 +188,11 @@ def _jacobians(nodes, tets) -> np.ndarray:
     return np.linalg.det(J)
 
 
-def _curve_boundary(nodes, tets, n_vertices, surface: PartSurface) -> tuple[np.ndarray, int]:
-    """Move the edge nodes of boundary facets to the closest point of the part's surface;
-    undo it on elements it would spoil. Returns (nodes, edge nodes moved)."""
+def _curve_boundary(nodes, tets, surface: PartSurface) -> tuple[np.ndarray, int]:
+    """Move the nodes of boundary facets to the closest point of the part's surface; undo it
+    on elements it would spoil. Returns (nodes, boundary nodes moved)."""
     facets = boundary_facets(tets)
-    mid = np.unique(facets[:, 3:])
-    mid = mid[mid >= n_vertices]
+    mid = np.unique(facets)
     surf = _polydata(surface.vertices, surface.faces)
     _, closest = surf.find_closest_cell(nodes[mid], return_closest_point=True)
     straight = _jacobians(nodes, tets)[:, 0]
@@ -205,30 +208,83 @@ def _curve_boundary(nodes, tets, n_vertices, surface: PartSurface) -> tuple[np.n
     return new, moved
 
 
+def simplified(surface: PartSurface, size: float) -> tuple[np.ndarray, np.ndarray]:
+    """The part's surface with at most about one triangle per (size/2)² · 2 of area (the
+    triangles a mesh of edge ``size`` can use), by quadric edge collapse that keeps the
+    topology; the surface itself if it is that coarse already."""
+    from spsc.cad import meshtopo as mt
+
+    area = float(mt.face_areas(surface.vertices, surface.faces).sum())
+    target = max(2000, int(8.0 * area / size**2))
+    if len(surface.faces) <= 1.5 * target:
+        return surface.vertices, surface.faces
+    ms = mt.meshset(surface.vertices, surface.faces)
+    ms.meshing_decimation_quadric_edge_collapse(
+        targetfacenum=target, qualitythr=0.5, preserveboundary=True, preservenormal=True,
+        preservetopology=True, planarquadric=True, optimalplacement=True)
+    m = ms.current_mesh()
+    return np.asarray(m.vertex_matrix(), float), np.asarray(m.face_matrix(), np.int64)
+
+
+#: element size (× the mesh size) far from the cavity, and how fast it grows there (mm per mm)
+GRADED_MAX, GRADED_SLOPE = 4.0, 0.5
+
+
+def size_field(surface: PartSurface, size: float, *, graded: bool = True):
+    """fTetWild's background size field: (points (n, 3), tets (m, 4), edge length (n,)) on a
+    grid over the part. ``size`` (mm) within 2·size of the cavity (the sensing wall, where the
+    wall bends), then growing by :data:`GRADED_SLOPE` per mm up to :data:`GRADED_MAX` · size in
+    the bulk (a body block, a flange): the unknowns go where the response is made."""
+    lo, hi = surface.bounds
+    lo, hi = lo - 1.0, hi + 1.0
+    step = max(size, float(np.max(hi - lo)) / 40)
+    axes = [np.linspace(a, b, max(2, int(np.ceil((b - a) / step)) + 1)) for a, b in zip(lo, hi)]
+    shape = tuple(len(a) for a in axes)
+    pts = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    idx = np.arange(len(pts)).reshape(shape)
+    c = [idx[i:i + shape[0] - 1, j:j + shape[1] - 1, k:k + shape[2] - 1].ravel()
+         for i in (0, 1) for j in (0, 1) for k in (0, 1)]  # c[4i+2j+k]
+    kuhn = ((0, 4, 6, 7), (0, 4, 5, 7), (0, 1, 5, 7), (0, 1, 3, 7), (0, 2, 3, 7), (0, 2, 6, 7))
+    tets = np.vstack([np.column_stack([c[a] for a in t]) for t in kuhn]).astype(np.int32)
+    a, b, cc, d = (pts[tets[:, i]] for i in range(4))
+    neg = np.einsum("ij,ij->i", np.cross(b - a, cc - a), d - a) < 0
+    tets[neg] = tets[neg][:, [0, 2, 1, 3]]
+    if not graded:
+        return pts, tets, np.full(len(pts), float(size))
+    mask = np.zeros(len(surface.faces), bool)
+    mask[surface.cavity] = True
+    d = _distance(pts, _polydata(surface.vertices, surface.faces[mask]))
+    h = size + GRADED_SLOPE * np.maximum(d - 2 * size, 0.0)
+    return pts, tets, np.minimum(h, GRADED_MAX * size)
+
+
 def part_mesh(surface: PartSurface, size: float, *, epsilon: float | None = None,
-              curved: bool = True, threads: int = 1) -> TetMesh:
-    """Quadratic tetrahedra of the part (target edge ``size`` mm), boundary facets tagged
-    ``cavity`` and ``outer``; ``epsilon``: fTetWild's envelope as a fraction of the bounding-box
-    diagonal (default: 0.02 mm or size/50, whichever is smaller); ``curved``: edge nodes on the
+              curved: bool = True, graded: bool = True, threads: int = 1) -> TetMesh:
+    """Quadratic tetrahedra of the part (edge ``size`` mm at the cavity's wall, graded away
+    from it unless ``graded`` is False: :func:`size_field`), boundary facets tagged ``cavity``
+    and ``outer``; ``epsilon``: fTetWild's envelope as a fraction of the bounding-box diagonal
+    (default: 0.02 mm or size/50, whichever is smaller); ``curved``: boundary nodes on the
     part's surface."""
     import pytetwild
 
     diag = surface.diagonal
     if epsilon is None:
         epsilon = min(0.02, size / 50) / diag
+    v, f = simplified(surface, size)
+    bg, bg_tets, bg_h = size_field(surface, size, graded=graded)
     with tempfile.TemporaryDirectory() as tmp, contextlib.chdir(tmp):
         nodes, tets4 = pytetwild.tetrahedralize(
-            surface.vertices, surface.faces.astype(np.int32), edge_length_abs=float(size),
+            v, f.astype(np.int32), edge_length_abs=float(size), bg_vertices=bg,
+            bg_tets=bg_tets, bg_values=bg_h,
             epsilon=float(epsilon), optimize=True, num_threads=threads, quiet=True)
     nodes = np.asarray(nodes, float)
     tets4 = np.asarray(tets4, np.int64)
     used, tets4 = np.unique(tets4, return_inverse=True)
     nodes, tets4 = nodes[used], tets4.reshape(-1, 4)
-    n_vertices = len(nodes)
     nodes, tets = p1_to_p2(nodes, tets4)
     tets, _ = orient_tets(nodes, tets)
     if curved:
-        nodes, _ = _curve_boundary(nodes, tets, n_vertices, surface)
+        nodes, _ = _curve_boundary(nodes, tets, surface)
     facets = boundary_facets(tets)
     tags = _classifier(surface)(nodes[facets[:, :3]].mean(axis=1))
     return TetMesh(nodes, tets, {t: facets[tags == t] for t in ("cavity", "outer")}, 1)

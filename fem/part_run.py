@@ -31,7 +31,8 @@ from .part import PartSurface, load_part, part_mesh
 from .selector import parse_selector
 from .solver import CloseValve, Inflate, Press, Result, Settings, solve
 
-__all__ = ["ContactPatch", "PartRun", "run_part", "part_model", "press_rotation"]
+__all__ = ["ContactPatch", "PartRun", "run_part", "part_model", "check_part_run",
+           "press_rotation", "part_curve", "write_part_vtu"]
 
 
 @dataclass(frozen=True)
@@ -84,7 +85,7 @@ class PartRun:
         pts = float(self.points) if isinstance(self.points, (int, float)) else math.nan
         if not (pts == int(pts) and 2 <= pts <= 1001):
             raise ParameterError("points", self.points, "an integer from 2 to 1001")
-        require("polytropic index", self.polytropic_index, ge=1, le=1.4)
+        require("polytropic_n", self.polytropic_index, ge=1, le=1.4)
         require("mesh size", self.mesh_size_mm, gt=0, unit="mm")
         n = np.asarray(self.plate_normal, float)
         if n.shape != (3,) or not np.all(np.isfinite(n)) or np.linalg.norm(n) < 1e-12:
@@ -171,6 +172,10 @@ def check_plate(run: PartRun, surface: PartSurface, fixed_mask_of) -> None:
         raise ParameterError("plate-normal", run.plate_normal,
                              f"a direction in which the plate first meets the free part, not "
                              f"the clamped mount (it first touches at ({where}))")
+    room = float(z[top] - z[~free].max())
+    if run.stroke_mm >= room:
+        raise ParameterError("stroke", run.stroke_mm, f"< {room:.4g} mm, the travel from first "
+                             "contact down to the clamped mount along the plate's direction")
     if run.plate_at is None:
         return
     at = np.asarray(run.plate_at, float)
@@ -186,12 +191,41 @@ def check_plate(run: PartRun, surface: PartSurface, fixed_mask_of) -> None:
                              f"it would cut {cut:.3g} mm into it; it first touches at ({where}))")
 
 
-def part_model(run: PartRun, *, cache_dir=None, surface: PartSurface | None = None,
-               mesh: TetMesh | None = None):
-    """(FEMModel in the press frame, rotation R, surface): read and check the part, check the
-    selector and plate, mesh (cached by the file's hash; or ``mesh`` as given), clamp, tag the
-    contact patches."""
-    surface = surface or load_part(run.part, run.design)
+def drop_clamped(mesh: TetMesh, clamped) -> tuple[TetMesh, np.ndarray]:
+    """The mesh without the elements whose every node is clamped (a mount's bulk: they couple
+    only fixed displacements and their own pressure unknowns, so the free solution is the same
+    without them), except those holding a cavity facet (the cavity's volume needs them);
+    nodes renumbered, facets of removed elements dropped. Returns (mesh, clamped node indices)."""
+    clamped = np.asarray(clamped, bool)
+    on_cavity = np.zeros(len(mesh.nodes), bool)
+    on_cavity[mesh.facets["cavity"].ravel()] = True
+    keep = ~np.all(clamped[mesh.tets], axis=1) | np.any(on_cavity[mesh.tets], axis=1)
+    tets = mesh.tets[keep]
+    used = np.unique(tets)
+    new = -np.ones(len(mesh.nodes), np.int64)
+    new[used] = np.arange(len(used))
+    facets = {}
+    for tag, fac in mesh.facets.items():
+        fac = fac[np.all(new[fac] >= 0, axis=1)]
+        facets[tag] = new[fac]
+    # a facet of a removed element that a kept one does not share is no boundary of the part:
+    # only boundary facets of the kept elements stay
+    from .mesh import boundary_facets
+
+    bound = {tuple(r) for r in np.sort(boundary_facets(new[tets])[:, :3], axis=1)}
+    for tag, fac in facets.items():
+        facets[tag] = fac[[tuple(r) in bound for r in np.sort(fac[:, :3], axis=1)]]
+    out = TetMesh(mesh.nodes[used], new[tets], facets, mesh.symmetry)
+    return out, np.flatnonzero(clamped[used])
+
+
+def check_part_run(run: PartRun, surface: PartSurface) -> None:
+    """The checks of a run against its part's surface, before any meshing (milliseconds):
+    the selector takes some of the part and leaves some free, the plate meets the free part
+    where ``plate_at`` says. One-line ParameterError naming ``fix``/``plate-at``/``plate-normal``."""
+    extent = float(np.ptp(surface.vertices, axis=0).min())
+    require("mesh size", run.mesh_size_mm, gt=0, le=extent / 2,
+            unit=f"mm; at most half the part's smallest extent, {extent:.3g} mm")
     selector = parse_selector(run.fix)
     tol = _tolerance(run)
     if not selector(surface.vertices, tol).any():
@@ -200,8 +234,18 @@ def part_model(run: PartRun, *, cache_dir=None, surface: PartSurface | None = No
         raise ParameterError("fix", run.fix, f"a selector that takes part of the part "
                              f"(it takes nothing; the part spans {span} mm)")
     check_plate(run, surface, lambda p: selector(p, tol))
+
+
+def part_model(run: PartRun, *, cache_dir=None, surface: PartSurface | None = None,
+               mesh: TetMesh | None = None):
+    """(FEMModel in the press frame, rotation R, surface): read and check the part, check the
+    selector and plate, mesh (cached by the file's hash; or ``mesh`` as given), clamp, tag the
+    contact patches."""
+    surface = surface or load_part(run.part, run.design)
+    check_part_run(run, surface)
+    selector, tol = parse_selector(run.fix), _tolerance(run)
     mesh = mesh if mesh is not None else _cached_part_mesh(run, surface, cache_dir)
-    clamped = np.flatnonzero(selector(mesh.nodes, tol))
+    mesh, clamped = drop_clamped(mesh, selector(mesh.nodes, tol))
     R = press_rotation(run.plate_normal)
     gap = np.zeros(len(mesh.nodes))
     groups = {}

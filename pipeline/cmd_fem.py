@@ -185,7 +185,7 @@ def run_part_cli(args) -> int:
     from tqdm import tqdm
 
     from spsc.fem.part import load_part
-    from spsc.fem.part_run import part_curve, part_model, write_part_vtu
+    from spsc.fem.part_run import check_part_run, part_curve, part_model, write_part_vtu
     from spsc.fem.solver import Settings, solve
 
     from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
@@ -193,6 +193,7 @@ def run_part_cli(args) -> int:
     verb = "fem"
     run = part_run_from_args(args)
     surface = load_part(run.part, run.design)
+    check_part_run(run, surface)
     counts = _estimate(run, surface)
     steps = run.points - 1 + (run.inflate_increments if run.pressure_kPa > 0 else 0)
     check_size(verb, counts, steps, limit=FEM_MAX_UNKNOWNS,

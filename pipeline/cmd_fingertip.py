@@ -1,4 +1,5 @@
-"""``spsc fingertip``: build the fused two-chamber fingertip with FSR pockets and check it."""
+"""``spsc fingertip``: build the fused two-chamber fingertip with FSR pockets and check it;
+with ``--fem``, then run its FEM study (:mod:`.fingertip_fem`) into ``OUT/fem``."""
 
 from __future__ import annotations
 
@@ -27,7 +28,34 @@ def register(sub) -> None:
                    "the paper's choice), fdm or molding")
     p.add_argument("--out", default="build/fingertip", help="output folder")
     p.add_argument("--no-check", action="store_true", help="skip the printability gate")
+    g = p.add_argument_group("FEM study (--fem; about 15 min per curve on 2 cores at 1.5 mm)")
+    g.add_argument("--fem", action="store_true",
+                   help="press the built fingertip on the pulp and the distal edge, high and low "
+                   "mode, 10 and 40 kPa (3D FEM, Silicone 40A): curves, FSR pocket forces, the "
+                   "single Type A and the fast estimate -> OUT/fem (curves reused when present)")
+    g.add_argument("--mesh-size", type=number("mesh size", "mm"), default=None, metavar="MM",
+                   help="element edge at the chambers' walls, mm (default 1.5; graded to 4x "
+                   "in the body)")
+    g.add_argument("--cases", default=None, metavar="SITE-MODE-KPA,...",
+                   help="only these cases, e.g. pulp-high-40,distal-high-40 (default all 8)")
     p.set_defaults(func=run)
+
+
+def _cases(text):
+    from spsc.core.errors import ParameterError
+
+    from .fingertip_fem import CASES, case_name
+
+    if text is None:
+        return CASES
+    known = {case_name(*c).replace("kPa", ""): c for c in CASES}
+    out = []
+    for item in str(text).split(","):
+        key = item.strip().replace("kPa", "")
+        if key not in known:
+            raise ParameterError("cases", text, "a comma list of " + ", ".join(known))
+        out.append(known[key])
+    return tuple(out)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -37,6 +65,20 @@ def run(args: argparse.Namespace) -> int:
     # every check before the CAD import (3 s) and the build (35 s), not after them
     process(args.process)
     outdir = check_output_dir("--out", args.out)
+    study = None
+    if args.fem:
+        from spsc.core.errors import require
+
+        from .fingertip_fem import FingertipStudy
+
+        size = 1.5 if args.mesh_size is None else require("mesh size", args.mesh_size, ge=0.3,
+                                                          le=4.0, unit="mm")
+        study = FingertipStudy(mesh_size_mm=size, cases=_cases(args.cases))
+    elif args.mesh_size is not None or args.cases is not None:
+        from spsc.core.errors import ParameterError
+        raise ParameterError("--mesh-size" if args.mesh_size is not None else "--cases",
+                             args.mesh_size if args.mesh_size is not None else args.cases,
+                             "only with --fem")
     spec = FingertipSpec(angle=args.angle,
                          pocket=PocketSpec(diameter=args.pocket_diameter, depth=args.pocket_depth))
     from spsc.cad.export import export_part, tessellate
@@ -53,11 +95,37 @@ def run(args: argparse.Namespace) -> int:
           f"mm³ (B-rep); built in {t_build:.1f} s, {written['triangles']} triangles")
     for kind in ("step", "stl", "3mf"):
         print(f"  {written['paths'][kind]}")
-    if args.no_check:
-        return 0
-    pockets = measure_pockets(mesh, tessellate(tip.cavity, *MESH_TOLERANCE), tip.design)
-    return gate(written["paths"]["stl"], tip.design, args.process, outdir,
-                extra=_pocket_checks(pockets, spec))
+    code = 0
+    if not args.no_check:
+        pockets = measure_pockets(mesh, tessellate(tip.cavity, *MESH_TOLERANCE), tip.design)
+        code = gate(written["paths"]["stl"], tip.design, args.process, outdir,
+                    extra=_pocket_checks(pockets, spec))
+    if study is None or code != 0:
+        return code
+    return _run_fem(study, spec, written["paths"]["stl"], tip.design, outdir / "fem")
+
+
+def _run_fem(study, spec, stl, design, out) -> int:
+    import sys
+
+    from .fingertip_fem import run_study
+    from .fingertip_figures import draw_all
+
+    summary = run_study(study, out, stl=stl, design=design, spec=spec,
+                        log=lambda m: print(m, file=sys.stderr, flush=True))
+    figures = draw_all(summary, out)
+    print(f"fingertip FEM study -> {out}/summary.json; figures: " + ", ".join(figures.values()))
+    for name, row in summary["cases"].items():
+        fem = row["fem"]
+        fast = row.get("fast_error", {})
+        ratio = row.get("sensitivity_ratio_fused_to_single")
+        print(f"  {name}: sensitivity {fem['mean_sensitivity_kPa_per_mm']} kPa/mm, stiffness "
+              f"{fem['mean_stiffness_N_per_mm']} N/mm"
+              + (f", fused/single sensitivity {ratio:.3f}" if ratio else "")
+              + (f", fast estimate error F {fast['force_max']:.1%} P-rise "
+                 f"{fast['pressure_rise_max']:.1%}" if fast.get("force_max") is not None else "")
+              + ("" if fem["converged"] else f" (NOT CONVERGED: {fem['message']})"))
+    return 0 if all(r["fem"]["converged"] for r in summary["cases"].values()) else 1
 
 
 def _pocket_checks(m: dict, spec) -> list:

@@ -99,6 +99,9 @@ def fixtures(tmp: Path) -> dict[str, Path]:
         "soft.json": tmp / "soft.json",
         "foreign.json": tmp / "foreign.json",
         "law.json": tmp / "law.json",
+        "part.stl": tmp / "dome.stl",
+        "open.stl": tmp / "open-dome.stl",
+        "bored.stl": tmp / "bored-dome.stl",
     }
     for k in ("dir", "dir.json", "dir.csv", "dir.stl"):
         f[k].mkdir(exist_ok=True)
@@ -115,7 +118,20 @@ def fixtures(tmp: Path) -> dict[str, Path]:
     f["bad.json"].write_text("{not json", encoding="utf-8")
     f["binary.csv"].write_bytes(b"\x00\xff\xfe\x89PNG\x00\x00")
     _material_fixtures(f)
+    _part_fixtures(f)
     return f
+
+
+def _part_fixtures(f) -> None:
+    """A closed dome part (one cavity), the same with a triangle missing, and with an open
+    inlet bore (no enclosed cavity without its design file)."""
+    from part_shapes import dome
+    from spsc.cad.export import TriMesh, write_stl
+
+    v, fc = dome()
+    write_stl(TriMesh(v, fc), f["part.stl"])
+    write_stl(TriMesh(v, fc[1:]), f["open.stl"])
+    write_stl(TriMesh(*dome(bore=0.8)), f["bored.stl"])
 
 
 #: A valid uniaxial tension test (neo-Hookean, μ = 1 MPa) and broken variants of it.
@@ -213,6 +229,7 @@ def _bases(f: dict[str, Path], tmp: Path) -> dict[str, tuple[str, ...]]:
     }
     for model in ("membrane", "simplified", "wall", "fem"):
         bases[f"curve-{model}"] = ("curve", "--model", model, "--type", "B", "--quiet")
+    bases["fem-part"] = ("fem", "--part", str(f["part.stl"]), "--fix", "z<=0", "--quiet")
     return bases
 
 
@@ -300,8 +317,57 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += _out_dirs(b["bladder"][:3], "--out", f)
     cases += [Case(b["bladder"] + ("--material", "rubber"), "unknown material", "material"),
               Case(b["bladder"] + ("--tube-id", "30"), "tube wider than the base", "tube-id")]
+    # fem --part: the setup, the part, the mount, the plate
+    fp = b["fem-part"]
+    cases += _numbers(fp, SETUP + ("mesh-size",))
+    cases += _outputs(fp, "--json", f, tmp) + _outputs(fp, "--csv", f, tmp, ".csv")
+    cases += _out_dirs(fp, "--vtu", f)
+    no_fix = fp[:3] + ("--quiet",)
+    cases += [Case(fp + ("--type", "B"), "--type with --part", "type"),
+              Case(fp + ("--w", "11"), "a chamber parameter with --part", "w"),
+              Case(fp + ("--layers", "2"), "--layers with --part", "layers"),
+              Case(fp + ("--full",), "--full with --part", "full"),
+              Case(("fem", "--part", str(f["dir"]), "--fix", "z<0"), "a folder as the part",
+                   "part"),
+              Case(("fem", "--part", str(tmp / "none.stl"), "--fix", "z<0"), "a missing part",
+                   "part"),
+              Case(("fem", "--part", str(f["obj"]), "--fix", "z<0"), "an .obj part", "part"),
+              Case(("fem", "--part", str(f["text.stl"]), "--fix", "z<0"), "a text .stl",
+                   "file"),
+              Case(("fem", "--part", str(f["open.stl"]), "--fix", "z<0"), "an open surface",
+                   "part"),
+              Case(("fem", "--part", str(f["stl"]), "--fix", "z<0"), "a part with no cavity",
+                   "part"),
+              Case(("fem", "--part", str(f["bored.stl"]), "--fix", "z<0"),
+                   "a cavity open through its bore", "part"),
+              Case(no_fix, "no --fix and no design", "fix"),
+              Case(no_fix + ("--fix", "z<-50"), "a selector that fixes nothing", "fix"),
+              Case(no_fix + ("--fix", "z>-50"), "a selector that fixes everything", "fix"),
+              Case(no_fix + ("--fix", "q<0"), "a selector of no axis", "fix"),
+              Case(no_fix + ("--fix", ""), "an empty selector", "fix"),
+              Case(fp + ("--plate-at", "50,0,7"), "a plate that misses the part", "plate-at"),
+              Case(fp + ("--plate-at", "0,0,-1"), "a plate through the part", "plate-at"),
+              Case(fp + ("--plate-at", "apex"), "a site without a design file", "plate-at"),
+              Case(fp + ("--plate-at", "1,2"), "two coordinates", "plate-at"),
+              Case(fp + ("--plate-normal", "0,0,1"), "a plate onto the mount", "plate-normal"),
+              Case(fp + ("--plate-normal", "0,0,0"), "a zero normal", "plate-normal"),
+              Case(fp + ("--plate-normal", "a,b,c"), "a normal of no numbers", "plate-normal"),
+              Case(fp + ("--design", str(tmp / "none.design.json")), "a missing design file",
+                   "design"),
+              Case(fp + ("--design", str(f["bad.json"])), "a design file of bad JSON", "design"),
+              Case(b["fem"] + ("--fix", "z<0"), "--fix without --part", "fix"),
+              Case(b["fem"] + ("--plate-at", "0,0,1"), "--plate-at without --part", "plate-at")]
     # fingertip
     cases += _numbers(b["fingertip"], ("angle", "pocket-diameter", "pocket-depth"))
+    cases += [Case(b["fingertip"] + ("--mesh-size", "1"), "--mesh-size without --fem",
+                   "mesh-size"),
+              Case(b["fingertip"] + ("--cases", "pulp-high-40"), "--cases without --fem",
+                   "cases"),
+              Case(b["fingertip"] + ("--fem", "--cases", "palm-high-40"), "an unknown case",
+                   "cases"),
+              Case(b["fingertip"] + ("--fem", "--mesh-size", "0.01"), "a mesh too fine",
+                   "mesh-size"),
+              Case(b["fingertip"] + ("--fem", "--mesh-size", "nan"), "a NaN mesh", "mesh-size")]
     cases += _out_dirs(("fingertip",), "--out", f)
     cases += [Case(b["fingertip"] + ("--process", "foo"), "unknown process", "process"),
               Case(b["fingertip"] + ("--process", ""), "empty process", "process")]

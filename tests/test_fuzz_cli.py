@@ -50,6 +50,8 @@ WORK = {
     "spsc.membrane.simplified": ["simplified_curve"],
     "spsc.membrane.identify": ["identify"],
     "spsc.fem.run": ["run_chamber"],
+    "spsc.fem.part_run": ["part_model", "run_part"],
+    "spsc.pipeline.fingertip_fem": ["run_study"],
     "spsc.fem.wall": ["wall_curve"],
     "spsc.fem.calibrate": ["calibrate"],
     "spsc.pipeline.runner": ["run_all"],
