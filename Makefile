@@ -14,11 +14,12 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder fingertip gate test test-slow bench bench-compare bench-wall bench-material bench-sweep clean
+.PHONY: help venv bladder fingertip fingertip-fem gate test test-slow bench bench-compare bench-wall bench-material bench-sweep clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
 	@echo "make fingertip                                                   -> build/fingertip/"
+	@echo "make fingertip-fem [FT_MESH=1.5]                                 -> build/fingertip/fem/"
 	@echo "make test | make test-slow | make gate | make bench | make report [QUICK=1]"
 
 $(STAMP): pyproject.toml
@@ -35,6 +36,12 @@ bladder: $(STAMP)
 
 fingertip: $(STAMP)
 	$(BIN)/spsc fingertip
+
+# the fingertip in the 3D FEM: pulp and distal presses, both modes, 10 and 40 kPa, pocket forces,
+# the single chamber and the fast estimate (build/fingertip/fem/; hours on 2 cores, curves reused)
+FT_MESH ?= 1.5
+fingertip-fem: $(STAMP)
+	$(BIN)/spsc fingertip --fem --mesh-size $(FT_MESH) --out build/fingertip
 
 # the printability gate on every preset (run by CI)
 gate: $(STAMP)

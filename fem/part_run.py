@@ -125,7 +125,7 @@ def press_rotation(normal) -> np.ndarray:
 def _tolerance(run: PartRun) -> float:
     """Geometric tolerance of selectors and sites (mm): the mesh's surface envelope and a
     margin for the straight-sided facets between curved edge nodes."""
-    return max(0.02, run.mesh_size_mm / 20)
+    return min(max(0.05, run.mesh_size_mm / 20), 0.2)
 
 
 def _file_digest(path) -> str:
@@ -140,7 +140,7 @@ def _cached_part_mesh(run: PartRun, surface: PartSurface, cache_dir) -> TetMesh:
     from .mesh import CACHE_DIR
 
     port = (run.design or {}).get("port")
-    key = f"{_file_digest(run.part)}|{port}|{run.mesh_size_mm!r}|{MESH_VERSION}|part-1"
+    key = f"{_file_digest(run.part)}|{port}|{run.mesh_size_mm!r}|{MESH_VERSION}|part-2"
     path = Path(cache_dir or CACHE_DIR) / f"part-{hashlib.sha256(key.encode()).hexdigest()[:16]}.npz"
     if path.exists():
         try:

@@ -55,6 +55,9 @@ def register(subparsers) -> None:
                    help="no 3D FEM: the membrane, simplified and wall models only")
     p.add_argument("--no-sweep", action="store_true",
                    help="no design-space sweep (its section and page)")
+    p.add_argument("--fingertip", metavar="DIR", default=None,
+                   help="the fingertip FEM study to show (spsc fingertip --fem's OUT/fem; "
+                   "default build/fingertip/fem when it exists)")
     p.add_argument("--types", help="subset of the types, e.g. BD (default ABCD)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     d = p.add_argument_group("where the runs are computed (Dask; no cluster is started when "
@@ -95,6 +98,9 @@ def run(args) -> int:
     out = check_output_dir("--out", args.out if args.out is not None
                            else DEFAULT_OUT[bool(args.quick)])
     check_output_dir("--cache", args.cache)
+    if args.fingertip is not None and not (Path(args.fingertip) / "summary.json").is_file():
+        raise ParameterError("fingertip", args.fingertip, "a folder holding a fingertip study's "
+                             "summary.json (spsc fingertip --fem --out DIR writes DIR/fem)")
     study = quick_study() if args.quick else full_study()
     if args.no_fem:
         study = study.replace(fem=False)
@@ -118,7 +124,7 @@ def run(args) -> int:
     path = build_report(study, outcomes, out, command=_command(args),
                         fig_cache=cache.root / "figures", source=source,
                         wall_seconds=time.perf_counter() - t0, bench=bench,
-                        executor=executor, sweep=sweep)
+                        executor=executor, sweep=sweep, fingertip=_fingertip(args))
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
@@ -130,6 +136,12 @@ def run(args) -> int:
         print(f"spsc report: failed runs: {', '.join(failed)}", file=sys.stderr)
         return 1
     return 0
+
+
+def _fingertip(args):
+    from .report_fingertip import DEFAULT_DIR
+
+    return DEFAULT_DIR if args.fingertip is None else args.fingertip
 
 
 def _cluster(args):

@@ -21,6 +21,7 @@ from .figures import FigureCache
 from .paper_bench import paper_bench
 from .provenance import Provenance, provenance, versions
 from .render import render_page
+from .report_fingertip import fingertip_section
 from .report_sweep import sweep_section
 from .render_sections import (FigureOutput, Results, comparison_section, convergence_section,
                               headline_section, jnd_section, runs_section)
@@ -32,7 +33,7 @@ __all__ = ["build_report", "write_run_data"]
 def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
                  wall_seconds: float | None = None, render: bool = True, fig_cache=None,
                  source: Provenance | None = None, bench=None, executor: str = "",
-                 sweep=None) -> Path:
+                 sweep=None, fingertip=None) -> Path:
     """Write ``out_dir/index.html`` with ``figures/``, ``data/`` and ``summary.json`` beside
     it; returns the HTML path. ``outcomes`` is :func:`~.runner.run_all`'s result;
     ``fig_cache``: a directory where figures are kept by a hash of what they show (None:
@@ -42,7 +43,9 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
     the paper's identification in its own section (None: no such section); ``executor``: how
     the runs were computed (e.g. "on 2 local Dask worker processes"), beside the wall time;
     ``sweep``: ``(table, command)`` of the design-space sweep (:mod:`.report_sweep`), whose
-    page is written into ``out_dir/sweep/`` and linked (None: no such section)."""
+    page is written into ``out_dir/sweep/`` and linked (None: no such section);
+    ``fingertip``: the folder of a fingertip FEM study (:mod:`.report_fingertip`; None or no
+    study there: the section says how to make it)."""
     out = Path(out_dir)
     figs, data = out / "figures", out / "data"
     for d in (figs, data, out / "sweep"):
@@ -65,7 +68,8 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
            "convergence": convergence_section(study, res, fig_out),
            "versions": versions({m.name: code_version(m.name) for m in study.models}),
            "bench": bench_section(bench, study, figs) if bench is not None else None,
-           "sweep": sweep_section(*sweep, out, study) if sweep is not None else None}
+           "sweep": sweep_section(*sweep, out, study) if sweep is not None else None,
+           "fingertip": fingertip_section(fingertip, out) if fingertip is not None else None}
     write_json(out / "summary.json", _summary(ctx))
     path = out / "index.html"
     path.write_text(render_page(ctx), encoding="utf-8")
@@ -92,6 +96,7 @@ def _summary(ctx: dict) -> dict:
             "convergence": (ctx["convergence"] or {}).get("rows", []),
             "bench": ctx["bench"],
             "sweep": ctx["sweep"],
+            "fingertip": ctx["fingertip"],
             "versions": ctx["versions"]}
 
 

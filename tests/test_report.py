@@ -310,3 +310,31 @@ def test_spsc_report_runs_on_the_cluster_its_options_name(tmp_path, monkeypatch)
         assert factory.keywords == kw and not factory.args
     n = default_workers()
     assert default is None if n == 1 else default.keywords == {"workers": n}
+
+
+def test_a_fingertip_study_gets_its_own_section(tmp_path):
+    """The report shows the study ``spsc fingertip --fem`` wrote (table and copied figures),
+    and says how to make it when there is none."""
+    study = tmp_path / "fem"
+    (study / "figures").mkdir(parents=True)
+    (study / "figures" / "pockets.png").write_bytes(b"\x89PNG\r\n\x1a\nfake")
+    fem = {"y_mm": [0, 1], "force_N": [0, 2.5], "pressure_kPa": [40, 43],
+           "pockets_N": {"pulp1": [0, 0.1], "pulp2": [0, 1.9]}, "mean_stiffness_N_per_mm": 2.5,
+           "mean_sensitivity_kPa_per_mm": 3.0, "converged": True, "seconds": 900.0,
+           "dofs": 250000, "message": "converged"}
+    summary = {"mesh_size_mm": 1.5, "material": "silicone40a", "stroke_mm": 3.0,
+               "cases": {"pulp-high-40kPa": {"site": "pulp", "mode": "high",
+                                             "pressure_kPa": 40.0, "fem": fem,
+                                             "sensitivity_ratio_fused_to_single": 0.618,
+                                             "fast_error": {"force_max": 0.123,
+                                                            "pressure_rise_max": 0.045}}}}
+    (study / "summary.json").write_text(json.dumps(summary), encoding="utf-8")
+    page = build_report(SMALL, {}, tmp_path / "r", source=CLEAN,
+                        fingertip=study).read_text(encoding="utf-8")
+    section = page[page.index("The fused fingertip in the 3D FEM"):]
+    assert "pulp-high-40kPa" in section and "0.618" in section and "12.3 %" in section
+    assert "1.9" in section and 'src="fingertip/pockets.png"' in section
+    assert (tmp_path / "r" / "fingertip" / "pockets.png").exists()
+    none = build_report(SMALL, {}, tmp_path / "n", source=CLEAN,
+                        fingertip=tmp_path / "nothing").read_text(encoding="utf-8")
+    assert "make fingertip-fem" in none
