@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import json
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -50,7 +50,7 @@ class FingertipStudy:
     cases: tuple = CASES
     single: bool = True
     fast: bool = True
-    extra: dict = field(default_factory=dict)
+    fast_model: str = "wall"
 
 
 def _part(out: Path) -> tuple[Path, dict]:
@@ -163,7 +163,8 @@ def run_study(study: FingertipStudy, out, *, stl=None, design=None, spec=None,
                 fast = fused_estimate(chambers[site], others, material(study.material),
                                       pressure_kPa=p, channel_mm3=channel,
                                       reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
-                                      stroke_mm=study.stroke_mm, points=study.points)
+                                      stroke_mm=study.stroke_mm, points=study.points,
+                                      model=study.fast_model)
                 fast = fast.replace(solver=fast.solver.__class__(
                     **{**fast.solver.to_dict(), "seconds": time.perf_counter() - t1}))
                 fast.to_json(fpath)

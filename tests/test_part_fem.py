@@ -295,3 +295,36 @@ def test_a_dome_part_agrees_with_the_structured_chamber_mesh(tmp_path):
     assert_allclose(part.pressure_kPa[1:] - 20, ref.pressure_kPa[1:] - 20, rtol=0.02)
     inflation = lambda c: c.inflated_volume_mm3 / c.nominal_volume_mm3 - 1  # noqa: E731
     assert_allclose(inflation(part), inflation(ref), rtol=0.05)
+
+
+def test_vtus_are_in_part_coordinates_and_render(dome_part, tmp_path):
+    """A part pressed sideways (plate along +y) is solved turned; its VTUs come back in the
+    part's own coordinates with the patch marked and its force, and render off screen."""
+    import pyvista as pv
+
+    from spsc.fem.part_run import write_part_vtu
+    from spsc.pipeline.fingertip_figures import render_part
+
+    s, mesh = dome_part
+    q = np.array([[1.0, 0, 0], [0, 0, -1.0], [0, 1.0, 0]])
+    turned_s = part_surface(s.vertices @ q.T, s.faces)
+    turned = TetMesh(mesh.nodes @ q.T, mesh.tets, mesh.facets, 1)
+    patch = ContactPatch("apex", (0, -7.0, 0), (0, -1.0, 0), 1.0, thickness=0.2)
+    run = PartRun(str(tmp_path / "b.stl"), MAT, "y>=0", plate_normal=(0, 1, 0),
+                  mesh_size_mm=SIZE, contacts=(patch,))
+    model, R, _ = part_model(run, surface=turned_s, mesh=turned)
+    res = _run(model, stroke=0.4)
+    assert res.converged, res.message
+    paths = write_part_vtu(model, res, R, tmp_path / "vtu")
+    grid = pv.read(paths[-1])
+    assert_allclose(grid.points, model.disc.X @ R, atol=1e-9)
+    kept = parse_selector("y>=0")(turned.nodes, 0.05)
+    assert np.ptp(grid.points[:, 1]) > 7.0 and grid.points[:, 1].min() < -6.9  # apex at y = -7
+    assert grid.point_data["contact_apex"].sum() == len(model.groups["apex"])
+    assert_allclose(grid.field_data["force_apex_N"][0], res.records[-1].group_forces["apex"])
+    assert_allclose(grid.field_data["plate_normal"], [0, 1, 0], atol=1e-12)
+    u = grid.point_data["displacement"]
+    assert u[:, 1].max() > 0.3  # the apex pushed along +y, the plate's travel
+    png = render_part(paths[-1], tmp_path / "r.png", window=(320, 240))
+    assert png.stat().st_size > 5_000
+    assert kept.any()
