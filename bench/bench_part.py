@@ -121,7 +121,7 @@ def convergence(args) -> dict:
               f"{d.get('tetrahedra')} tets, {c.solver.seconds:.0f} s per curve "
               f"(meshing {d.get('mesh_seconds', float('nan')):.0f} s){' (cached)' if ran < 5 else ''}; "
               f"F(3 mm) = {c.force_N[-1]:.4g} N, P = {c.pressure_kPa[-1]:.4g} kPa, "
-              f"pockets {[round(v[-1], 3) for v in c.series.values()]} N; {change}")
+              f"pockets {[round(float(v[-1]), 3) for v in c.series.values()]} N; {change}")
         rows[f"{size:g}"] = {**_summary(c), "pockets": {k: v.tolist() for k, v in c.series.items()}}
         previous = c
     return rows

@@ -328,3 +328,18 @@ def test_vtus_are_in_part_coordinates_and_render(dome_part, tmp_path):
     png = render_part(paths[-1], tmp_path / "r.png", window=(320, 240))
     assert png.stat().st_size > 5_000
     assert kept.any()
+
+
+def test_a_step_part_is_tessellated_and_its_cavity_found(tmp_path):
+    """STEP is read through OCCT and tessellated (a hollow box: planar faces, so the cavity's
+    volume is exact)."""
+    import cadquery as cq
+
+    from spsc.fem.part import load_part
+
+    solid = cq.Workplane().box(10, 8, 6).cut(cq.Workplane().box(6, 4, 2)).val()
+    path = tmp_path / "box.step"
+    cq.exporters.export(solid, str(path))
+    s = load_part(path)
+    assert_allclose(s.cavity_volume, 6 * 4 * 2, rtol=1e-9)
+    assert_allclose(s.bounds, [[-5, -4, -3], [5, 4, 3]], atol=1e-6)
