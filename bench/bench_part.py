@@ -1,7 +1,7 @@
 """FEM of any part (issue 14): the figures of its closing note.
 
     python bench/bench_part.py typeb [--sizes 1.0,0.8]        # figure 1: Type B STL vs structured
-    python bench/bench_part.py convergence [--sizes 2,1.5,1.2] # figure 2: fingertip mesh study
+    python bench/bench_part.py convergence [--site pulp|distal] [--sizes 2.5,2,1.5]  # figure 2
     python bench/bench_part.py fingertip [--size 1.5]          # figure 3: the fingertip set
 
 Every curve is written as JSON under ``build/bench-part/`` and reused when it exists (delete
@@ -109,15 +109,15 @@ def convergence(args) -> dict:
     rows, previous = {}, None
     for size in args.sizes:
         t0 = time.perf_counter()
-        c = _curve(OUT / f"fingertip-pulp-high-40-h{size:g}.json",
+        c = _curve(OUT / f"fingertip-{args.site}-high-40-h{size:g}.json",
                    _part_json(None, stl, *FINGERTIP_SETUP, "--pressure", "40", "--plate-at",
-                              "pulp", "--mesh-size", f"{size:g}", "--quiet"))
+                              args.site, "--mesh-size", f"{size:g}", "--quiet"))
         ran = time.perf_counter() - t0
         d = c.solver.details
         change = (f"F(3 mm) {100 * (c.force_N[-1] / previous.force_N[-1] - 1):+.2f} %, "
                   f"ΔP(3 mm) {100 * ((c.pressure_kPa[-1] - c.pressure_kPa[0]) / (previous.pressure_kPa[-1] - previous.pressure_kPa[0]) - 1):+.2f} % against the previous"
                   if previous is not None else "")
-        print(f"fingertip pulp press, high, 40 kPa, mesh {size:g} mm: {d.get('dofs')} unknowns, "
+        print(f"fingertip {args.site} press, high, 40 kPa, mesh {size:g} mm: {d.get('dofs')} unknowns, "
               f"{d.get('tetrahedra')} tets, {c.solver.seconds:.0f} s per curve "
               f"(meshing {d.get('mesh_seconds', float('nan')):.0f} s){' (cached)' if ran < 5 else ''}; "
               f"F(3 mm) = {c.force_N[-1]:.4g} N, P = {c.pressure_kPa[-1]:.4g} kPa, "
@@ -134,11 +134,13 @@ def main(argv=None) -> int:
     t.add_argument("--sizes", type=lambda s: [float(x) for x in s.split(",")], default=[1.0])
     c = sub.add_parser("convergence")
     c.add_argument("--sizes", type=lambda s: [float(x) for x in s.split(",")],
-                   default=[2.0, 1.5, 1.2])
+                   default=[2.5, 2.0, 1.5])
+    c.add_argument("--site", choices=("pulp", "distal"), default="pulp")
     args = p.parse_args(argv)
     rows = {"typeb": typeb, "convergence": convergence}[args.what](args)
     OUT.mkdir(parents=True, exist_ok=True)
-    (OUT / f"{args.what}.json").write_text(json.dumps(rows, indent=1))
+    name = args.what + (f"-{args.site}" if args.what == "convergence" else "")
+    (OUT / f"{name}.json").write_text(json.dumps(rows, indent=1))
     return 0
 
 

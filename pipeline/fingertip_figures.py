@@ -87,9 +87,10 @@ def pockets_figure(summary: dict, path) -> Path:
 
 
 def discrimination_figure(summary: dict, path) -> Path:
-    """Left: pressure rise against plate force for pulp and distal presses — the curves lie
-    close, so the pressure alone does not say where the part is pressed. Right: the pocket
-    forces at the same pressure rise — the pattern does."""
+    """Left: pressure rise against plate force for pulp and distal presses — one cavity, one
+    pressure: a given rise comes from a light pulp press or a harder distal one, so the
+    pressure alone tells neither where nor how hard. Right: the pocket forces at the same
+    pressure rise — their pattern says where."""
     plt = _plt()
     fig, ax = plt.subplots(1, 2, figsize=(11, 4), constrained_layout=True)
     rows = {site: summary["cases"].get(case_name(site, "high", 40.0))
@@ -104,7 +105,7 @@ def discrimination_figure(summary: dict, path) -> Path:
         common.append(np.nanmax(p - p[0]))
     ax[0].set_xlabel("plate force (N)")
     ax[0].set_ylabel("pressure rise (kPa)")
-    ax[0].set_title("what the pressure sensor sees (high mode, 40 kPa)", fontsize=9)
+    ax[0].set_title("the pressure sensor: one rise, two forces (high mode, 40 kPa)", fontsize=9)
     ax[0].grid(alpha=0.3)
     ax[0].legend(fontsize=8)
     if common:
