@@ -189,6 +189,10 @@ def test_contact_patches_report_the_force_through_them(dome_part, tmp_path):
     # the plate meets the insert first: at 0.3 mm it presses the apex through it alone
     assert_allclose(first.group_forces["top"], first.force, rtol=1e-12)
     assert first.force > 0
+    # and it starts one insert thickness higher than on the bare dome
+    bare = _run(part_model(PartRun(str(tmp_path / "d.stl"), MAT, "z<=0", mesh_size_mm=SIZE),
+                           surface=s, mesh=mesh)[0])
+    assert_allclose(first.plate - bare.of("press")[0].plate, 0.3, atol=1e-9)
 
 
 def test_a_patch_off_the_part_is_refused(dome_part, tmp_path):
