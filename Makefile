@@ -19,7 +19,7 @@ GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
 	@echo "make fingertip                                                   -> build/fingertip/"
-	@echo "make fingertip-fem [FT_MESH=1.5]                                 -> build/fingertip/fem/"
+	@echo "make fingertip-fem [FT_MESH=2]                                 -> build/fingertip/fem/"
 	@echo "make test | make test-slow | make gate | make bench | make report [QUICK=1]"
 
 $(STAMP): pyproject.toml
@@ -39,7 +39,7 @@ fingertip: $(STAMP)
 
 # the fingertip in the 3D FEM: pulp and distal presses, both modes, 10 and 40 kPa, pocket forces,
 # the single chamber and the fast estimate (build/fingertip/fem/; hours on 2 cores, curves reused)
-FT_MESH ?= 1.5
+FT_MESH ?= 2
 fingertip-fem: $(STAMP)
 	$(BIN)/spsc fingertip --fem --mesh-size $(FT_MESH) --out build/fingertip
 

@@ -21,7 +21,7 @@ from .specs import BladderSpec, FlangeSpec, PortSpec
 from .geometry import SPSCGeometry
 
 __all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "Bladder", "build_bladder", "nipple",
-           "widest_outer_radius", "flange_hole_centres"]
+           "widest_outer_radius", "flange_hole_centres", "bladder_breps"]
 
 
 @dataclass(frozen=True)
@@ -77,15 +77,15 @@ def nipple(p: PortSpec, y_start: float, z: float) -> cq.Solid:
     return shaft.fuse(*parts).clean()
 
 
-def build_bladder(spec: BladderSpec) -> Bladder:
-    """Build the printable bladder solid and its design facts (for ``spsc check``)."""
+def bladder_breps(spec: BladderSpec) -> dict[str, cq.Solid | None]:
+    """The B-rep pieces the bladder is cut from (mm, part coordinates): ``body`` (wall envelope,
+    plate and port), ``cavity``, ``bore`` (horizontal bore and riser), ``holes`` (None without
+    flange holes); the same construction as :func:`spsc.cad.meshbuild.bladder_solids`."""
     g, f, p = spec.geometry, spec.flange, spec.port
-    r_wall = widest_outer_radius(g)
-    r_flange = r_wall + f.width
+    r_flange = widest_outer_radius(g) + f.width
     plate = _stadium(r_flange, g.l, -f.thickness, f.thickness)
     y_edge = -(g.l / 2 + r_flange)
     body = outer_solid(g).fuse(plate, nipple(p, y_edge, spec.port_axis_z)).clean()
-
     z_axis = spec.port_axis_z
     y_riser = -g.l / 2  # centre of the −y end cap: inside the cavity footprint for any type
     y_tip = y_edge - p.length
@@ -94,11 +94,24 @@ def build_bladder(spec: BladderSpec) -> Bladder:
                                    cq.Vector(0, y_tip - 0.5, z_axis), cq.Vector(0, 1, 0))
     bore_v = cq.Solid.makeCylinder(p.bore / 2, -z_axis + 0.5, cq.Vector(0, y_riser, z_axis),
                                    cq.Vector(0, 0, 1))
-    cutters = [cavity_solid(g), bore_h, bore_v]
-    for x, y in flange_hole_centres(spec):
-        cutters.append(cq.Solid.makeCylinder(f.hole_diameter / 2, f.thickness + 2.0,
-                                             cq.Vector(x, y, -f.thickness - 1.0)))
-    solid = body.cut(*cutters).clean()
+    holes = [cq.Solid.makeCylinder(f.hole_diameter / 2, f.thickness + 2.0,
+                                   cq.Vector(x, y, -f.thickness - 1.0))
+             for x, y in flange_hole_centres(spec)]
+    return {"body": body, "cavity": cavity_solid(g), "bore": bore_h.fuse(bore_v).clean(),
+            "holes": holes[0].fuse(*holes[1:]).clean() if holes else None}
+
+
+def build_bladder(spec: BladderSpec) -> Bladder:
+    """Build the printable bladder solid and its design facts (for ``spsc check``)."""
+    g, f, p = spec.geometry, spec.flange, spec.port
+    r_flange = widest_outer_radius(g) + f.width
+    y_edge = -(g.l / 2 + r_flange)
+    z_axis = spec.port_axis_z
+    y_riser = -g.l / 2
+    y_tip = y_edge - p.length
+    b = bladder_breps(spec)
+    cutters = [b["cavity"], b["bore"]] + ([b["holes"]] if b["holes"] is not None else [])
+    solid = b["body"].cut(*cutters).clean()
     if not solid.isValid():
         raise RuntimeError(f"OCCT produced an invalid bladder solid for {g}")
 

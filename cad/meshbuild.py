@@ -11,6 +11,7 @@ B-rep of :mod:`spsc.cad.bladder`; a test checks that both agree (volume, genus, 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import manifold3d as m3
 import numpy as np
@@ -19,7 +20,8 @@ from .bladder import BladderSpec, flange_hole_centres, widest_outer_radius
 from .export import TriMesh
 from .geometry import MESH_PROFILE_POINTS, SPSCGeometry
 
-__all__ = ["bladder_mesh", "chamber_manifold", "hull_meridian", "SAG_MM"]
+__all__ = ["bladder_mesh", "bladder_solids", "BladderSolids", "chamber_manifold", "hull_meridian",
+           "manifold_mesh", "SAG_MM"]
 
 #: Chord sag (mm) of every circle of the mesh: volume error ~2·sag/R ≈ 0.05 %, far inside the
 #: 0.2 % the issue allows, and a wall error far under the gate's 0.01 mm allowance.
@@ -125,8 +127,28 @@ def _stadium(radius: float, l: float, z0: float, height: float) -> m3.Manifold:
         [0.0, 0.0, z0])
 
 
-def bladder_mesh(spec: BladderSpec) -> TriMesh:
-    """The printable bladder of :func:`spsc.cad.bladder.build_bladder` as a closed mesh."""
+@dataclass(frozen=True)
+class BladderSolids:
+    """The bladder's construction in manifold3d (mm, part coordinates): ``body`` (wall envelope,
+    plate and port, before any cut), ``cavity`` (the chamber's inner body), ``bore`` (the port's
+    horizontal bore and its riser into the cavity), ``holes`` (the flange's screw holes, None
+    without holes). The part is ``body − cavity − bore − holes``; molds reuse the pieces."""
+
+    body: m3.Manifold
+    cavity: m3.Manifold
+    bore: m3.Manifold
+    holes: m3.Manifold | None
+
+    @property
+    def part(self) -> m3.Manifold:
+        cut = self.cavity + self.bore
+        if self.holes is not None:
+            cut += self.holes
+        return self.body - cut
+
+
+def bladder_solids(spec: BladderSpec) -> BladderSolids:
+    """The pieces of :func:`bladder_mesh` (see :class:`BladderSolids`)."""
     g: SPSCGeometry = spec.geometry
     f, p = spec.flange, spec.port
     inner, outer = g.wall_profiles(MESH_PROFILE_POINTS)
@@ -146,16 +168,27 @@ def bladder_mesh(spec: BladderSpec) -> TriMesh:
                                r_top=p.tube_id / 2)
     y_riser = -g.l / 2
     y_tip = y_edge - p.length
-    cut = chamber_manifold(inner, g.l)
-    cut += _cylinder(p.bore / 2, y_riser - y_tip + 0.5, [0.0, y_tip - 0.5, z_axis],
+    bore = _cylinder(p.bore / 2, y_riser - y_tip + 0.5, [0.0, y_tip - 0.5, z_axis],
                      [0.0, 1.0, 0.0])
-    cut += _cylinder(p.bore / 2, -z_axis + 0.5, [0.0, y_riser, z_axis], [0.0, 0.0, 1.0])
+    bore += _cylinder(p.bore / 2, -z_axis + 0.5, [0.0, y_riser, z_axis], [0.0, 0.0, 1.0])
+    holes = None
     for x, y in flange_hole_centres(spec):
-        cut += _cylinder(f.hole_diameter / 2, f.thickness + 2.0, [x, y, -f.thickness - 1.0],
-                         [0.0, 0.0, 1.0])
-    solid = solid - cut
+        h = _cylinder(f.hole_diameter / 2, f.thickness + 2.0, [x, y, -f.thickness - 1.0],
+                      [0.0, 0.0, 1.0])
+        holes = h if holes is None else holes + h
+    return BladderSolids(solid, chamber_manifold(inner, g.l), bore, holes)
+
+
+def bladder_mesh(spec: BladderSpec) -> TriMesh:
+    """The printable bladder of :func:`spsc.cad.bladder.build_bladder` as a closed mesh."""
+    solid = bladder_solids(spec).part
     if solid.status() != m3.Error.NoError or solid.is_empty():
         raise RuntimeError(f"manifold3d could not build the bladder mesh: {solid.status()}")
+    return manifold_mesh(solid)
+
+
+def manifold_mesh(solid: m3.Manifold) -> TriMesh:
+    """A manifold's triangles as a :class:`TriMesh` (mm)."""
     mesh = solid.to_mesh()
     return TriMesh(np.asarray(mesh.vert_properties, float)[:, :3],
                    np.asarray(mesh.tri_verts, np.int64))

@@ -28,13 +28,13 @@ def register(sub) -> None:
                    "the paper's choice), fdm or molding")
     p.add_argument("--out", default="build/fingertip", help="output folder")
     p.add_argument("--no-check", action="store_true", help="skip the printability gate")
-    g = p.add_argument_group("FEM study (--fem; about 15 min per curve on 2 cores at 1.5 mm)")
+    g = p.add_argument_group("FEM study (--fem; about 25 min per curve on 2 cores at 2 mm)")
     g.add_argument("--fem", action="store_true",
                    help="press the built fingertip on the pulp and the distal edge, high and low "
                    "mode, 10 and 40 kPa (3D FEM, Silicone 40A): curves, FSR pocket forces, the "
                    "single Type A and the fast estimate -> OUT/fem (curves reused when present)")
     g.add_argument("--mesh-size", type=number("mesh size", "mm"), default=None, metavar="MM",
-                   help="element edge at the chambers' walls, mm (default 1.5; graded to 4x "
+                   help="element edge at the chambers' walls, mm (default 2; graded to 4x "
                    "in the body)")
     g.add_argument("--cases", default=None, metavar="SITE-MODE-KPA,...",
                    help="only these cases, e.g. pulp-high-40,distal-high-40 (default all 8)")
@@ -71,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
 
         from .fingertip_fem import FingertipStudy
 
-        size = 1.5 if args.mesh_size is None else require("mesh size", args.mesh_size, ge=0.3,
+        size = 2.0 if args.mesh_size is None else require("mesh size", args.mesh_size, ge=0.3,
                                                           le=4.0, unit="mm")
         study = FingertipStudy(mesh_size_mm=size, cases=_cases(args.cases))
     elif args.mesh_size is not None or args.cases is not None:

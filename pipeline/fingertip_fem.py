@@ -43,7 +43,7 @@ class FingertipStudy:
     material, the cases; ``single`` and ``fast``: run the single-chamber and fast-estimate
     comparisons."""
 
-    mesh_size_mm: float = 1.5
+    mesh_size_mm: float = 2.0
     stroke_mm: float = 3.0
     points: int = 7
     material: str = "silicone40a"
