@@ -14,10 +14,11 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder fingertip fingertip-fem gate test test-slow bench bench-compare bench-wall bench-material bench-sweep clean
+.PHONY: help venv bladder mold fingertip fingertip-fem gate test test-slow bench bench-compare bench-wall bench-material bench-sweep clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
+	@echo "make mold TYPE=A|B|C|D [PROCESS=casting|compression]           -> build/mold-TYPE/"
 	@echo "make fingertip                                                   -> build/fingertip/"
 	@echo "make fingertip-fem [FT_MESH=2]                                 -> build/fingertip/fem/"
 	@echo "make test | make test-slow | make gate | make bench | make report [QUICK=1]"
@@ -34,6 +35,11 @@ venv: $(STAMP)
 bladder: $(STAMP)
 	$(BIN)/spsc bladder --type $(TYPE) --material $(MATERIAL) $(GEOM_ARGS)
 
+# the mold of the bladder's wall: pieces (STL, 3MF, STEP), mold.json, the mold gate, a render
+PROCESS ?= casting
+mold: $(STAMP)
+	$(BIN)/spsc mold --type $(TYPE) --process $(PROCESS) $(GEOM_ARGS)
+
 fingertip: $(STAMP)
 	$(BIN)/spsc fingertip
 
@@ -43,10 +49,12 @@ FT_MESH ?= 2
 fingertip-fem: $(STAMP)
 	$(BIN)/spsc fingertip --fem --mesh-size $(FT_MESH) --out build/fingertip
 
-# the printability gate on every preset (run by CI)
+# the printability gate on every preset and the mold gate on every type (run by CI)
 gate: $(STAMP)
 	@set -e; for t in A B C D; do $(MAKE) --no-print-directory bladder TYPE=$$t; done
 	@$(MAKE) --no-print-directory fingertip
+	@set -e; for t in A B C D; do $(BIN)/spsc mold --type $$t --no-render; done
+	@$(BIN)/spsc mold --type B --process compression --no-render --out build/mold-B-compression
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

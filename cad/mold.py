@@ -136,7 +136,9 @@ def pull_test(solid: m3.Manifold, direction, obstacles: m3.Manifold, length: flo
     first = float((solid.translate((d * FIRST_STEP_MM).tolist()) ^ obstacles).volume())
     later = [float((solid.translate((d * f * length).tolist()) ^ obstacles).volume())
              for f in STEPS]
-    return {"undercut_mm2": first / FIRST_STEP_MM, "collision_mm3": max(later)}
+    # round-off gives ±1e-13 on a free pull: report it as 0
+    return {"undercut_mm2": max(first / FIRST_STEP_MM, 0.0),
+            "collision_mm3": max(max(later), 0.0)}
 
 
 def _bbox(b: BladderSpec) -> tuple[np.ndarray, np.ndarray]:

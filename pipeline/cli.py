@@ -34,6 +34,7 @@ COMMANDS = {
     "report": "cmd_report",
     "sweep": "cmd_sweep",
     "design": "cmd_design",
+    "mold": "cmd_mold",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

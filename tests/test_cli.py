@@ -20,6 +20,13 @@ from spsc.pipeline.cli import build_parser, main
     (["bladder", "--type", "B", "--material", "rubber"], "material"),
     (["bladder", "--type", "B", "--flange-holes", "3"], "flange.holes"),
     (["fingertip", "--angle", "10"], "angle"),
+    (["mold", "--type", "B", "--process", "injection"], "process"),
+    (["mold", "--type", "B", "--shrinkage", "-1"], "shrinkage"),
+    (["mold", "--type", "B", "--clearance", "2"], "clearance"),
+    (["mold", "--type", "B", "--material", "pla"], "material"),
+    (["mold", "--type", "B", "--parting", "diagonal"], "parting"),
+    (["mold", "/nonexistent/bladder.design.json"], "part"),
+    (["mold"], "geometry"),
     (["check", "/nonexistent/part.stl"], None),
     # argparse's own errors: one line (no usage dump), a hint to --help
     (["membrane", "--pressure", "abc"], "pressure"),
@@ -71,6 +78,8 @@ def test_footprint_selects_the_preset_size(tmp_path):
 KEY_OPTIONS = {
     "bladder": ["--type", "--footprint", "--material", "--out", "--flange-holes"],
     "fingertip": ["--angle", "--process", "--out"],
+    "mold": ["--type", "--process", "--material", "--shrinkage", "--clearance", "--wall",
+             "--parting", "--out", "--no-step", "--no-render"],
     "check": ["--min-wall", "--process", "--design", "--json"],
     "curve": ["--model", "--pressure", "--reservoir", "--stroke", "--points", "--mesh-size",
               "--layers", "--vtu", "--meridians", "--json", "--csv", "--png", "--quiet"],

@@ -125,3 +125,40 @@ def test_brep_mold_matches_the_mesh_mold():
 def test_bad_mold_parameters(kw, name):
     with pytest.raises(ParameterError, match=f"^{name} = "):
         MoldSpec(**kw)
+
+
+def test_mold_command_writes_every_piece(tmp_path, capsys):
+    import json
+
+    from spsc.pipeline.cli import main
+
+    out = tmp_path / "m"
+    assert main(["mold", "--type", "B", "--process", "compression", "--out", str(out),
+                 "--no-render"]) == 0
+    info = json.loads((out / "mold.json").read_text())
+    assert [p["role"] for p in info["pieces"]] == ["half", "half", "core"]
+    for p in info["pieces"]:
+        for kind in ("stl", "3mf", "step"):
+            assert (out / f"{p['name']}.{kind}").stat().st_size > 1000
+    assert info["gate"]["passed"] and (out / "gate.json").exists()
+    assert info["parting"]["plane"].startswith("horizontal")
+    assert set(info["channels_mm3"]) == {"flash_groove"}
+    # the STL the slicer gets is the piece the gate measured
+    from spsc.cad.meshload import load_mesh
+    from spsc.cad.meshtopo import signed_volume
+
+    v, f = load_mesh(out / "upper.stl")
+    assert_allclose(signed_volume(v, f), info["pieces"][1]["volume_mm3"], rtol=1e-6)
+    assert "MOLD PASSED" in capsys.readouterr().out
+
+
+def test_mold_of_a_bladder_file(tmp_path):
+    from spsc.pipeline.cli import main
+
+    assert main(["bladder", "--type", "C", "--out", str(tmp_path / "b"), "--no-check"]) == 0
+    assert main(["mold", str(tmp_path / "b" / "bladder-C.stl"), "--out", str(tmp_path / "m"),
+                 "--no-step", "--no-render"]) == 0
+    import json
+
+    info = json.loads((tmp_path / "m" / "mold.json").read_text())
+    assert info["bladder"]["geometry"]["n2"] == 1.0
