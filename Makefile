@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem gate test test-slow bench bench-compare bench-wall bench-material bench-sweep clean
+.PHONY: help venv bladder mold fingertip fingertip-fem gate test test-slow bench bench-mold bench-compare bench-wall bench-material bench-sweep clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -69,6 +69,10 @@ bench: $(STAMP)
 	@echo "== bench/bench_wall.py speed (wall vs membrane; the 3D FEM figure is bench_fem's)"
 	@$(BIN)/python bench/bench_wall.py speed --type B
 	@$(BIN)/python bench/bench_wall.py speed --type B --dome
+
+# the molds of A-D: time of make mold, volume identities, pull tests, broken molds (issue 15)
+bench-mold: $(STAMP)
+	$(BIN)/python bench/bench_mold.py
 
 # material fitting and calibration figures (issue 12; about 6 min)
 bench-material: $(STAMP)

@@ -124,7 +124,8 @@ def run(args) -> int:
     path = build_report(study, outcomes, out, command=_command(args),
                         fig_cache=cache.root / "figures", source=source,
                         wall_seconds=time.perf_counter() - t0, bench=bench,
-                        executor=executor, sweep=sweep, fingertip=_fingertip(args))
+                        executor=executor, sweep=sweep, fingertip=_fingertip(args),
+                        molds=tuple(study.types))
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "

@@ -338,3 +338,21 @@ def test_a_fingertip_study_gets_its_own_section(tmp_path):
     none = build_report(SMALL, {}, tmp_path / "n", source=CLEAN,
                         fingertip=tmp_path / "nothing").read_text(encoding="utf-8")
     assert "make fingertip-fem" in none
+
+
+def test_mold_section(tmp_path):
+    """The report builds, gates and renders the molds itself, and shows the gate failing on the
+    three broken molds with their reasons."""
+    import json
+
+    out = tmp_path / "r"
+    page = build_report(SMALL, {}, out, source=CLEAN, molds=("B",)).read_text(encoding="utf-8")
+    section = page[page.index("<h2>Molds</h2>"):]
+    assert "horizontal" in section and "passed" in section
+    assert 'src="mold/mold-B.png"' in section and (out / "mold" / "mold-B.png").exists()
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    broken = {b["case"]: b["failed"] for b in summary["mold"]["broken"]}
+    assert "overlap" in broken["Type B, upper half moved 1 mm along y"]
+    assert "core_volume" in broken["Type B, core scaled by 0.98"]
+    assert broken["Type D split horizontally (--parting z)"] == ["pull_upper"]
+    assert "undercut" in section
