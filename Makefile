@@ -18,6 +18,7 @@ GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
+	@echo "make bladder TYPE=D HAPTIC=1    (the haptic chamber, FIT0774 motor) -> build/bladder-D-haptic/"
 	@echo "make mold TYPE=A|B|C|D [PROCESS=casting|compression]           -> build/mold-TYPE/"
 	@echo "make fingertip                                                   -> build/fingertip/"
 	@echo "make fingertip-fem [FT_MESH=2]                                 -> build/fingertip/fem/"
@@ -32,8 +33,9 @@ $(STAMP): pyproject.toml
 
 venv: $(STAMP)
 
+HAPTIC ?=
 bladder: $(STAMP)
-	$(BIN)/spsc bladder --type $(TYPE) --material $(MATERIAL) $(GEOM_ARGS)
+	$(BIN)/spsc bladder --type $(TYPE) --material $(MATERIAL) $(GEOM_ARGS) $(if $(HAPTIC),--haptic)
 
 # the mold of the bladder's wall: pieces (STL, 3MF, STEP), mold.json, the mold gate, a render
 PROCESS ?= casting
@@ -53,6 +55,7 @@ fingertip-fem: $(STAMP)
 gate: $(STAMP)
 	@set -e; for t in A B C D; do $(MAKE) --no-print-directory bladder TYPE=$$t; done
 	@$(MAKE) --no-print-directory fingertip
+	@$(MAKE) --no-print-directory bladder TYPE=D HAPTIC=1
 	@set -e; for t in A B C D; do $(BIN)/spsc mold --type $$t --no-render; done
 	@$(BIN)/spsc mold --type B --process compression --no-render --out build/mold-B-compression
 

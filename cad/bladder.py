@@ -21,7 +21,8 @@ from .specs import BladderSpec, FlangeSpec, PortSpec
 from .geometry import SPSCGeometry
 
 __all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "Bladder", "build_bladder", "nipple",
-           "widest_outer_radius", "flange_hole_centres", "bladder_breps"]
+           "widest_outer_radius", "flange_hole_centres", "bladder_breps",
+           "bladder_design"]
 
 
 @dataclass(frozen=True)
@@ -103,19 +104,25 @@ def bladder_breps(spec: BladderSpec) -> dict[str, cq.Solid | None]:
 
 def build_bladder(spec: BladderSpec) -> Bladder:
     """Build the printable bladder solid and its design facts (for ``spsc check``)."""
+    g = spec.geometry
+    b = bladder_breps(spec)
+    cutters = [b["cavity"], b["bore"]] + ([b["holes"]] if b["holes"] is not None else [])
+    solid = b["body"].cut(*cutters).clean()
+    if not solid.isValid():
+        raise RuntimeError(f"OCCT produced an invalid bladder solid for {g}")
+    return Bladder(spec, solid, bladder_design(spec))
+
+
+def bladder_design(spec: BladderSpec) -> dict:
+    """The design facts of the bladder ``spec`` (what ``spsc check`` and ``spsc fem --part``
+    read beside its STL)."""
     g, f, p = spec.geometry, spec.flange, spec.port
     r_flange = widest_outer_radius(g) + f.width
     y_edge = -(g.l / 2 + r_flange)
     z_axis = spec.port_axis_z
     y_riser = -g.l / 2
     y_tip = y_edge - p.length
-    b = bladder_breps(spec)
-    cutters = [b["cavity"], b["bore"]] + ([b["holes"]] if b["holes"] is not None else [])
-    solid = b["body"].cut(*cutters).clean()
-    if not solid.isValid():
-        raise RuntimeError(f"OCCT produced an invalid bladder solid for {g}")
-
-    design = {
+    return {
         "kind": "bladder",
         "geometry": g.as_dict(),
         "cavity_volume_mm3": g.cavity_volume(),
@@ -136,4 +143,3 @@ def build_bladder(spec: BladderSpec) -> Bladder:
         "fem": {"mount": "z<=0",
                 "sites": {"apex": {"at": [0.0, 0.0, g.h + g.t0], "normal": [0.0, 0.0, -1.0]}}},
     }
-    return Bladder(spec, solid, design)

@@ -237,7 +237,7 @@ def _cavities(v, f, design, measurable) -> dict:
     if not measurable:
         return {"reason": "not measured: not a closed 2-manifold"}
     if "port" in design:
-        capped = mt.cap_port(v, f, design["port"])
+        capped = mt.cap_ports(v, f, design["port"])
         if capped is None:
             return {"reason": "not measured: manifold3d rejected the mesh"}
         cv, cf = capped

@@ -63,7 +63,9 @@ def parse_design(design: dict | None) -> dict:
     if "bbox_mm" in design:
         out["bbox_mm"] = _bbox(design["bbox_mm"])
     if "port" in design:
-        out["port"] = _port(design["port"])
+        ports = design["port"]
+        out["port"] = [_port(q) for q in ports] if isinstance(ports, list) and ports \
+            else _port(ports)
     if "wall_region" in design:
         wr = design["wall_region"]
         if not isinstance(wr, dict) or "z_min" not in wr:

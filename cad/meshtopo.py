@@ -14,7 +14,7 @@ from scipy import sparse
 from scipy.sparse.csgraph import connected_components
 
 __all__ = ["meshset", "topology", "self_intersecting_faces", "shells", "nesting_depth",
-           "signed_volume", "face_areas", "face_normals", "cap_port", "surface_distance",
+           "signed_volume", "face_areas", "face_normals", "cap_port", "cap_ports", "surface_distance",
            "sample_surface"]
 
 
@@ -115,6 +115,17 @@ def nesting_depth(v, f, parts: list[np.ndarray]) -> np.ndarray:
             if i != j and np.all(lo[j] <= lo[i]) and np.all(hi[i] <= hi[j]):
                 depth[i] += abs(winding_number(point, v, f[q])) > 0.5
     return depth
+
+
+def cap_ports(v, f, ports, segments: int = 128):
+    """:func:`cap_port` for one port dict or a list of them (a bladder's inlet, a haptic
+    chamber's wire exit), one after the other; None as :func:`cap_port`."""
+    for port in ([ports] if isinstance(ports, dict) else list(ports)):
+        out = cap_port(v, f, port, segments)
+        if out is None:
+            return None
+        v, f = out
+    return v, f
 
 
 def cap_port(v, f, port: dict, segments: int = 128):

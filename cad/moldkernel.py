@@ -34,6 +34,12 @@ class MeshKernel:
     def cylinder(self, radius, height, start, direction, r_top=None):
         return _cylinder(radius, height, start, direction, r_top=r_top)
 
+    def sphere(self, radius, centre):
+        from .meshbuild import _segments
+
+        return m3.Manifold.sphere(radius, _segments(radius)).translate(
+            [float(c) for c in centre])
+
     def prism(self, ring, depth, frame, origin):
         """The simple polygon ``ring`` ((u, v), mm) extruded from the plane along −n by
         ``depth``."""
@@ -77,6 +83,10 @@ class BrepKernel:
         if r_top is None or abs(r_top - radius) < 1e-12:
             return cq.Solid.makeCylinder(radius, height, s, d)
         return cq.Solid.makeCone(radius, r_top, height, s, d)
+
+    def sphere(self, radius, centre):
+        return cq.Solid.makeSphere(radius, cq.Vector(*map(float, centre)), angleDegrees1=-90,
+                                   angleDegrees2=90)
 
     def prism(self, ring, depth, frame, origin):
         w = cq.Wire.makePolygon([cq.Vector(float(u), float(v), 0.0) for u, v in ring],

@@ -25,6 +25,11 @@ def register(sub) -> None:
                    help="screw holes: 0, 2 or 4")
     p.add_argument("--tube-id", type=number("tube_id", "mm"), default=3.0,
                    help="inner diameter of the tube (mm)")
+    p.add_argument("--haptic", action="store_true",
+                   help="the haptic chamber of sec. 4.2: a pocket holding a DFRobot FIT0774 "
+                   "vibration motor (10 x 2.7 mm) against the inner top, on a 0.8 mm 45° "
+                   "support film, a sealed wire exit; printed in one piece with a pause to "
+                   "insert the motor (the design file gives the height)")
     p.add_argument("--no-check", action="store_true", help="skip the printability gate")
     p.set_defaults(func=run)
 
@@ -54,6 +59,8 @@ def run(args: argparse.Namespace) -> int:
     geom = geometry_from_args(args)
     process = process_for(args.material)
     name = f"bladder-{str(args.type).strip().upper()}" if args.type else "bladder"
+    if args.haptic:
+        name += "-haptic"
     outdir = check_output_dir("--out", args.out if args.out is not None else f"build/{name}")
     spec = bladder_spec(geom, args.flange_holes, args.tube_id)
     for msg in geom.design_space_warnings():
@@ -64,9 +71,18 @@ def run(args: argparse.Namespace) -> int:
     from spsc.cad.meshbuild import bladder_mesh
 
     t0 = time.perf_counter()
-    bladder = build_bladder(spec)
+    if args.haptic:
+        from spsc.cad.haptic import build_haptic
+        from spsc.cad.meshbuild import manifold_mesh
+
+        mesh_part = build_haptic(spec)
+        solid, design = build_haptic(spec, kernel="brep").solid, mesh_part.design
+        mesh = manifold_mesh(mesh_part.solid)
+    else:
+        bladder = build_bladder(spec)
+        solid, design, mesh = bladder.solid, bladder.design, bladder_mesh(spec)
     t_build = time.perf_counter() - t0
-    written = export_part(bladder.solid, bladder.design, outdir, name, mesh=bladder_mesh(spec))
+    written = export_part(solid, design, outdir, name, mesh=mesh)
     t_export = time.perf_counter() - t0 - t_build
     g = geom
     print(f"{name}: w={g.w:g} h={g.h:g} l={g.l:g} t0={g.t0:g} n1={g.n1:g} n2={g.n2:g} "
@@ -74,11 +90,17 @@ def run(args: argparse.Namespace) -> int:
     print(f"  analytic cavity volume {g.cavity_volume() / 1000:.3f} cm³; "
           f"{written['triangles']} triangles; built in {t_build:.1f} s, exported in "
           f"{t_export:.1f} s")
+    if args.haptic:
+        mo = design["motor"]
+        print(f"  motor {mo['name']} ({mo['diameter_mm']:g} x {mo['height_mm']:g} mm) at "
+              f"z = {mo['z_bottom_mm']:.2f}-{mo['z_top_mm']:.2f} mm: pause the print at "
+              f"z = {design['print']['pause_at_mm']:.2f} mm to insert it; support film "
+              f"{design['support_volume_mm3']:.0f} mm³")
     for kind in ("step", "stl", "3mf"):
         print(f"  {written['paths'][kind]}")
     if args.no_check:
         return 0
-    return gate(written["paths"]["stl"], bladder.design, process, outdir)
+    return gate(written["paths"]["stl"], design, process, outdir)
 
 
 def gate(stl: Path, design: dict, process: str, outdir: Path, extra: list = ()) -> int:
