@@ -128,7 +128,7 @@ def part_surface(vertices, faces, *, port: dict | None = None, source: str = "pa
                              f"({crossing} self-intersecting triangles)")
     capped = False
     if port is not None:
-        out = mt.cap_port(v, f, port)
+        out = mt.cap_ports(v, f, port)
         if out is None:
             raise ParameterError(name, source, "a surface manifold3d can plug the port of")
         v, f = out
