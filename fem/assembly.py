@@ -159,7 +159,10 @@ def assemble(d: Discretisation, law: NearlyIncompressible, x, *, tangent: bool =
     pq = np.einsum("qb,eb->eq", d.Np, p[d.pressure_dof[d.tets[:, :4]]])
     J = np.linalg.det(F)
     if not np.all(J > 0):
-        raise InvertedElement(f"{int(np.sum(np.any(~(J > 0), axis=1)))} elements inverted")
+        bad = np.any(~(J > 0), axis=1)
+        c = d.X[d.tets[np.argmax(bad), :4]].mean(axis=0)
+        raise InvertedElement(f"{int(np.sum(bad))} elements inverted (the first near "
+                              f"{c[0]:.2f}, {c[1]:.2f}, {c[2]:.2f} mm in the model frame)")
     if tangent:
         P, A = law.stress_tangent(F, pq)
     else:
