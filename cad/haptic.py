@@ -30,7 +30,7 @@ from .bladder import widest_outer_radius
 from .moldkernel import BrepKernel, MeshKernel
 from .specs import BladderSpec
 
-__all__ = ["MotorSpec", "HapticSpec", "Haptic", "build_haptic", "FIT0774"]
+__all__ = ["MotorSpec", "HapticSpec", "Haptic", "build_haptic", "motor_top", "FIT0774"]
 
 
 @dataclass(frozen=True)
@@ -85,16 +85,21 @@ class Haptic:
     design: dict
 
 
-def _motor_top(bladder: BladderSpec, radius: float) -> float:
-    """Highest z (mm) where the cavity is still ``radius`` wide (the x half-width of its
-    stadium section): the motor's top rim touches the dome there."""
+def motor_top(bladder: BladderSpec, spec: "HapticSpec | None" = None) -> float:
+    """Highest z (mm) where the cavity is still as wide as the motor's pocket (the x half-width
+    of its stadium section): the motor's top rim touches the dome there. ParameterError when
+    the cavity is nowhere that wide."""
+    spec = spec or HapticSpec()
+    radius = spec.motor.diameter / 2 + spec.clearance
     g = bladder.geometry
     z = np.linspace(g.z_widest, g.h, 4001)
     r = np.array([g.radius_at(float(zz)) for zz in z])
     ok = np.nonzero(r >= radius)[0]
     if not len(ok):
-        raise ParameterError("geometry", g, f"a cavity at least {2 * radius:g} mm wide for "
-                             "the motor")
+        raise ParameterError("haptic", f"a cavity {2 * r.max():.3g} mm wide",
+                             f"a cavity at least {2 * radius:.3g} mm wide for the "
+                             f"{spec.motor.name} ({spec.motor.diameter:g} mm and "
+                             f"{spec.clearance:g} mm clearance): a larger w")
     return float(z[ok[-1]])
 
 
@@ -107,7 +112,7 @@ def build_haptic(bladder: BladderSpec, spec: HapticSpec = HapticSpec(), *,
     m = spec.motor
     r_p = m.diameter / 2 + spec.clearance          # pocket radius
     r_s = r_p + spec.ring                           # ring's outside
-    z_top = _motor_top(bladder, r_p)
+    z_top = motor_top(bladder, spec)
     z_bot = z_top - m.height - 0.1
     raw = K.bladder(bladder)
     up = [0.0, 0.0, 1.0]

@@ -63,6 +63,10 @@ def run(args: argparse.Namespace) -> int:
         name += "-haptic"
     outdir = check_output_dir("--out", args.out if args.out is not None else f"build/{name}")
     spec = bladder_spec(geom, args.flange_holes, args.tube_id)
+    if args.haptic:
+        from spsc.cad.haptic import motor_top
+
+        motor_top(spec)  # the motor fits, or one line before anything is built
     for msg in geom.design_space_warnings():
         warn("bladder", msg)
 

@@ -53,6 +53,9 @@ OUT_OF_RANGE = {
     "flange-holes": ("3", "2.5", "-2", "1"),
     "tube-id": ("0", "-1", "1e9"),
     "angle": ("10", "100", "-45"),
+    "shrinkage": ("-1", "6"),
+    "clearance": ("0", "2"),
+    "wall": ("1", "100"),
     "pocket-diameter": ("0", "-1", "1e9"),
     "pocket-depth": ("0", "-1", "100"),
     "min-wall": ("0", "-1"),
@@ -214,6 +217,7 @@ def _bases(f: dict[str, Path], tmp: Path) -> dict[str, tuple[str, ...]]:
     bases = {
         "bladder": ("bladder", "--type", "B", "--out", out),
         "fingertip": ("fingertip", "--out", out),
+        "mold": ("mold", "--type", "B", "--out", out, "--no-step", "--no-render"),
         "check": ("check", str(f["stl"]), "--json", str(tmp / "check.json")),
         "membrane": ("membrane", "--type", "B"),
         "fem": ("fem", "--type", "B", "--quiet"),
@@ -357,6 +361,20 @@ def invalid_cases(tmp: Path) -> list[Case]:
               Case(fp + ("--design", str(f["bad.json"])), "a design file of bad JSON", "design"),
               Case(b["fem"] + ("--fix", "z<0"), "--fix without --part", "fix"),
               Case(b["fem"] + ("--plate-at", "0,0,1"), "--plate-at without --part", "plate-at")]
+    # mold
+    cases += _numbers(b["mold"], ("shrinkage", "clearance", "wall", "tube-id", "flange-holes")
+                      + GEOMETRY)
+    cases += _out_dirs(("mold", "--type", "B", "--no-step", "--no-render"), "--out", f)
+    cases += [Case(b["mold"] + ("--process", "injection"), "an unknown process", "process"),
+              Case(b["mold"] + ("--material", "pla"), "an unknown silicone", "material"),
+              Case(b["mold"] + ("--parting", "y"), "an unknown parting", "parting"),
+              Case(("mold", "--no-render"), "no part and no geometry", "geometry"),
+              Case(("mold", str(f["part.stl"]), "--no-render"), "a part that is no bladder",
+                   "part"),
+              Case(("mold", str(tmp / "none.stl"), "--no-render"), "a missing part", "part"),
+              Case(("mold", str(f["part.stl"]), "--type", "B"), "a part and a type", "part"),
+              Case(b["bladder"] + ("--haptic", "--w", "5", "--h", "5", "--t0", "0.5"),
+                   "a chamber too narrow for the motor", "haptic")]
     # fingertip
     cases += _numbers(b["fingertip"], ("angle", "pocket-diameter", "pocket-depth"))
     cases += [Case(b["fingertip"] + ("--mesh-size", "1"), "--mesh-size without --fem",

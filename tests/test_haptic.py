@@ -83,5 +83,5 @@ def test_bad_haptic_parameters(kw, name):
 
 
 def test_a_chamber_too_narrow_for_the_motor():
-    with pytest.raises(ParameterError, match="^geometry = "):
+    with pytest.raises(ParameterError, match="^haptic = .* for the FIT0774"):
         build_haptic(BladderSpec(preset("B", w=4.0, h=5.0)))
