@@ -54,7 +54,8 @@ def curves_figure(summary: dict, path) -> Path:
         for a in ax[:, j]:
             a.set_xlabel("plate travel y (mm)")
             a.grid(alpha=0.3)
-        ax[0, j].legend(fontsize=7)
+        if ax[0, j].get_legend_handles_labels()[0]:  # a site with no case has nothing to name
+            ax[0, j].legend(fontsize=7)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return Path(path)
