@@ -155,12 +155,12 @@ def build_haptic(bladder: BladderSpec, spec: HapticSpec = HapticSpec(), *,
     wire = K.union(legs)
     # the cavity less the support is cut from the body: the support's faces then never lie on
     # the cavity's (a union of touching solids leaves slivers)
-    cut = [K.cut(raw["cavity"], [support]), raw["bore"], wire]
+    gas = K.cut(raw["cavity"], [support])
+    cut = [gas, raw["bore"], wire]
     if raw["holes"] is not None:
         cut.append(raw["holes"])
     solid = K.cut(raw["body"], cut)
-    v_support = _support_volume(bladder, spec) if kernel != "mesh" else \
-        float(raw["cavity"].volume() - K.cut(raw["cavity"], [support]).volume())
+    v_support = K.volume(raw["cavity"]) - K.volume(gas)
     design = _design(bladder, spec, z_bot, z_top, p0, v_support)
     return Haptic(solid, (z_bot, z_top), design)
 
@@ -173,10 +173,6 @@ def _film_meets_wall(bladder, r_s, z_bot) -> float:
     r_wall = np.array([g.radius_at(float(zz)) for zz in z])
     hit = np.nonzero(r_film >= r_wall)[0]
     return float(r_film[hit[0]]) if len(hit) else float(r_wall[-1])
-
-
-def _support_volume(bladder, spec) -> float:
-    return build_haptic(bladder, spec, kernel="mesh").design["support_volume_mm3"]
 
 
 def _design(bladder, spec, z_bot, z_top, a, v_support) -> dict:

@@ -27,7 +27,7 @@ gate, STL, 3MF) and as an exact B-rep (STEP). Part coordinates, mm.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import manifold3d as m3
 import numpy as np
@@ -38,7 +38,8 @@ from .moldkernel import BrepKernel, MeshKernel, frame
 from .moldspec import MoldSpec
 from .specs import BladderSpec
 
-__all__ = ["Piece", "Mold", "build_mold", "pull_test", "UNDERCUT_TOL_MM2"]
+__all__ = ["Piece", "Mold", "build_mold", "pull_test", "pull_length", "bladder_bbox",
+           "UNDERCUT_TOL_MM2"]
 
 #: A half whose undercut (interference volume per mm of pull at the first 0.02 mm) is above this
 #: area (mm²) cannot be pulled: 0.5 mm² is a few triangles of a 0.004 mm-sag surface, far under
@@ -105,23 +106,18 @@ def build_mold(bladder: BladderSpec, spec: MoldSpec = MoldSpec(), *, kernel: str
     mold = z if best == "z" else x
     if kernel != "mesh":
         mold = _build(bladder, spec, kernel, best)
-    return _with_undercut(mold, found)
-
-
-def _with_undercut(mold: Mold, found: dict) -> Mold:
-    from dataclasses import replace
-
     return replace(mold, undercut=found)
 
 
 def _undercut(mold: Mold) -> dict:
     """Undercut area (mm²) of each half pulled from the part and core."""
     obstacles = mold.part + mold.piece("core").solid
-    return {p.name: pull_test(p.solid, p.pull, obstacles, _extent(mold))["undercut_mm2"]
+    return {p.name: pull_test(p.solid, p.pull, obstacles, pull_length(mold))["undercut_mm2"]
             for p in mold.pieces if p.role == "half"}
 
 
-def _extent(mold: Mold) -> float:
+def pull_length(mold: Mold) -> float:
+    """How far a piece is pulled in the pull test (mm): the mold block's diagonal."""
     lo, hi = np.asarray(mold.block.bounding_box()).reshape(2, 3)
     return float(np.linalg.norm(hi - lo))
 
@@ -141,7 +137,7 @@ def pull_test(solid: m3.Manifold, direction, obstacles: m3.Manifold, length: flo
             "collision_mm3": max(max(later), 0.0)}
 
 
-def _bbox(b: BladderSpec) -> tuple[np.ndarray, np.ndarray]:
+def bladder_bbox(b: BladderSpec) -> tuple[np.ndarray, np.ndarray]:
     """The bladder's bounding box (mm), from its parameters."""
     g, f, p = b.geometry, b.flange, b.port
     r_flange = widest_outer_radius(g) + f.width
@@ -153,7 +149,7 @@ def _bbox(b: BladderSpec) -> tuple[np.ndarray, np.ndarray]:
 def _build(bladder: BladderSpec, spec: MoldSpec, kernel: str, parting: str) -> Mold:
     K = {"mesh": MeshKernel, "brep": BrepKernel}[kernel]()
     k = spec.scale
-    g, f, p = bladder.geometry, bladder.flange, bladder.port
+    f, p = bladder.flange, bladder.port
     raw = K.bladder(bladder)
     body = K.scale(raw["body"], k)
     void = K.scale(K.union([raw["cavity"], raw["bore"]]), k)
@@ -162,7 +158,7 @@ def _build(bladder: BladderSpec, spec: MoldSpec, kernel: str, parting: str) -> M
     # what the halves are cut by: the part with its cavity and bore filled (the core's place),
     # never part and core one after the other, whose shared bore surface leaves slivers
     filled = K.cut(body, [holes]) if (holes is not None and parting == "z") else body
-    lo, hi = (a * k for a in _bbox(bladder))
+    lo, hi = (a * k for a in bladder_bbox(bladder))
     z_axis = bladder.port_axis_z * k
     y_tip = lo[1]
     side, wall = spec.side, spec.wall
@@ -298,7 +294,7 @@ def _channels(K, bladder, spec, parting, R, origin, blo, bhi) -> dict:
                        [K.prism(rings[1], spec.groove_depth + 1.0, R, origin)])
         c = spec.core_print
         corridor = K.box([-c / 2 - 1.0, blo[1] - 1.0, bladder.port_axis_z * k - c / 2 - 1.0],
-                         [c / 2 + 1.0, _bbox(bladder)[0][1] * k + 1.0,
+                         [c / 2 + 1.0, bladder_bbox(bladder)[0][1] * k + 1.0,
                           bladder.port_axis_z * k + c / 2 + 1.0])
         out["flash_groove"] = K.cut(groove, [corridor])
     return out

@@ -20,7 +20,7 @@ import numpy as np
 
 from .check import Check, check_mesh
 from .meshbuild import manifold_mesh
-from .mold import UNDERCUT_TOL_MM2, Mold, pull_test
+from .mold import UNDERCUT_TOL_MM2, Mold, bladder_bbox, pull_length, pull_test
 
 __all__ = ["MoldReport", "mold_gate", "VOLUME_RTOL", "OVERLAP_TOL_MM3"]
 
@@ -127,9 +127,7 @@ def _identities(mold: Mold) -> list[Check]:
     inside = float((core ^ (mold.part + mold.void)).volume()) / k3
     # analytic: the cavity (eq. 16) and the two bore cylinders inside the part; the bores'
     # overlap at the riser (< 0.4 mm³, 0.01 %) is left out
-    from .bladder import widest_outer_radius
-
-    y_tip = -(g.l / 2 + widest_outer_radius(g) + b.flange.width) - p.length
+    y_tip = float(bladder_bbox(b)[0][1])
     bore = np.pi * (p.bore / 2) ** 2 * ((-g.l / 2 - y_tip) - b.port_axis_z)
     expected = g.cavity_volume() + bore
     dc = (inside - expected) / expected
@@ -144,8 +142,7 @@ def _identities(mold: Mold) -> list[Check]:
 def _pull(mold: Mold, piece) -> Check:
     later = [q.solid for q in mold.pieces if q.order > piece.order]
     obstacles = m3.Manifold.batch_boolean([mold.part] + later, m3.OpType.Add)
-    lo, hi = np.asarray(mold.block.bounding_box()).reshape(2, 3)
-    r = pull_test(piece.solid, piece.pull, obstacles, float(np.linalg.norm(hi - lo)))
+    r = pull_test(piece.solid, piece.pull, obstacles, pull_length(mold))
     ok = r["undercut_mm2"] <= UNDERCUT_TOL_MM2 and r["collision_mm3"] <= COLLISION_TOL_MM3
     d = np.round(np.asarray(piece.pull, float), 3) + 0.0
     msg = (f"{piece.name} pulls along ({d[0]:g}, {d[1]:g}, {d[2]:g}): undercut "

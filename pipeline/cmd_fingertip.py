@@ -28,7 +28,7 @@ def register(sub) -> None:
                    "the paper's choice), fdm or molding")
     p.add_argument("--out", default="build/fingertip", help="output folder")
     p.add_argument("--no-check", action="store_true", help="skip the printability gate")
-    g = p.add_argument_group("FEM study (--fem; about 25 min per curve on 2 cores at 2 mm)")
+    g = p.add_argument_group("FEM study (--fem; 12-47 min per curve on 2 shared cores at 2 mm)")
     g.add_argument("--fem", action="store_true",
                    help="press the built fingertip on the pulp and the distal edge, high and low "
                    "mode, 10 and 40 kPa (3D FEM, Silicone 40A): curves, FSR pocket forces, the "

@@ -49,6 +49,7 @@ def register(sub) -> None:
 
 def _bladder(args):
     """The BladderSpec from the part's design file or the geometry options."""
+    from spsc.cad.checkdesign import design_path_for
     from spsc.cad.geometry import SPSCGeometry
 
     from .cmd_bladder import bladder_spec
@@ -58,9 +59,8 @@ def _bladder(args):
             raise ParameterError("part", args.part, "a part file or --type/the seven "
                                  "parameters, not both")
         path = Path(args.part)
-        design = path if path.name.endswith(".design.json") else path.with_suffix(
-            "").with_suffix(".design.json") if path.suffix.lower() in (".stl", ".3mf",
-                                                                        ".step") else path
+        mesh = path.suffix.lower() in (".stl", ".3mf", ".step")
+        design = design_path_for(path) if mesh else path
         if not design.is_file():
             raise ParameterError("part", args.part, "a bladder written by spsc bladder "
                                  "(NAME.design.json or the STL beside it)")

@@ -4,7 +4,6 @@ a sealed wire exit, printed in one piece with a pause; its gate and its geometry
 from functools import lru_cache
 
 import manifold3d as m3
-import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
