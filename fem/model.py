@@ -19,6 +19,7 @@ from spsc.membrane.materials import Material
 
 from .assembly import Discretisation, assemble, discretise
 from spsc.core.gaslaw import GasLaw
+from .insert import RigidInsert
 from .material import NearlyIncompressible
 from .mesh import TetMesh
 from .pressure import CavitySurface
@@ -46,7 +47,7 @@ class Evaluation:
     g: np.ndarray  # ∂V_part/∂u, flattened u dofs (mm²)
     c: float  # rank-one gas coefficient −dp/dV × symmetry (MPa/mm³), 0 without gas
     pressure: float  # gauge pressure (MPa)
-    volume: float  # full cavity volume (mm³)
+    volume: float  # full gas volume (mm³): the cavity less a rigid insert
 
 
 @dataclass(frozen=True, eq=False)
@@ -65,16 +66,20 @@ class FEMModel:
     gap: np.ndarray = field(repr=False, default=None)
     #: named contact surfaces: name -> their contact nodes (the force through each is reported)
     groups: dict = field(repr=False, default_factory=dict)
+    #: a rigid insert in the cavity (:mod:`spsc.fem.insert`), or None
+    insert: RigidInsert | None = field(repr=False, default=None)
 
     @classmethod
     def build(cls, mesh: TetMesh, material: Material, *, bulk_ratio: float = 2000.0,
               supports: dict | None = None, order: int = 2, clamped=None,
-              gap=None, groups: dict | None = None) -> "FEMModel":
+              gap=None, groups: dict | None = None,
+              insert: RigidInsert | None = None) -> "FEMModel":
         """``supports``: facet tag -> fixed displacement components (default: clamped base and
         the two symmetry planes of the quarter model); ``clamped``: node indices fixed in all
         three components (a part's mount); ``gap`` (per node, mm) and ``groups`` (name -> node
         indices): contact surfaces met by the plate through a rigid insert of that thickness,
-        whose forces are reported by name."""
+        whose forces are reported by name; ``insert``: a rigid insert in the cavity (its nodes
+        must be free)."""
         supports = CLAMPED_QUARTER if supports is None else supports
         law = NearlyIncompressible(material, bulk_ratio)
         disc = discretise(mesh.nodes, mesh.tets, order=order)
@@ -93,7 +98,15 @@ class FEMModel:
         slots = disc.pattern.slots_of(cavity.dofs)
         gap = np.zeros(len(mesh.nodes)) if gap is None else np.asarray(gap, float)
         groups = {k: np.intersect1d(v, contact) for k, v in (groups or {}).items()}
-        return cls(mesh, law, disc, cavity, fixed, contact, slots, gap, groups)
+        if insert is not None:
+            held = np.concatenate([insert.seat, insert.top])
+            if fixed[3 * held + 2].any():
+                raise ValueError(f"insert {insert.name}: a seat or top node is supported")
+            below = mesh.nodes[insert.top, 2] < insert.z_top - 1e-6
+            if below.any():
+                raise ValueError(f"insert {insert.name}: {int(below.sum())} top node(s) start "
+                                 f"below its face z = {insert.z_top:.4g} mm (inside it)")
+        return cls(mesh, law, disc, cavity, fixed, contact, slots, gap, groups, insert)
 
     @property
     def symmetry(self) -> int:
@@ -105,14 +118,19 @@ class FEMModel:
     def displacement(self, x) -> np.ndarray:
         return x[: self.disc.n_u].reshape(-1, 3)
 
+    @property
+    def displaced(self) -> float:
+        """Volume (mm³) the insert takes from the cavity's gas (0 without one)."""
+        return self.insert.volume if self.insert is not None else 0.0
+
     def volume(self, x) -> float:
-        """Full cavity volume (mm³) in state x."""
-        return self.cavity.volume(self.disc.X, self.displacement(x))
+        """Full gas volume (mm³) in state x: the cavity less the insert."""
+        return self.cavity.volume(self.disc.X, self.displacement(x)) - self.displaced
 
     def evaluate(self, x, load: Load, *, tangent: bool = True) -> Evaluation:
         d = self.disc
         u = self.displacement(x)
-        volume = self.cavity.volume(d.X, u)
+        volume = self.cavity.volume(d.X, u) - self.displaced
         if load.gas is not None:
             p = load.gas.pressure(volume)
             c = -load.gas.dpressure(volume) * self.symmetry

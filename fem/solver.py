@@ -23,6 +23,7 @@ import scipy.sparse as sp
 from .assembly import InvertedElement
 from .contact import contact_area, group_forces, plate_force, update_active_set
 from spsc.core.gaslaw import GasLaw
+from .insert import insert_constraints, insert_force, update_engaged
 from .linsolve import factorize, solve_rank_one
 from .model import FEMModel, Load
 
@@ -89,6 +90,8 @@ class Record:
     unstable_modes: int | None = None  # negative pivots beyond the pressure block (None: n/a)
     #: force (N) through each named contact surface of the model (e.g. an FSR pocket floor)
     group_forces: dict = field(default_factory=dict)
+    #: the rigid insert's force (N, ≥ 0: the wall above it pressed onto it; None: no insert)
+    insert_force: float | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -118,115 +121,189 @@ _log = logging.getLogger(__name__)
 class _Reduction:
     """Upper triangle of K restricted to the free unknowns, read straight from the data array
     of the full fixed-pattern CSR (no sparse slicing per iteration); rebuilt when the free set
-    changes (supports, contact active set)."""
+    changes (supports, contact active set). Aliased unknowns (``slaves``, each u_s = u_master
+    + a known jump: a rigid insert's constraints) are summed into the master's row and column,
+    PᵀKP, by a precomputed gather."""
 
-    def __init__(self, K, free):
+    def __init__(self, K, free, slaves=None, master=None):
         rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
         cols = K.indices
-        keep = free[rows] & free[cols] & (cols >= rows)
         new = np.cumsum(free) - 1
+        live = free
+        aliased = slaves is not None and len(slaves) > 0
+        if aliased:
+            new, live = new.copy(), free.copy()
+            new[slaves], live[slaves] = new[master], True
+        r_all, c_all = new[rows], new[cols]
+        keep = live[rows] & live[cols] & (r_all <= c_all)
         self.sel = np.nonzero(keep)[0]
-        r, c = new[rows[keep]], new[cols[keep]]
+        r, c = r_all[keep], c_all[keep]
         n = int(free.sum())
+        self.gather = None
+        if aliased:
+            key, self.gather = np.unique(r.astype(np.int64) * n + c, return_inverse=True)
+            r, c = key // n, key % n
         self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n))])
         self.indices = c.astype(np.int32)
         self.n = n
-        self.key = free.tobytes()
+        self.key = _key(free, slaves)
 
     def upper(self, K):
-        return sp.csr_matrix((K.data[self.sel], self.indices, self.indptr), shape=(self.n,) * 2)
+        data = K.data[self.sel]
+        if self.gather is not None:
+            data = np.bincount(self.gather, weights=data, minlength=len(self.indices))
+        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n,) * 2)
+
+
+def _key(free, slaves) -> bytes:
+    return free.tobytes() + (b"" if slaves is None else np.asarray(slaves).tobytes())
+
+
+@dataclass(frozen=True, eq=False)
+class _Constraints:
+    """The constraints of one Newton iteration: the plate's prescribed unknowns ``presc``
+    moving by ``jump``, and the insert's ``slaves`` following ``master`` plus ``sjump``."""
+
+    n: int
+    presc: np.ndarray
+    jump: np.ndarray
+    slaves: np.ndarray
+    sjump: np.ndarray
+    master: int
+
+    def shift(self) -> np.ndarray:
+        """The part of the step the constraints fix (full vector)."""
+        s = np.zeros(self.n)
+        s[self.presc] = self.jump
+        s[self.slaves] = self.sjump
+        return s
+
+    def condense(self, v) -> np.ndarray:
+        """Pᵀv in full numbering: the slaves' entries added to the master's, theirs zeroed."""
+        if not self.slaves.size:
+            return v
+        w = v.copy()
+        w[self.master] += v[self.slaves].sum()
+        w[self.slaves] = 0.0
+        return w
+
+    @property
+    def settled(self) -> bool:
+        return max(np.max(np.abs(self.jump), initial=0.0),
+                   np.max(np.abs(self.sjump), initial=0.0)) <= 1e-12
 
 
 class NewtonFailure(RuntimeError):
     pass
 
 
-def _linear_step(model, ev, reduction, free, presc, jump, settings):
-    """The Newton step on the free unknowns, K_ff Δx_f = −r_f − K_fc δ_c with the active
-    contact unknowns moved by ``jump`` (the gas's rank-one term by Sherman–Morrison): (step,
-    negative pivots of the factorised K_ff or None)."""
+def _linear_step(model, ev, reduction, free, con: _Constraints, settings):
+    """The Newton step on the free unknowns, PᵀKP Δy = −Pᵀ(r + K s) with s the constrained part
+    of the step (the plate's jump, the insert's) and P the aliasing of the insert's slaves (the
+    gas's rank-one term by Sherman–Morrison): (step, negative pivots of the factor or None)."""
     n_u, n = model.disc.n_u, model.disc.n
     factor = factorize(reduction.upper(ev.K), settings.solver, upper=True)
-    rhs = -ev.r[free]
-    if jump.size:
-        jump_full = np.zeros(n)
-        jump_full[presc] = jump
-        rhs -= (ev.K @ jump_full)[free]
+    s = con.shift()
+    moved = bool(np.any(s))
+    rhs = -ev.r - ev.K @ s if moved else -ev.r
+    rhs = con.condense(rhs)[free]
     if ev.c > 0.0:
         gf = np.zeros(n)
         gf[:n_u] = ev.g
-        if jump.size:
-            rhs -= ev.c * gf[free] * (gf[presc] @ jump)
-        dx = solve_rank_one(factor, ev.c, gf[free], rhs)
+        gc = con.condense(gf)[free]
+        if moved:
+            rhs -= ev.c * gc * (gf @ s)
+        dx = solve_rank_one(factor, ev.c, gc, rhs)
     else:
         dx = factor(rhs)
-    step = np.zeros(n)
-    step[free] = dx
-    step[presc] = jump
+    step = s
+    step[free] += dx
+    if con.slaves.size:
+        step[con.slaves] += step[con.master]
     return step, factor.negative
 
 
-def newton(model: FEMModel, x0, load: Load, settings: Settings, active=None):
+def newton(model: FEMModel, x0, load: Load, settings: Settings, active=None, engaged=None):
     """Solve r(x) = 0 from x0 for one load.
 
-    Returns (x, active nodes, iterations, evaluation, negative pivots of the last tangent or
-    None). Raises :class:`NewtonFailure` with the reason when it does not converge.
+    Returns (x, active plate nodes, iterations, evaluation, negative pivots of the last tangent
+    or None, engaged top nodes of the model's insert). Raises :class:`NewtonFailure` with the
+    reason when it does not converge.
     """
     x = x0.copy()
     X = model.disc.X
     active = np.zeros(0, int) if active is None or load.plate is None else np.asarray(active)
-    n_u = model.disc.n_u
+    insert = model.insert
+    engaged = np.zeros(0, int) if engaged is None or insert is None else np.asarray(engaged)
+    n_u, n = model.disc.n_u, model.disc.n
     fscale, negative, changes, reduction, factored = None, None, 0, None, None
     carried = None  # the full step's evaluation, tangent included, from the line search
     for it in range(1, settings.max_iterations + 1):
         # active nodes are prescribed at the plate; a pending jump to it enters the linear
         # solve (K_ff Δx_f = −r_f − K_fc δ_c) instead of moving those nodes alone, which
-        # would invert the elements under them
+        # would invert the elements under them; the insert's constraints likewise
         presc = 3 * active + 2
         jump = (load.plate - model.gap[active] - X[active, 2] - x[presc]) \
             if load.plate is not None else np.zeros(0)
+        slaves, sjump = insert_constraints(insert, X, x, engaged) if insert is not None \
+            else (np.zeros(0, int), np.zeros(0))
+        con = _Constraints(n, presc, jump, slaves, sjump,
+                           insert.master if insert is not None else -1)
         free = ~model.fixed
         free[presc] = False
+        free[slaves] = False
         ev = carried if carried is not None else model.evaluate(x, load)
         carried = None
         r = ev.r
         if not np.all(np.isfinite(r)):
             raise NewtonFailure("non-finite residual")
+        rc = con.condense(r)
         fscale = fscale or max(np.linalg.norm(ev.pressure * ev.g), 1e-6 * model.law.mu,
                                np.linalg.norm(r[:n_u][model.fixed[:n_u]]),
-                               np.linalg.norm(r[:n_u][free[:n_u]]))
-        res = np.linalg.norm(r[:n_u][free[:n_u]])
-        settled = jump.size == 0 or np.max(np.abs(jump)) <= 1e-12
+                               np.linalg.norm(rc[:n_u][free[:n_u]]))
+        res = np.linalg.norm(rc[:n_u][free[:n_u]])
+        settled = con.settled
         converged = res <= settings.rtol * fscale and it > 1 and settled
         near = converged or res <= settings.active_set_update * fscale
-        if load.plate is not None and settled and it > 1 and near:
-            new_active = update_active_set(model, x, r, load.plate, active,
-                                           settings.rtol * fscale, settings.contact_tolerance)
-            if new_active is not None:
+        if settled and it > 1 and near:
+            changed = False
+            if load.plate is not None:
+                new_active = update_active_set(model, x, r, load.plate, active,
+                                               settings.rtol * fscale,
+                                               settings.contact_tolerance)
+                if new_active is not None:
+                    active, changed = new_active, True
+            if insert is not None:
+                new_engaged = update_engaged(insert, X, x, r, engaged, settings.rtol * fscale,
+                                             settings.contact_tolerance)
+                if new_engaged is not None:
+                    engaged, changed = new_engaged, True
+            if changed:
                 changes += 1
                 if changes > 30:
                     raise NewtonFailure("contact active set does not settle")
-                active = new_active
                 carried = ev  # x is unchanged: its evaluation stands
                 continue
         if converged:
             # the inertia of the last factorised tangent: unknown if the active set changed since
-            return x, active, it, ev, negative if factored == free.tobytes() else None
-        reduction = reduction if reduction is not None and reduction.key == free.tobytes() \
-            else _Reduction(ev.K, free)
-        step, negative = _linear_step(model, ev, reduction, free, presc, jump, settings)
+            key = _key(free, slaves)
+            return (x, active, it, ev, negative if factored == key else None, engaged)
+        key = _key(free, slaves)
+        reduction = reduction if reduction is not None and reduction.key == key \
+            else _Reduction(ev.K, free, slaves, con.master)
+        step, negative = _linear_step(model, ev, reduction, free, con, settings)
         factored = reduction.key
         # with a pending jump the residual of the unconstrained state is no merit to descend
         # on: take the largest admissible step (no inverted element) instead
-        base = np.linalg.norm(r[free]) if settled else np.inf
-        alpha, carried = _line_search(model, x, step, free, load, base) \
+        base = np.linalg.norm(rc[free]) if settled else np.inf
+        alpha, carried = _line_search(model, x, step, free, load, base, con) \
             if settings.line_search else (1.0, None)
         x += alpha * step
     raise NewtonFailure(f"no convergence in {settings.max_iterations} iterations "
                         f"(residual {res:.3g} N against {settings.rtol * fscale:.3g} N)")
 
 
-def _line_search(model, x, step, free, load, base, trials=5):
+def _line_search(model, x, step, free, load, base, con, trials=5):
     """Backtracking on the residual norm: the first α = 1, ½, … that reduces it (Armijo-like),
     else the α with the smallest residual among admissible trials (1 if none is).
 
@@ -238,7 +315,7 @@ def _line_search(model, x, step, free, load, base, trials=5):
         xt = x + alpha * step
         try:
             ev = model.evaluate(xt, load, tangent=alpha == 1.0)
-            rt = np.linalg.norm(ev.r[free])
+            rt = np.linalg.norm(con.condense(ev.r)[free])
         except (np.linalg.LinAlgError, InvertedElement):
             ev, rt = None, np.inf
         if rt <= base * (1 - 1e-4 * alpha) or (np.isinf(base) and np.isfinite(rt)):
@@ -259,15 +336,18 @@ def _unstable_modes(model, negative, load) -> int | None:
     return max(extra, 0)
 
 
-def _record(model, step, kind, x, ev, load, active, it, settings, negative=None) -> Record:
+def _record(model, step, kind, x, ev, load, active, it, settings, negative=None,
+            engaged=()) -> Record:
     force, area = 0.0, 0.0
     groups = dict.fromkeys(model.groups, 0.0)
     if load.plate is not None and active.size:
         force = plate_force(model, ev.r, active)
         area = contact_area(model, x, load.plate)
         groups = group_forces(model, ev.r, active)
+    held = insert_force(model.insert, ev.r, engaged) * model.symmetry \
+        if model.insert is not None else None
     return Record(step, kind, x.copy(), ev.pressure, ev.volume, load.plate, force, area, it,
-                  _unstable_modes(model, negative, load), groups)
+                  _unstable_modes(model, negative, load), groups, held)
 
 
 def _load_path(model, x, load, step):
@@ -316,9 +396,10 @@ def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=
     t_start = time.perf_counter()
     x = model.zero_state()
     ev = model.evaluate(x, Load(), tangent=False)
-    records = [Record(-1, "start", x.copy(), 0.0, ev.volume, None, 0.0, 0.0, 0)]
+    records = [Record(-1, "start", x.copy(), 0.0, ev.volume, None, 0.0, 0.0, 0,
+                      insert_force=0.0 if model.insert is not None else None)]
     load = Load()
-    active = np.zeros(0, int)
+    active, engaged = np.zeros(0, int), np.zeros(0, int)
     total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
     done, last_force, instability = 0, 0.0, ""
     for k, step in enumerate(steps):
@@ -335,7 +416,8 @@ def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=
             t_new = min(t + dt, targets[ti])
             trial = load_at(t_new)
             try:
-                x_new, act_new, it, ev, negative = newton(model, x, trial, settings, active)
+                x_new, act_new, it, ev, negative, eng_new = newton(model, x, trial, settings,
+                                                                   active, engaged)
             except (NewtonFailure, np.linalg.LinAlgError, ValueError) as exc:
                 _log.debug("cut %s t=%.4g dt=%.3g: %s", kind, t_new, dt, exc)
                 dt *= 0.5
@@ -344,10 +426,11 @@ def solve(model: FEMModel, steps, *, settings: Settings | None = None, progress=
                     return Result(records, False, msg, instability or stall,
                                   time.perf_counter() - t_start)
                 continue
-            x, active, t, load = x_new, act_new, t_new, trial
+            x, active, engaged, t, load = x_new, act_new, eng_new, t_new, trial
             dt = min(nominal, 2 * dt)
             if math.isclose(t, targets[ti], rel_tol=1e-12, abs_tol=1e-14):
-                rec = _record(model, k, kind, x, ev, load, active, it, settings, negative)
+                rec = _record(model, k, kind, x, ev, load, active, it, settings, negative,
+                              engaged)
                 if _unstable(rec, kind, t, step):
                     # an unstable equilibrium is not a result: stop before it (DESIGN.md)
                     instability = _unstable(rec, kind, t, step)
