@@ -9,6 +9,11 @@ mesh is turned by the rotation taking ``plate_normal`` to (0, 0, −1) and the r
 Named contact surfaces (``contacts``): disc-shaped patches of the outer surface (e.g. FSR pocket
 floors, by centre, outward normal and radius) met by the plate through a rigid insert of a given
 thickness (the sensor); the force through each is reported per point.
+
+A motor (``motor=True``, the design file's ``motor``: a haptic chamber's coin ERM) is a rigid
+insert (:mod:`spsc.fem.insert`): seated on the cavity's nodes on its ledge, met from above by
+the dome's inner nodes over its footprint, its volume taken off the gas; its force is reported
+per point (``force_motor_N``).
 """
 
 from __future__ import annotations
@@ -25,6 +30,7 @@ from spsc.core.curve import Curve, SolveInfo
 from spsc.core.errors import ParameterError, require
 from spsc.membrane.materials import Material
 
+from .insert import RigidInsert
 from .mesh import MESH_VERSION, TetMesh
 from .model import FEMModel
 from .part import PartSurface, load_part, part_mesh
@@ -77,6 +83,7 @@ class PartRun:
     bulk_ratio: float = 2000.0
     design: dict | None = field(default=None, compare=False)
     contacts: tuple = ()
+    motor: bool = False
 
     def __post_init__(self):
         require("pressure", self.pressure_kPa, ge=0, le=500, unit="kPa gauge")
@@ -99,6 +106,14 @@ class PartRun:
                 raise ParameterError("plate-at", self.plate_at, "three numbers x,y,z (mm)")
             object.__setattr__(self, "plate_at", tuple(float(v) for v in a))
         parse_selector(self.fix)
+        if self.motor:
+            if not (self.design or {}).get("motor"):
+                raise ParameterError("motor", True, "a part whose design file names a motor "
+                                     "(spsc bladder --haptic writes one)")
+            if not np.allclose(self.plate_normal, (0.0, 0.0, -1.0), atol=1e-9):
+                raise ParameterError("plate-normal", self.plate_normal,
+                                     "0,0,-1 with --motor (the motor translates along its own "
+                                     "axis, z: a press along it)")
 
     def steps(self) -> list:
         out = []
@@ -219,6 +234,26 @@ def drop_clamped(mesh: TetMesh, clamped) -> tuple[TetMesh, np.ndarray]:
     return out, np.flatnonzero(clamped[used])
 
 
+def motor_insert(run: PartRun, mesh: TetMesh, tol: float) -> RigidInsert:
+    """The design's motor as a rigid insert of ``mesh`` (part frame = press frame, z up): seat
+    = cavity nodes on the ledge plane z_bottom under its footprint, top = cavity nodes over its
+    footprint above its top face (bottom + height: the print leaves a gap to the dome)."""
+    m = run.design["motor"]
+    radius, height = float(m["diameter_mm"]) / 2, float(m["height_mm"])
+    z0 = float(m["z_bottom_mm"])
+    cav = mesh.nodes_on("cavity")
+    X = mesh.nodes[cav]
+    rho = np.hypot(X[:, 0], X[:, 1])
+    over = rho <= radius + tol
+    seat = cav[over & (np.abs(X[:, 2] - z0) <= tol)]
+    top = cav[over & (X[:, 2] >= z0 + height)]
+    if seat.size == 0 or top.size == 0:
+        raise ParameterError("motor", m.get("name", "motor"), "a motor whose ledge and dome "
+                             f"are in the part (no cavity node on the ledge z = {z0:.4g} mm "
+                             f"or over its top within r = {radius:.3g} mm)")
+    return RigidInsert("motor", seat, top, z0, height, math.pi * radius ** 2 * height)
+
+
 def check_part_run(run: PartRun, surface: PartSurface) -> None:
     """The checks of a run against its part's surface, before any meshing (milliseconds):
     the selector takes some of the part and leaves some free, the plate meets the free part
@@ -258,8 +293,9 @@ def part_model(run: PartRun, *, cache_dir=None, surface: PartSurface | None = No
         gap[on] = patch.thickness
         groups[patch.name] = on
     turned = TetMesh(mesh.nodes @ R.T, mesh.tets, mesh.facets, 1)
+    insert = motor_insert(run, turned, tol) if run.motor else None
     model = FEMModel.build(turned, run.material, bulk_ratio=run.bulk_ratio, supports={},
-                           clamped=clamped, gap=gap, groups=groups)
+                           clamped=clamped, gap=gap, groups=groups, insert=insert)
     return model, R, surface
 
 
@@ -283,7 +319,8 @@ def part_curve(run: PartRun, model: FEMModel, result: Result, surface: PartSurfa
     n = int(run.points)
     y = np.linspace(0.0, run.stroke_mm, n)
     F, P, A, dV = (np.full(n, np.nan) for _ in range(4))
-    series = {f"force_{name}_N": np.full(n, np.nan) for name in model.groups}
+    names = list(model.groups) + ([model.insert.name] if model.insert is not None else [])
+    series = {f"force_{name}_N": np.full(n, np.nan) for name in names}
     conv = np.zeros(n, bool)
     msg = [""] * n
     if run.pressure_kPa == 0 or len(result.of("inflate")) == run.inflate_increments:
@@ -295,6 +332,8 @@ def part_curve(run: PartRun, model: FEMModel, result: Result, surface: PartSurfa
         dV[k] = inflated.volume - rec.volume
         for name, f in rec.group_forces.items():
             series[f"force_{name}_N"][k] = f
+        if model.insert is not None:
+            series[f"force_{model.insert.name}_N"][k] = rec.insert_force
         conv[k] = True
     for k in range(len(presses) + 1, n):
         msg[k] = result.message
@@ -309,6 +348,11 @@ def part_curve(run: PartRun, model: FEMModel, result: Result, surface: PartSurfa
                           "radius": c.radius, "insert_mm": c.thickness,
                           "nodes": int(len(model.groups.get(c.name, ())))}
                          for c in run.contacts]}
+    if model.insert is not None:
+        ins = model.insert
+        part["motor"] = {"name": run.design["motor"].get("name"), "volume_mm3": ins.volume,
+                         "seat_nodes": int(ins.seat.size), "top_nodes": int(ins.top.size),
+                         "z_bottom_mm": ins.z_bottom, "height_mm": ins.height}
     setup = {"p_i_kPa": run.pressure_kPa, "reservoir_mm3": run.reservoir_mm3,
              "polytropic_n": run.polytropic_index, "mesh_size_mm": run.mesh_size_mm,
              "dofs": model.disc.n, "model_part": "full", "part": part}
@@ -351,5 +395,10 @@ def write_part_vtu(model: FEMModel, result: Result, R, directory) -> list[Path]:
         grid.field_data["plate_normal"] = R[2] * -1.0
         for name, f in rec.group_forces.items():
             grid.field_data[f"force_{name}_N"] = np.array([f])
+        if model.insert is not None:
+            mark = np.zeros(len(X))
+            mark[model.insert.seat], mark[model.insert.top] = 1.0, 2.0
+            grid.point_data["motor_seat1_top2"] = mark
+            grid.field_data["force_motor_N"] = np.array([rec.insert_force])
         grid.save(path)
     return paths

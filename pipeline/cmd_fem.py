@@ -5,7 +5,8 @@ of one chamber, one setup — the membrane's JSON; or, with ``--part``, of any c
              [--material tpu60a] [--mesh-size 1.0] [--layers 2] [--full] [--solver auto]
              [--json F] [--csv F] [--png F] [--vtu DIR] [--quiet]
     spsc fem --part FILE.stl|.3mf|.step [--design FILE.design.json] [--fix "z<=0"]
-             [--plate-normal 0,0,-1] [--plate-at X,Y,Z|SITE] [setup and outputs as above]
+             [--plate-normal 0,0,-1] [--plate-at X,Y,Z|SITE] [--motor]
+             [setup and outputs as above]
 
 Chamber: quarter model of the wall (clamped on z = 0, symmetry planes x = 0, y = 0), P2/P1
 mixed tetrahedra, follower cavity pressure, closed gas volume with reservoir after inflation,
@@ -18,6 +19,9 @@ part (``--plate-at`` checks that point, or names a site of the design file: ``ap
 ``distal``). A design file ``STEM.design.json`` beside the part is read when ``--design`` is not
 given: it plugs the inlet bore, names the mount, the sites and the FSR pockets, whose forces
 (the plate pressing the sensor in each pocket) are written as ``force_<pocket>_N`` columns.
+``--motor`` holds the design's motor (a haptic chamber's, ``spsc bladder --haptic``) as a rigid
+insert: seated on its ledge, met by the dome above it, its volume taken off the gas; its force
+is the ``force_motor_N`` column.
 
 Pressures kPa gauge, volumes mm³, lengths mm. Exit 0 when every point converged, 1 when not
 (what converged is written), 2 on invalid input.
@@ -37,7 +41,7 @@ from .cmd_curve import add_curve_parser, plot, run as run_curve, summary
 from .options import PARAMS, PLOT_SUFFIXES, check_output_dir, check_output_file
 
 #: the options that belong to one mode only
-_PART_ONLY = ("design", "fix", "plate_normal", "plate_at")
+_PART_ONLY = ("design", "fix", "plate_normal", "plate_at", "motor")
 _CHAMBER_ONLY = ("type", "layers", "full") + tuple(PARAMS)
 
 
@@ -58,6 +62,9 @@ def register(subparsers) -> None:
     g.add_argument("--plate-normal", metavar="NX,NY,NZ", default=None,
                    type=_vector("plate-normal"),
                    help="the plate's direction of travel (default 0,0,-1, or the site's)")
+    g.add_argument("--motor", action="store_true", default=None,
+                   help="hold the design file's motor as a rigid insert (haptic chamber: seated "
+                   "on its ledge, met by the dome; its volume off the gas; force_motor_N)")
     g.add_argument("--plate-at", metavar="X,Y,Z|SITE", default=None,
                    help="the point the plate first touches, or a site of the design file")
     p.set_defaults(func=run)
@@ -167,7 +174,8 @@ def part_run_from_args(args):
                    plate_normal=normal if normal is not None else (0.0, 0.0, -1.0),
                    plate_at=at, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
                    stroke_mm=stroke, points=points, mesh_size_mm=mesh_size,
-                   polytropic_index=args.polytropic_n, design=design, contacts=contacts)
+                   polytropic_index=args.polytropic_n, design=design, contacts=contacts,
+                   motor=bool(args.motor))
 
 
 def _estimate(run, surface) -> dict:
@@ -234,7 +242,7 @@ def run_part_cli(args) -> int:
     if curve.series:
         last = int(np.flatnonzero(curve.converged)[-1]) if curve.converged.any() else 0
         forces = ", ".join(f"{k[6:-2]} {v[last]:.3g}" for k, v in curve.series.items())
-        print(f"pocket forces at y = {curve.y_mm[last]:.3g} mm (N): {forces}")
+        print(f"contact forces at y = {curve.y_mm[last]:.3g} mm (N): {forces}")
     info = curve.solver
     if info.instability:
         print(f"spsc {verb}: instability: {info.instability}", file=sys.stderr)

@@ -16,7 +16,7 @@ from spsc.core.errors import ParameterError
 from spsc.fem.mesh import TetMesh
 from spsc.fem.model import Load
 from spsc.fem.part import part_mesh, part_surface
-from spsc.fem.part_run import ContactPatch, PartRun, part_model, press_rotation
+from spsc.fem.part_run import ContactPatch, PartRun, part_curve, part_model, press_rotation
 from spsc.fem.pressure import CavitySurface
 from spsc.fem.selector import parse_selector
 from spsc.fem.solver import Settings, solve
@@ -140,6 +140,49 @@ def test_plate_force_balances_the_mount_reactions(dome_part, tmp_path):
     assert_allclose(last.force, reaction, rtol=1e-5)
 
 
+MOTOR = {"motor": {"name": "coin", "diameter_mm": 6.0, "height_mm": 4.6, "z_bottom_mm": 0.0}}
+
+
+def test_a_motor_in_the_dome_is_met_by_the_wall_and_balances(dome_part, tmp_path):
+    """A rigid coin (Ø6 × 4.6 mm) standing on the dome's free cavity floor, 0.6–1.4 mm under
+    the inner dome: pressed 2 mm, the dome comes down onto it; its force is zero before and
+    positive after, never more than the plate's; the plate force still equals the mount's
+    reaction (the motor's push on dome and floor is an internal pair); the part is stiffer
+    than without it; the gas is the cavity less the coin."""
+    s, mesh = dome_part
+    curves = {}
+    for motor in (False, True):
+        run = PartRun(str(tmp_path / "dome.stl"), MAT, "z<=-0.5", mesh_size_mm=SIZE,
+                      pressure_kPa=10.0, stroke_mm=2.0, points=5, design=MOTOR, motor=motor)
+        model, R, _ = part_model(run, surface=s, mesh=mesh)
+        res = solve(model, run.steps(), settings=Settings())
+        assert res.converged, res.message
+        curves[motor] = (part_curve(run, model, res, s), model, res)
+    curve, model, res = curves[True]
+    held = curve.series["force_motor_N"]
+    assert held[1] == 0.0 and held[-1] > 0.5, held
+    assert np.all(held <= curve.force_N + 1e-9)
+    assert curve.force_N[-1] > curves[False][0].force_N[-1] + 0.5 * held[-1]
+    assert_allclose(model.insert.volume, math.pi * 9.0 * 4.6, rtol=1e-12)
+    assert_allclose(curve.nominal_volume_mm3, curves[False][0].nominal_volume_mm3
+                    - model.insert.volume, rtol=1e-12)
+    last = res.records[-1]
+    r = model.evaluate(last.x, Load(pressure=last.pressure), tangent=False).r
+    fixed_z = model.fixed[: model.disc.n_u].reshape(-1, 3)[:, 2]
+    reaction = r[: model.disc.n_u].reshape(-1, 3)[fixed_z, 2].sum()
+    # the identity holds to the Newton tolerance, as without the motor
+    assert_allclose(last.force, reaction, rtol=1e-5)
+
+
+def test_a_motor_needs_its_design_and_an_axial_press(tmp_path):
+    with pytest.raises(ParameterError, match="motor = True is invalid: allowed a part whose "
+                       "design file names a motor"):
+        PartRun(str(tmp_path / "dome.stl"), MAT, "z<=0", motor=True)
+    with pytest.raises(ParameterError, match="plate-normal = .* allowed 0,0,-1 with --motor"):
+        PartRun(str(tmp_path / "dome.stl"), MAT, "z<=0", plate_normal=(1.0, 0.0, 0.0),
+                design=MOTOR, motor=True)
+
+
 def test_a_turned_part_pressed_along_its_turned_axis_gives_the_same_curve(dome_part, tmp_path):
     s, mesh = dome_part
     q = np.array([[1.0, 0, 0], [0, 0, -1.0], [0, 1.0, 0]])  # +90° about x: z -> y, base -> y >= 0
@@ -250,6 +293,10 @@ def test_part_errors_of_the_file(capsys, tmp_path, dome_stl):
     _fails(capsys, ["fem", "--part", dome_stl], "fix = None is invalid: allowed a selector")
     _fails(capsys, ["fem", "--type", "B", "--fix", "z<0"], "--fix = 'z<0' is invalid: allowed "
            "only with --part")
+    _fails(capsys, ["fem", "--type", "B", "--motor"], "--motor = True is invalid: allowed "
+           "only with --part")
+    _fails(capsys, ["fem", "--part", dome_stl, "--fix", "z<0", "--motor"],
+           "motor = True is invalid: allowed a part whose design file names a motor")
     txt = tmp_path / "part.obj"
     txt.write_text("v 0 0 0\n")
     _fails(capsys, ["fem", "--part", str(txt), "--fix", "z<0"], "an .stl, .3mf, .step or .stp")
