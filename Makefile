@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem gate test test-slow bench bench-mold bench-compare bench-wall bench-material bench-sweep clean
+.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem gate test test-slow bench bench-mold bench-compare bench-wall bench-material bench-sweep clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -22,6 +22,7 @@ help:
 	@echo "make mold TYPE=A|B|C|D [PROCESS=casting|compression]           -> build/mold-TYPE/"
 	@echo "make fingertip                                                   -> build/fingertip/"
 	@echo "make fingertip-fem [FT_MESH=2]                                 -> build/fingertip/fem/"
+	@echo "make haptic-fem                                                -> build/haptic-fem/ (the motor's cost)"
 	@echo "make test | make test-slow | make gate | make bench | make report [QUICK=1]"
 
 $(STAMP): pyproject.toml
@@ -50,6 +51,11 @@ fingertip: $(STAMP)
 FT_MESH ?= 2
 fingertip-fem: $(STAMP)
 	$(BIN)/spsc fingertip --fem --mesh-size $(FT_MESH) --out build/fingertip
+
+# the haptic chamber's cost: Type D, the haptic chamber without and with its motor (part FEM,
+# three curves, about 20 min; reused when they exist)
+haptic-fem: $(STAMP)
+	$(BIN)/python -m spsc.pipeline.haptic_study --out build/haptic-fem
 
 # the printability gate on every preset and the mold gate on every type (run by CI)
 gate: $(STAMP)

@@ -5,13 +5,16 @@ re-joined by hand.
 Inside the cavity, under the dome: a **pocket** (a ring around the motor, a ledge under its rim)
 carried by a conical **support film** 0.8 mm thick (the paper's TPU 60A film, here printed with
 the part) that runs down at 45° to the wall, self-supporting on an FDM printer, with windows so
-the gas on both sides is one volume. The print is paused when it reaches the motor's top
-(``design["print"]["pause_at_mm"]``): the dome's opening there is the motor's diameter plus the
-clearance, the motor is dropped into the pocket with its leads through the ledge's hole and the
-**wire exit** (a straight channel from the cavity floor under the pocket out through the flange,
-opposite the inlet), and the print resumes onto the motor's top, which carries the first layers
-of the dome. The channel's outer end is a funnel for the sealant (silicone or CA) that closes it
-around the leads; the gate caps it as it caps the inlet.
+the gas on both sides is one volume. Over the pocket the dome is solid down to a flat
+**ceiling** at the motor's top (a cap filling the dome's crown inside the pocket's radius), so the
+motor is held between ledge and ceiling without play, against the inner top surface as in the
+paper. The print is paused when it reaches the motor's top (``design["print"]["pause_at_mm"]``):
+the dome's opening there is the motor's diameter plus the clearance, the motor is dropped into
+the pocket with its leads through the ledge's hole and the **wire exit** (a channel from the
+cavity floor under the pocket out through the flange, opposite the inlet), and the print
+resumes onto the motor's flat top, which carries the ceiling's first layer. The channel's
+outer end is a funnel for the sealant (silicone or CA) that closes it around the leads; the
+gate caps it as it caps the inlet.
 
 The motor: DFRobot FIT0774 coin ERM, Ø10 mm × 2.7 mm (DFRobot product page, SKU FIT0774; the
 same figures in the public bills of materials that use it), 1.5–4.2 V.
@@ -113,7 +116,7 @@ def build_haptic(bladder: BladderSpec, spec: HapticSpec = HapticSpec(), *,
     r_p = m.diameter / 2 + spec.clearance          # pocket radius
     r_s = r_p + spec.ring                           # ring's outside
     z_top = motor_top(bladder, spec)
-    z_bot = z_top - m.height - 0.1
+    z_bot = z_top - m.height
     raw = K.bladder(bladder)
     up = [0.0, 0.0, 1.0]
     reach = widest_outer_radius(g) + g.l + 5.0      # far enough to cross the wall
@@ -124,7 +127,8 @@ def build_haptic(bladder: BladderSpec, spec: HapticSpec = HapticSpec(), *,
                  [K.cylinder(r_p, z_top + 6.0 - z_bot, [0, 0, z_bot], up)])
     cone = K.cylinder(r_s + reach, reach, [0, 0, z_bot - reach], up, r_top=r_s)
     lower = K.cylinder(r_s + reach, reach, [0, 0, z_bot - reach - drop], up, r_top=r_s)
-    seat = K.cylinder(m.diameter / 2 - spec.ledge, 10.0, [0, 0, z_bot - 5.0], up)
+    # the hole in the ledge for the leads: through the ledge, not up into the ceiling
+    seat = K.cylinder(m.diameter / 2 - spec.ledge, 5.0 + m.height / 2, [0, 0, z_bot - 5.0], up)
     cuts = [lower, seat]
     r_meet = _film_meets_wall(bladder, r_s, z_bot)
     r_w = (r_s + r_meet) / 2                        # gas windows half way down the film
@@ -133,7 +137,11 @@ def build_haptic(bladder: BladderSpec, spec: HapticSpec = HapticSpec(), *,
         a = 2 * math.pi * (k + 0.5) / spec.windows
         d = [math.cos(a), math.sin(a), 0.0]
         cuts.append(K.cylinder(spec.window / 2, reach, [r_s * d[0], r_s * d[1], z_w], d))
-    support = K.cut(K.union([ring, cone]), cuts)
+    # the ceiling: the crown of the dome inside the pocket's radius is solid down to the
+    # motor's top (above it the cavity is narrower than the pocket in x; a stadium's straight
+    # part beyond the ring stays gas)
+    cap = K.cylinder(r_p, 10.0, [0, 0, z_top], up)
+    support = K.cut(K.union([ring, cone, cap]), cuts)
     # the wire exit: down from the floor under the pocket, two 45° turns, then level through
     # the flange's middle to its +y edge, ending in a funnel for the sealant
     r_flange = widest_outer_radius(g) + f.width

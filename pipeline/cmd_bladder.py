@@ -98,8 +98,8 @@ def run(args: argparse.Namespace) -> int:
         mo = design["motor"]
         print(f"  motor {mo['name']} ({mo['diameter_mm']:g} x {mo['height_mm']:g} mm) at "
               f"z = {mo['z_bottom_mm']:.2f}-{mo['z_top_mm']:.2f} mm: pause the print at "
-              f"z = {design['print']['pause_at_mm']:.2f} mm to insert it; support film "
-              f"{design['support_volume_mm3']:.0f} mm³")
+              f"z = {design['print']['pause_at_mm']:.2f} mm to insert it; its support (film, "
+              f"ring, ceiling) {design['support_volume_mm3']:.0f} mm³")
     for kind in ("step", "stl", "3mf"):
         print(f"  {written['paths'][kind]}")
     if args.no_check:

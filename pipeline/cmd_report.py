@@ -58,6 +58,9 @@ def register(subparsers) -> None:
     p.add_argument("--fingertip", metavar="DIR", default=None,
                    help="the fingertip FEM study to show (spsc fingertip --fem's OUT/fem; "
                    "default build/fingertip/fem when it exists)")
+    p.add_argument("--haptic", metavar="DIR", default=None,
+                   help="the haptic chamber's study to show (make haptic-fem's "
+                   "build/haptic-fem, the default when it exists)")
     p.add_argument("--types", help="subset of the types, e.g. BD (default ABCD)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     d = p.add_argument_group("where the runs are computed (Dask; no cluster is started when "
@@ -101,6 +104,9 @@ def run(args) -> int:
     if args.fingertip is not None and not (Path(args.fingertip) / "summary.json").is_file():
         raise ParameterError("fingertip", args.fingertip, "a folder holding a fingertip study's "
                              "summary.json (spsc fingertip --fem --out DIR writes DIR/fem)")
+    if args.haptic is not None and not (Path(args.haptic) / "summary.json").is_file():
+        raise ParameterError("haptic", args.haptic, "a folder holding the haptic chamber's "
+                             "study summary.json (make haptic-fem writes build/haptic-fem)")
     study = quick_study() if args.quick else full_study()
     if args.no_fem:
         study = study.replace(fem=False)
@@ -125,7 +131,7 @@ def run(args) -> int:
                         fig_cache=cache.root / "figures", source=source,
                         wall_seconds=time.perf_counter() - t0, bench=bench,
                         executor=executor, sweep=sweep, fingertip=_fingertip(args),
-                        molds=tuple(study.types))
+                        molds=tuple(study.types), haptic=_haptic(args))
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
@@ -137,6 +143,12 @@ def run(args) -> int:
         print(f"spsc report: failed runs: {', '.join(failed)}", file=sys.stderr)
         return 1
     return 0
+
+
+def _haptic(args):
+    from .report_haptic import DEFAULT_DIR
+
+    return DEFAULT_DIR if args.haptic is None else args.haptic
 
 
 def _fingertip(args):

@@ -22,6 +22,7 @@ from .paper_bench import paper_bench
 from .provenance import Provenance, provenance, versions
 from .render import render_page
 from .report_fingertip import fingertip_section
+from .report_haptic import haptic_section
 from .report_mold import mold_section
 from .report_sweep import sweep_section
 from .render_sections import (FigureOutput, Results, comparison_section, convergence_section,
@@ -34,7 +35,7 @@ __all__ = ["build_report", "write_run_data"]
 def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
                  wall_seconds: float | None = None, render: bool = True, fig_cache=None,
                  source: Provenance | None = None, bench=None, executor: str = "",
-                 sweep=None, fingertip=None, molds=()) -> Path:
+                 sweep=None, fingertip=None, molds=(), haptic=None) -> Path:
     """Write ``out_dir/index.html`` with ``figures/``, ``data/`` and ``summary.json`` beside
     it; returns the HTML path. ``outcomes`` is :func:`~.runner.run_all`'s result;
     ``fig_cache``: a directory where figures are kept by a hash of what they show (None:
@@ -47,10 +48,11 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
     page is written into ``out_dir/sweep/`` and linked (None: no such section);
     ``fingertip``: the folder of a fingertip FEM study (:mod:`.report_fingertip`; None or no
     study there: the section says how to make it); ``molds``: the types whose mold is built,
-    gated and rendered (:mod:`.report_mold`; empty: no such section)."""
+    gated and rendered (:mod:`.report_mold`; empty: no such section); ``haptic``: the folder
+    of the haptic chamber's study (:mod:`.report_haptic`; as ``fingertip``)."""
     out = Path(out_dir)
     figs, data = out / "figures", out / "data"
-    for d in (figs, data, out / "sweep", out / "mold"):
+    for d in (figs, data, out / "sweep", out / "mold", out / "haptic"):
         if d.exists():
             shutil.rmtree(d)
     for d in (figs, data):
@@ -72,7 +74,8 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
            "bench": bench_section(bench, study, figs) if bench is not None else None,
            "sweep": sweep_section(*sweep, out, study) if sweep is not None else None,
            "fingertip": fingertip_section(fingertip, out) if fingertip is not None else None,
-           "mold": mold_section(out, molds, render=render) if molds else None}
+           "mold": mold_section(out, molds, render=render) if molds else None,
+           "haptic": haptic_section(haptic, out) if haptic is not None else None}
     write_json(out / "summary.json", _summary(ctx))
     path = out / "index.html"
     path.write_text(render_page(ctx), encoding="utf-8")
@@ -101,6 +104,7 @@ def _summary(ctx: dict) -> dict:
             "sweep": ctx["sweep"],
             "fingertip": ctx["fingertip"],
             "mold": ctx["mold"],
+            "haptic": ctx["haptic"],
             "versions": ctx["versions"]}
 
 

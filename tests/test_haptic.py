@@ -55,12 +55,25 @@ def test_windows_are_handles():
     assert _haptic().solid.genus() == 9
 
 
-def test_the_motor_fits_and_touches_the_top():
+def test_the_motor_fits_and_is_held_without_play():
+    """The motor fills the pocket's height exactly: in place it cuts nothing; lifted 0.05 mm its
+    whole top face goes into the flat ceiling (π r² × 0.05), lowered 0.05 mm its rim goes into
+    the ledge (π (r² − r_seat²) × 0.05); sideways it has the ring's clearance."""
+    import math
+
     h = _haptic()
     motor = _motor(h)
-    # in the pocket without cutting the part, its top rim within the clearance of the dome
+    r, r_seat = FIT0774.diameter / 2, FIT0774.diameter / 2 - HapticSpec().ledge
     assert (motor ^ h.solid).volume() < 1e-6
-    assert motor.min_gap(h.solid, 1.0) <= HapticSpec().clearance + 0.05
+    assert h.motor_z[1] - h.motor_z[0] == pytest.approx(FIT0774.height, abs=1e-12)
+    up = (motor.translate([0, 0, 0.05]) ^ h.solid).volume()
+    down = (motor.translate([0, 0, -0.05]) ^ h.solid).volume()
+    # the 256-gon motor's area is 0.01 % short of the circle's; the ledge's hole is the mesh
+    # kernel's coarser polygon, whose area is a few 0.1 % short of its circle's (measured:
+    # the annulus 0.12 % large)
+    assert_allclose(up, math.pi * r**2 * 0.05, rtol=1e-3)
+    assert_allclose(down, math.pi * (r**2 - r_seat**2) * 0.05, rtol=3e-3)
+    assert (motor.translate([HapticSpec().clearance - 0.02, 0, 0]) ^ h.solid).volume() < 1e-6
     # it goes in from above at the pause: the dome's opening there is the pocket's width
     g = D.geometry
     assert g.radius_at(h.design["print"]["pause_at_mm"]) >= FIT0774.diameter / 2

@@ -340,6 +340,37 @@ def test_a_fingertip_study_gets_its_own_section(tmp_path):
     assert "make fingertip-fem" in none
 
 
+def test_the_haptic_study_gets_its_own_section(tmp_path):
+    """The report shows the study ``make haptic-fem`` wrote (each case against the plain Type
+    D, the force through the motor, the copied figure), and says how to make it when there is
+    none."""
+    study = tmp_path / "haptic"
+    study.mkdir()
+    (study / "haptic-cost.png").write_bytes(b"\x89PNG\r\n\x1a\nfake")
+
+    def row(F, dP, **extra):
+        return dict({"converged": True, "y_mm": 4.0, "force_N": F, "dp_kPa": dP,
+                     "stiffness_N_per_mm": F / 4, "sensitivity_kPa_per_mm": dP / 4,
+                     "kPa_per_N": dP / F, "end_stiffness_N_per_mm": 5.0,
+                     "end_sensitivity_kPa_per_mm": 4.0, "dofs": 118000, "seconds": 400.0,
+                     "vs_plain_pct": {"stiffness_N_per_mm": 100 * (F / 14.9 - 1),
+                                      "sensitivity_kPa_per_mm": 100 * (dP / 12.1 - 1),
+                                      "kPa_per_N": 100 * (dP / F / (12.1 / 14.9) - 1)}}, **extra)
+    summary = {"plain": row(14.9, 12.1), "film": row(25.5, 17.2),
+               "motor": row(31.0, 16.0, motor_force_N=7.25), "mesh_size_mm": 1.2}
+    (study / "summary.json").write_text(json.dumps(summary), encoding="utf-8")
+    page = build_report(SMALL, {}, tmp_path / "r", source=CLEAN,
+                        haptic=study).read_text(encoding="utf-8")
+    section = page[page.index("The haptic chamber: what the motor costs"):]
+    assert "haptic chamber with its motor" in section and "7.25" in section
+    assert "(+108 %)" in section  # 31.0 / 14.9: the stiffness against the plain Type D
+    assert 'src="haptic/haptic-cost.png"' in section
+    assert (tmp_path / "r" / "haptic" / "haptic-cost.png").exists()
+    none = build_report(SMALL, {}, tmp_path / "n", source=CLEAN,
+                        haptic=tmp_path / "nothing").read_text(encoding="utf-8")
+    assert "make haptic-fem" in none
+
+
 def test_mold_section(tmp_path):
     """The report builds, gates and renders the molds itself, and shows the gate failing on the
     three broken molds with their reasons."""
