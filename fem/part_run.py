@@ -237,7 +237,7 @@ def drop_clamped(mesh: TetMesh, clamped) -> tuple[TetMesh, np.ndarray]:
 def motor_insert(run: PartRun, mesh: TetMesh, tol: float) -> RigidInsert:
     """The design's motor as a rigid insert of ``mesh`` (part frame = press frame, z up): seat
     = cavity nodes on the ledge plane z_bottom under its footprint, top = cavity nodes over its
-    footprint above its top face (bottom + height: the print leaves a gap to the dome)."""
+    footprint from its top face up (the haptic chamber's flat ceiling lies on it)."""
     m = run.design["motor"]
     radius, height = float(m["diameter_mm"]) / 2, float(m["height_mm"])
     z0 = float(m["z_bottom_mm"])
@@ -246,12 +246,15 @@ def motor_insert(run: PartRun, mesh: TetMesh, tol: float) -> RigidInsert:
     rho = np.hypot(X[:, 0], X[:, 1])
     over = rho <= radius + tol
     seat = cav[over & (np.abs(X[:, 2] - z0) <= tol)]
-    top = cav[over & (X[:, 2] >= z0 + height)]
+    top = cav[over & (X[:, 2] >= z0 + height - tol)]
     if seat.size == 0 or top.size == 0:
         raise ParameterError("motor", m.get("name", "motor"), "a motor whose ledge and dome "
                              f"are in the part (no cavity node on the ledge z = {z0:.4g} mm "
                              f"or over its top within r = {radius:.3g} mm)")
-    return RigidInsert("motor", seat, top, z0, height, math.pi * radius ** 2 * height)
+    # a ceiling meshed a hair below the motor's top (within the mesh's tolerance) is where the
+    # motor's top is: no node may start inside it
+    return RigidInsert("motor", seat, top, z0, min(height, float(mesh.nodes[top, 2].min()) - z0),
+                       math.pi * radius ** 2 * height)
 
 
 def check_part_run(run: PartRun, surface: PartSurface) -> None:

@@ -59,21 +59,26 @@ def _case(out: Path, parts: Path, name: str, stem: str, extra, mesh: float) -> C
 
 
 def summary(curve: Curve) -> dict:
-    """End values and slopes (mm, N, kPa): mean over the stroke and over its last mm."""
+    """End values and slopes (mm, N, kPa): mean over the stroke, over its first and over its
+    last mm."""
     y, F = curve.y_mm, curve.force_N
     dP = curve.pressure_kPa - curve.pressure_kPa[0]
     last = y >= y[-1] - 1.0 - 1e-9
+    first = y <= 1.0 + 1e-9
     out = {"converged": bool(curve.all_converged), "y_mm": float(y[-1]),
            "force_N": float(F[-1]), "dp_kPa": float(dP[-1]),
            "stiffness_N_per_mm": float(F[-1] / y[-1]),
            "sensitivity_kPa_per_mm": float(dP[-1] / y[-1]),
            "kPa_per_N": float(dP[-1] / F[-1]),
+           "start_stiffness_N_per_mm": float(np.ptp(F[first]) / np.ptp(y[first])),
+           "start_sensitivity_kPa_per_mm": float(np.ptp(dP[first]) / np.ptp(y[first])),
            "end_stiffness_N_per_mm": float(np.ptp(F[last]) / np.ptp(y[last])),
            "end_sensitivity_kPa_per_mm": float(np.ptp(dP[last]) / np.ptp(y[last])),
            "dofs": int(curve.setup["dofs"]), "seconds": float(curve.solver.seconds)}
     motor = curve.series.get("force_motor_N")
     if motor is not None:
         out["motor_force_N"] = float(motor[-1])
+        out["motor_peak_N"] = float(np.nanmax(motor))
         touch = np.flatnonzero(motor > 0)
         out["motor_met_at_mm"] = float(y[touch[0]]) if touch.size else None
     return out
@@ -118,34 +123,35 @@ def main(argv=None) -> int:
               for name, stem, extra in CASES}
     rows = {name: summary(c) for name, c in curves.items()}
     base = rows["plain"]
+    keys = ("stiffness_N_per_mm", "sensitivity_kPa_per_mm", "kPa_per_N",
+            "start_stiffness_N_per_mm", "start_sensitivity_kPa_per_mm")
     for name, row in rows.items():
-        row["vs_plain_pct"] = {k: 100 * (row[k] / base[k] - 1) for k in
-                               ("stiffness_N_per_mm", "sensitivity_kPa_per_mm", "kPa_per_N")}
+        row["vs_plain_pct"] = {k: 100 * (row[k] / base[k] - 1) for k in keys}
     m, f = rows["motor"], rows["film"]
-    rows["motor_alone_pct"] = {k: 100 * (m[k] / f[k] - 1) for k in
-                               ("stiffness_N_per_mm", "sensitivity_kPa_per_mm", "kPa_per_N")}
+    rows["motor_alone_pct"] = {k: 100 * (m[k] / f[k] - 1) for k in keys}
     rows["mesh_size_mm"] = args.mesh_size
     (out / "summary.json").write_text(json.dumps(rows, indent=2))
     figure(curves, out / "haptic-cost.png")
-    print(f"{'case':30s} {'F(4) N':>8s} {'ΔP kPa':>8s} {'N/mm':>6s} {'kPa/mm':>7s} "
-          f"{'kPa/N':>6s} {'end N/mm':>8s} {'end kPa/mm':>10s} {'motor N':>8s} {'s':>6s}")
+    print(f"{'case':30s} {'F(4) N':>7s} {'ΔP kPa':>7s} {'N/mm':>6s} {'kPa/mm':>6s} "
+          f"{'kPa/N':>6s} {'0-1 mm: N/mm':>12s} {'kPa/mm':>6s} {'3-4 mm: N/mm':>12s} "
+          f"{'kPa/mm':>6s} {'motor N':>7s} {'s':>5s}")
     for name in curves:
         r = rows[name]
-        print(f"{LABELS[name]:30s} {r['force_N']:8.2f} {r['dp_kPa']:8.2f} "
-              f"{r['stiffness_N_per_mm']:6.2f} {r['sensitivity_kPa_per_mm']:7.2f} "
-              f"{r['kPa_per_N']:6.3f} {r['end_stiffness_N_per_mm']:8.2f} "
-              f"{r['end_sensitivity_kPa_per_mm']:10.2f} {r.get('motor_force_N', float('nan')):8.2f} "
-              f"{r['seconds']:6.0f}")
-    for name in ("film", "motor"):
-        v = rows[name]["vs_plain_pct"]
-        print(f"{LABELS[name]} vs Type D: stiffness {v['stiffness_N_per_mm']:+.0f} %, "
-              f"sensitivity {v['sensitivity_kPa_per_mm']:+.0f} %, kPa per N "
-              f"{v['kPa_per_N']:+.0f} %")
-    print(f"the motor alone (with vs without it): stiffness "
-          f"{100 * (m['stiffness_N_per_mm'] / f['stiffness_N_per_mm'] - 1):+.0f} %, sensitivity "
-          f"{100 * (m['sensitivity_kPa_per_mm'] / f['sensitivity_kPa_per_mm'] - 1):+.0f} %, "
-          f"kPa per N {100 * (m['kPa_per_N'] / f['kPa_per_N'] - 1):+.0f} %; met at "
-          f"y = {m.get('motor_met_at_mm')} mm")
+        print(f"{LABELS[name]:30s} {r['force_N']:7.2f} {r['dp_kPa']:7.2f} "
+              f"{r['stiffness_N_per_mm']:6.2f} {r['sensitivity_kPa_per_mm']:6.2f} "
+              f"{r['kPa_per_N']:6.3f} {r['start_stiffness_N_per_mm']:12.2f} "
+              f"{r['start_sensitivity_kPa_per_mm']:6.2f} {r['end_stiffness_N_per_mm']:12.2f} "
+              f"{r['end_sensitivity_kPa_per_mm']:6.2f} {r.get('motor_force_N', float('nan')):7.2f} "
+              f"{r['seconds']:5.0f}")
+    for name, ref in (("film", "plain"), ("motor", "plain"), ("motor", "film")):
+        v = {k: 100 * (rows[name][k] / rows[ref][k] - 1) for k in keys}
+        print(f"{LABELS[name]} vs {LABELS[ref]}: stiffness {v['stiffness_N_per_mm']:+.1f} % "
+              f"(first mm {v['start_stiffness_N_per_mm']:+.1f} %), sensitivity "
+              f"{v['sensitivity_kPa_per_mm']:+.1f} % (first mm "
+              f"{v['start_sensitivity_kPa_per_mm']:+.1f} %), kPa per N {v['kPa_per_N']:+.1f} %")
+    print(f"the motor is met at y = {m.get('motor_met_at_mm')} mm and carries "
+          f"{m.get('motor_force_N', float('nan')):.2f} N of the plate's {m['force_N']:.2f} N at "
+          f"the end (peak {m.get('motor_peak_N', float('nan')):.2f} N)")
     print(f"written: {out / 'summary.json'}, {out / 'haptic-cost.png'}")
     return 0 if all(rows[name]["converged"] for name in curves) else 1
 

@@ -353,16 +353,23 @@ def test_the_haptic_study_gets_its_own_section(tmp_path):
                      "stiffness_N_per_mm": F / 4, "sensitivity_kPa_per_mm": dP / 4,
                      "kPa_per_N": dP / F, "end_stiffness_N_per_mm": 5.0,
                      "end_sensitivity_kPa_per_mm": 4.0, "dofs": 118000, "seconds": 400.0,
+                     "start_stiffness_N_per_mm": F / 8, "start_sensitivity_kPa_per_mm": dP / 8,
                      "vs_plain_pct": {"stiffness_N_per_mm": 100 * (F / 14.9 - 1),
+                                      "start_stiffness_N_per_mm": 100 * (F / 14.9 - 1),
+                                      "start_sensitivity_kPa_per_mm": 100 * (dP / 12.1 - 1),
                                       "sensitivity_kPa_per_mm": 100 * (dP / 12.1 - 1),
                                       "kPa_per_N": 100 * (dP / F / (12.1 / 14.9) - 1)}}, **extra)
     summary = {"plain": row(14.9, 12.1), "film": row(25.5, 17.2),
-               "motor": row(31.0, 16.0, motor_force_N=7.25), "mesh_size_mm": 1.2}
+               "motor": row(31.0, 16.0, motor_force_N=7.25, motor_peak_N=7.75),
+               "mesh_size_mm": 1.2,
+               "motor_alone_pct": {"stiffness_N_per_mm": 21.6, "start_stiffness_N_per_mm": 51.0,
+                                   "sensitivity_kPa_per_mm": -7.0, "kPa_per_N": -23.5}}
     (study / "summary.json").write_text(json.dumps(summary), encoding="utf-8")
     page = build_report(SMALL, {}, tmp_path / "r", source=CLEAN,
                         haptic=study).read_text(encoding="utf-8")
     section = page[page.index("The haptic chamber: what the motor costs"):]
-    assert "haptic chamber with its motor" in section and "7.25" in section
+    assert "haptic chamber with its motor" in section and "7.25 (7.75)" in section
+    assert "stiffness +21.6 % over the stroke (+51 % in the first mm)" in " ".join(section.split())
     assert "(+108 %)" in section  # 31.0 / 14.9: the stiffness against the plain Type D
     assert 'src="haptic/haptic-cost.png"' in section
     assert (tmp_path / "r" / "haptic" / "haptic-cost.png").exists()
