@@ -5,7 +5,9 @@ cavity is a closed gas volume with a reservoir, P·(V + V_r)ⁿ = const) and :cl
 rigid frictionless plate, displacement controlled, from first contact with the chamber down by
 the stroke). Each increment is solved by Newton's method with a backtracking line search;
 frictionless contact is a primal–dual active set on the outer-surface nodes (an active node's
-height is prescribed at the plate, and it is released when its reaction pulls); a failed
+height is prescribed at the plate, and it is released when its reaction pulls); a rigid insert
+in the cavity (:mod:`spsc.fem.insert`) is met the same way, its constraints eliminated by
+aliasing the constrained unknowns onto its own; a failed
 increment is cut in half until ``min_fraction``. A failure returns everything converged so far
 with the reason.
 """
