@@ -13,24 +13,33 @@ import json
 import shutil
 from pathlib import Path
 
-__all__ = ["fingertip_section", "DEFAULT_DIR", "COMMAND"]
+__all__ = ["fingertip_section", "read_study", "DEFAULT_DIR", "COMMAND"]
 
 DEFAULT_DIR = Path("build/fingertip/fem")
 COMMAND = "make fingertip-fem   # = spsc fingertip --fem --out build/fingertip"
+
+
+def read_study(study_dir, out, name: str):
+    """(summary, figure folder) of a study a section shows: ``study_dir/summary.json`` read,
+    ``out/name/`` made empty for its figures; None when there is no summary."""
+    path = Path(study_dir) / "summary.json"
+    if not path.is_file():
+        return None
+    dest = Path(out) / name
+    if dest.exists():
+        shutil.rmtree(dest)
+    dest.mkdir(parents=True)
+    return json.loads(path.read_text(encoding="utf-8")), dest
 
 
 def fingertip_section(study_dir, out) -> dict | None:
     """The section's data from the study in ``study_dir`` (None if it has no summary.json),
     its figures copied to ``out/fingertip/``."""
     study_dir = Path(study_dir)
-    path = study_dir / "summary.json"
-    if not path.is_file():
+    found = read_study(study_dir, out, "fingertip")
+    if found is None:
         return None
-    summary = json.loads(path.read_text(encoding="utf-8"))
-    dest = Path(out) / "fingertip"
-    if dest.exists():
-        shutil.rmtree(dest)
-    dest.mkdir(parents=True)
+    summary, dest = found
     figures = {}
     for png in sorted((study_dir / "figures").glob("*.png")):
         shutil.copy2(png, dest / png.name)

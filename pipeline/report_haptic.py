@@ -9,9 +9,10 @@ it when there is none.
 
 from __future__ import annotations
 
-import json
 import shutil
 from pathlib import Path
+
+from .report_fingertip import read_study
 
 __all__ = ["haptic_section", "DEFAULT_DIR", "COMMAND", "LABELS"]
 
@@ -25,14 +26,10 @@ def haptic_section(study_dir, out) -> dict | None:
     """The section's data from ``study_dir/summary.json`` (None if there is none), its figure
     copied to ``out/haptic/``."""
     study_dir = Path(study_dir)
-    path = study_dir / "summary.json"
-    if not path.is_file():
+    found = read_study(study_dir, out, "haptic")
+    if found is None:
         return None
-    summary = json.loads(path.read_text(encoding="utf-8"))
-    dest = Path(out) / "haptic"
-    if dest.exists():
-        shutil.rmtree(dest)
-    dest.mkdir(parents=True)
+    summary, dest = found
     figure = None
     if (study_dir / "haptic-cost.png").is_file():
         shutil.copy2(study_dir / "haptic-cost.png", dest / "haptic-cost.png")
