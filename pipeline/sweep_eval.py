@@ -16,6 +16,7 @@ anything else a ``failed`` row naming the exception.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
@@ -196,17 +197,28 @@ def design_key(design: dict, model: str, process: str, points: int | None = None
                stroke_mm: float | None = None) -> str:
     """A stable hash (20 hex digits) of what a row depends on: the design's inputs (numbers
     as floats, the type upper-case, a catalogue name lower-case, a material file by its
-    content), the model, the process, the plate positions and the stroke (mm; None: the
-    model's default). The same design asked twice, or in a re-run, has the same key."""
+    content), the model and its code version (the source files it imports: a changed model is
+    computed again, never read back from an older table), the process, the plate positions and
+    the stroke (mm; None: the model's default). The same design asked twice, or in a re-run of
+    the same code, has the same key."""
     entry = MODELS.get(model)
     if entry is not None:
         points = entry.points if points is None else points
         stroke_mm = entry.stroke_mm if stroke_mm is None else stroke_mm
     facts = {k: _canonical(k, design.get(k)) for k in INPUTS}
-    facts.update(model=str(model), process=str(process).strip().lower(),
+    facts.update(model=str(model), code=_code(str(model)), process=str(process).strip().lower(),
                  points=_canonical("points", points), stroke_mm=_canonical("stroke", stroke_mm))
     text = json.dumps(facts, sort_keys=True, allow_nan=True)
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]
+
+
+@functools.lru_cache(maxsize=None)
+def _code(model: str) -> str:
+    """The model's code version (:func:`~.study.code_version`; '' for a name it does not know,
+    which the evaluation then refuses)."""
+    from .study import MODELS as STUDY_MODELS, code_version
+
+    return code_version(model) if any(m.name == model for m in STUDY_MODELS) else ""
 
 
 def _canonical(name: str, value):

@@ -63,6 +63,20 @@ def test_grid_and_lists_cross_multiply_with_presets_filled_in():
         == len(designs)
 
 
+def test_a_changed_model_changes_the_key(monkeypatch):
+    """The key holds the model's code version, so a sweep re-run after the model's source
+    changed computes again instead of reading the old rows back."""
+    import spsc.pipeline.sweep_eval as se
+    from spsc.pipeline.study import code_version
+
+    args = {k: FAST[k] for k in ("model", "process")}
+    before = design_key(B, **args)
+    assert design_key(B, **args) == before
+    assert se._code(FAST["model"]) == code_version(FAST["model"]) != ""
+    monkeypatch.setattr(se, "_code", lambda model: "edited")
+    assert design_key(B, **args) != before
+
+
 def test_latin_hypercube_is_reproducible_stratified_and_crossed_with_lists():
     spec = {"type": "A,B", "w": "8:14", "t0": "0.8:1.5", "pressure": "10:40"}
     one = list(build_space(spec, samples=20, seed=3))
