@@ -53,7 +53,7 @@ fingertip-fem: $(STAMP)
 	$(BIN)/spsc fingertip --fem --mesh-size $(FT_MESH) --out build/fingertip
 
 # the haptic chamber's cost: Type D, the haptic chamber without and with its motor (part FEM,
-# three curves, about 20 min; reused when they exist)
+# three curves, 10–15 min; reused when they exist)
 haptic-fem: $(STAMP)
 	$(BIN)/python -m spsc.pipeline.haptic_study --out build/haptic-fem
 

@@ -2,7 +2,7 @@
 force and pressure sensitivity, from the study ``make haptic-fem`` wrote (its ``summary.json``
 and figure), shown as the fingertip study is.
 
-Three part-FEM curves take about 20 min on a 2-core machine, so the report does not run them:
+Three part-FEM curves take 10–15 min on a 2-core machine, so the report does not run them:
 it shows the study found at ``--haptic DIR`` (default ``build/haptic-fem``) and says how to make
 it when there is none.
 """
