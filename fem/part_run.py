@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.core.curve import Curve, SolveInfo
+from spsc.core.curve import Curve
 from spsc.core.errors import ParameterError, require
 from spsc.membrane.materials import Material
 
@@ -315,33 +315,22 @@ def run_part(run: PartRun, *, settings: Settings | None = None, progress=None,
 
 def part_curve(run: PartRun, model: FEMModel, result: Result, surface: PartSurface, *,
                mesh_seconds: float = float("nan")) -> Curve:
-    """The Curve of a part run (as :func:`spsc.fem.run.to_curve`, plus the patch forces)."""
-    start = result.records[0]
-    inflated = result.of("inflate")[-1] if result.of("inflate") else start
-    presses = result.of("press")
+    """The Curve of a part run (as :func:`spsc.fem.run.to_curve`, plus the patch forces and
+    the motor's)."""
+    from .run import curve_points, solve_info
+
+    pts = curve_points(run, result)
     n = int(run.points)
-    y = np.linspace(0.0, run.stroke_mm, n)
-    F, P, A, dV = (np.full(n, np.nan) for _ in range(4))
     names = list(model.groups) + ([model.insert.name] if model.insert is not None else [])
     series = {f"force_{name}_N": np.full(n, np.nan) for name in names}
-    conv = np.zeros(n, bool)
-    msg = [""] * n
-    if run.pressure_kPa == 0 or len(result.of("inflate")) == run.inflate_increments:
-        F[0], P[0], A[0], dV[0], conv[0] = 0.0, inflated.pressure * 1e3, 0.0, 0.0, True
+    if pts["conv"][0]:
         for k in series:
             series[k][0] = 0.0
-    for k, rec in enumerate(presses, start=1):
-        F[k], P[k], A[k] = rec.force, rec.pressure * 1e3, rec.contact_area
-        dV[k] = inflated.volume - rec.volume
+    for k, rec in enumerate(pts["presses"], start=1):
         for name, f in rec.group_forces.items():
             series[f"force_{name}_N"][k] = f
         if model.insert is not None:
             series[f"force_{model.insert.name}_N"][k] = rec.insert_force
-        conv[k] = True
-    for k in range(len(presses) + 1, n):
-        msg[k] = result.message
-    if not conv[0]:
-        msg[0] = result.message
     part = {"file": Path(run.part).name, "fix": run.fix,
             "plate_normal": list(run.plate_normal),
             "plate_at": None if run.plate_at is None else list(run.plate_at),
@@ -361,19 +350,15 @@ def part_curve(run: PartRun, model: FEMModel, result: Result, surface: PartSurfa
              "dofs": model.disc.n, "model_part": "full", "part": part}
     if result.instability:
         setup["instability"] = result.instability
-    info = SolveInfo(converged=result.converged, message=result.message,
-                     y_reached_mm=y[conv][-1] if conv.any() else float("nan"),
-                     instability=result.instability,
-                     seconds=result.seconds + np.nan_to_num(mesh_seconds),
-                     iterations=result.iterations,
-                     details={"dofs": model.disc.n, "tetrahedra": model.mesh.n_tets,
-                              "mesh_size_mm": run.mesh_size_mm, "model_part": "full",
-                              "clamped_nodes": int(model.fixed[: model.disc.n_u].sum() // 3),
-                              "bulk_ratio": run.bulk_ratio, "mesh_seconds": mesh_seconds})
-    return Curve(y, F, P, A, dV, model="fem-part", geometry={}, material=run.material.name,
-                 setup=setup, nominal_volume_mm3=start.volume,
-                 inflated_volume_mm3=inflated.volume, converged=conv, message=tuple(msg),
-                 solver=info, series=series)
+    info = solve_info(result, model, pts, mesh_seconds,
+                      {"mesh_size_mm": run.mesh_size_mm, "model_part": "full",
+                       "clamped_nodes": int(model.fixed[: model.disc.n_u].sum() // 3),
+                       "bulk_ratio": run.bulk_ratio, "mesh_seconds": mesh_seconds})
+    return Curve(pts["y"], pts["F"], pts["P"], pts["A"], pts["dV"], model="fem-part",
+                 geometry={}, material=run.material.name, setup=setup,
+                 nominal_volume_mm3=pts["start"].volume,
+                 inflated_volume_mm3=pts["inflated"].volume, converged=pts["conv"],
+                 message=pts["msg"], solver=info, series=series)
 
 
 def write_part_vtu(model: FEMModel, result: Result, R, directory) -> list[Path]:

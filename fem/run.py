@@ -24,7 +24,7 @@ from .mesh import cached_mesh, check_mesh_size, spsc_wall
 from .model import FEMModel
 from .solver import CloseValve, Inflate, Press, Result, Settings, solve
 
-__all__ = ["ChamberRun", "run_chamber", "to_curve", "write_vtu"]
+__all__ = ["ChamberRun", "run_chamber", "to_curve", "curve_points", "solve_info", "write_vtu"]
 
 
 @dataclass(frozen=True)
@@ -87,13 +87,11 @@ def _apex_height(model: FEMModel, x) -> float:
     return float(np.max(X[on_axis, 2] + model.displacement(x)[on_axis, 2]))
 
 
-def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
-             mesh_seconds: float = float("nan")) -> Curve:
-    """The Curve of a run: y = 0 at first contact with the inflated chamber, then one point per
-    press increment; points not reached hold NaN with the reason. ``solver`` is filled from
-    ``result`` (converged, message, instability, seconds with ``mesh_seconds`` added, Newton
-    iterations) with the model's size in ``details`` (unknowns, tetrahedra, mesh size, layers,
-    part)."""
+def curve_points(run, result: Result) -> dict:
+    """The curve's arrays from a result (a chamber's or a part's run: ``points``, ``stroke_mm``,
+    ``pressure_kPa``, ``inflate_increments``): y = 0 at first contact with the inflated part,
+    then one point per press increment; points not reached hold NaN with the reason. Also the
+    start, inflated and press records."""
     start = result.records[0]
     inflated = result.of("inflate")[-1] if result.of("inflate") else start
     presses = result.of("press")
@@ -112,26 +110,45 @@ def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
         msg[k] = result.message
     if not conv[0]:
         msg[0] = result.message
-    setup = {"p_i_kPa": run.pressure_kPa, "reservoir_mm3": run.reservoir_mm3,
-             "polytropic_n": run.polytropic_index, "mesh_size_mm": run.mesh_size_mm,
-             "layers": run.layers, "dofs": model.disc.n,
-             "model_part": "full" if run.full else "quarter"}
-    if result.instability:
-        setup["instability"] = result.instability
-    info = SolveInfo(converged=result.converged, message=result.message,
+    return {"y": y, "F": F, "P": P, "A": A, "dV": dV, "conv": conv, "msg": tuple(msg),
+            "start": start, "inflated": inflated, "presses": presses}
+
+
+def solve_info(result: Result, model: FEMModel, pts: dict, mesh_seconds: float,
+               details: dict) -> SolveInfo:
+    """The curve's ``solver`` block: converged, message, instability, where it got to, seconds
+    with ``mesh_seconds`` added, Newton iterations; ``details`` with the unknowns and
+    tetrahedra first."""
+    conv, y = pts["conv"], pts["y"]
+    return SolveInfo(converged=result.converged, message=result.message,
                      y_reached_mm=y[conv][-1] if conv.any() else float("nan"),
                      instability=result.instability,
                      seconds=result.seconds + np.nan_to_num(mesh_seconds),
                      iterations=result.iterations,
-                     details={"dofs": model.disc.n, "tetrahedra": model.mesh.n_tets,
-                              "mesh_size_mm": run.mesh_size_mm, "layers": run.layers,
-                              "model_part": "full" if run.full else "quarter",
-                              "bulk_ratio": run.bulk_ratio})
-    return Curve(y, F, P, A, dV, model="fem", geometry=run.geometry.as_dict(),
-                 material=run.material.name, setup=setup,
-                 nominal_volume_mm3=start.volume, inflated_volume_mm3=inflated.volume,
-                 inflated_height_mm=_apex_height(model, inflated.x), converged=conv,
-                 message=tuple(msg), solver=info)
+                     details={"dofs": model.disc.n, "tetrahedra": model.mesh.n_tets, **details})
+
+
+def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
+             mesh_seconds: float = float("nan")) -> Curve:
+    """The Curve of a run (:func:`curve_points`); ``solver`` is filled from ``result``
+    (:func:`solve_info`) with the model's size in ``details`` (unknowns, tetrahedra, mesh
+    size, layers, part)."""
+    pts = curve_points(run, result)
+    part = "full" if run.full else "quarter"
+    setup = {"p_i_kPa": run.pressure_kPa, "reservoir_mm3": run.reservoir_mm3,
+             "polytropic_n": run.polytropic_index, "mesh_size_mm": run.mesh_size_mm,
+             "layers": run.layers, "dofs": model.disc.n, "model_part": part}
+    if result.instability:
+        setup["instability"] = result.instability
+    info = solve_info(result, model, pts, mesh_seconds,
+                      {"mesh_size_mm": run.mesh_size_mm, "layers": run.layers,
+                       "model_part": part, "bulk_ratio": run.bulk_ratio})
+    inflated = pts["inflated"]
+    return Curve(pts["y"], pts["F"], pts["P"], pts["A"], pts["dV"], model="fem",
+                 geometry=run.geometry.as_dict(), material=run.material.name, setup=setup,
+                 nominal_volume_mm3=pts["start"].volume, inflated_volume_mm3=inflated.volume,
+                 inflated_height_mm=_apex_height(model, inflated.x), converged=pts["conv"],
+                 message=pts["msg"], solver=info)
 
 
 def write_vtu(model: FEMModel, result: Result, directory) -> list[Path]:

@@ -139,6 +139,12 @@ def run(args) -> int:
     if noted:
         warn(verb, noted[-1] + (f" (and at {len(noted) - 1} other positions)"
                                 if len(noted) > 1 else ""))
+    return exit_status(verb, curve)
+
+
+def exit_status(verb: str, curve) -> int:
+    """Say an instability and a solve that did not converge on stderr; 0 when every point
+    converged, else 1."""
     info = curve.solver
     if info.instability:
         print(f"spsc {verb}: instability: {info.instability}", file=sys.stderr)

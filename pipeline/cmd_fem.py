@@ -37,7 +37,7 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 
-from .cmd_curve import add_curve_parser, plot, run as run_curve, summary
+from .cmd_curve import add_curve_parser, exit_status, plot, run as run_curve, summary
 from .options import PARAMS, PLOT_SUFFIXES, check_output_dir, check_output_file
 
 #: the options that belong to one mode only
@@ -243,12 +243,4 @@ def run_part_cli(args) -> int:
         last = int(np.flatnonzero(curve.converged)[-1]) if curve.converged.any() else 0
         forces = ", ".join(f"{k[6:-2]} {v[last]:.3g}" for k, v in curve.series.items())
         print(f"contact forces at y = {curve.y_mm[last]:.3g} mm (N): {forces}")
-    info = curve.solver
-    if info.instability:
-        print(f"spsc {verb}: instability: {info.instability}", file=sys.stderr)
-    if not (info.converged and curve.all_converged):
-        first = next((m for m, c in zip(curve.message, curve.converged) if not c), "")
-        print(f"spsc {verb}: not converged: {info.message if not info.converged else first}",
-              file=sys.stderr)
-        return 1
-    return 0
+    return exit_status(verb, curve)
