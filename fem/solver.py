@@ -20,13 +20,13 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.sparse as sp
 
 from .assembly import InvertedElement
 from .contact import contact_area, group_forces, plate_force, update_active_set
 from spsc.core.gaslaw import GasLaw
 from .insert import insert_constraints, insert_force, update_engaged
-from .linsolve import factorize, solve_rank_one
+from .newton_step import Constraints as _Constraints, Reduction as _Reduction
+from .newton_step import constraint_key as _key, linear_step as _linear_step
 from .model import FEMModel, Load
 
 __all__ = ["Inflate", "CloseValve", "Press", "Settings", "Record", "Result", "solve", "newton"]
@@ -120,109 +120,8 @@ class Result:
 _log = logging.getLogger(__name__)
 
 
-class _Reduction:
-    """Upper triangle of K restricted to the free unknowns, read straight from the data array
-    of the full fixed-pattern CSR (no sparse slicing per iteration); rebuilt when the free set
-    changes (supports, contact active set). Aliased unknowns (``slaves``, each u_s = u_master
-    + a known jump: a rigid insert's constraints) are summed into the master's row and column,
-    PᵀKP, by a precomputed gather."""
-
-    def __init__(self, K, free, slaves=None, master=None):
-        rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
-        cols = K.indices
-        new = np.cumsum(free) - 1
-        live = free
-        aliased = slaves is not None and len(slaves) > 0
-        if aliased:
-            new, live = new.copy(), free.copy()
-            new[slaves], live[slaves] = new[master], True
-        r_all, c_all = new[rows], new[cols]
-        keep = live[rows] & live[cols] & (r_all <= c_all)
-        self.sel = np.nonzero(keep)[0]
-        r, c = r_all[keep], c_all[keep]
-        n = int(free.sum())
-        self.gather = None
-        if aliased:
-            key, self.gather = np.unique(r.astype(np.int64) * n + c, return_inverse=True)
-            r, c = key // n, key % n
-        self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n))])
-        self.indices = c.astype(np.int32)
-        self.n = n
-        self.key = _key(free, slaves)
-
-    def upper(self, K):
-        data = K.data[self.sel]
-        if self.gather is not None:
-            data = np.bincount(self.gather, weights=data, minlength=len(self.indices))
-        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n,) * 2)
-
-
-def _key(free, slaves) -> bytes:
-    return free.tobytes() + (b"" if slaves is None else np.asarray(slaves).tobytes())
-
-
-@dataclass(frozen=True, eq=False)
-class _Constraints:
-    """The constraints of one Newton iteration: the plate's prescribed unknowns ``presc``
-    moving by ``jump``, and the insert's ``slaves`` following ``master`` plus ``sjump``."""
-
-    n: int
-    presc: np.ndarray
-    jump: np.ndarray
-    slaves: np.ndarray
-    sjump: np.ndarray
-    master: int
-
-    def shift(self) -> np.ndarray:
-        """The part of the step the constraints fix (full vector)."""
-        s = np.zeros(self.n)
-        s[self.presc] = self.jump
-        s[self.slaves] = self.sjump
-        return s
-
-    def condense(self, v) -> np.ndarray:
-        """Pᵀv in full numbering: the slaves' entries added to the master's, theirs zeroed."""
-        if not self.slaves.size:
-            return v
-        w = v.copy()
-        w[self.master] += v[self.slaves].sum()
-        w[self.slaves] = 0.0
-        return w
-
-    @property
-    def settled(self) -> bool:
-        return max(np.max(np.abs(self.jump), initial=0.0),
-                   np.max(np.abs(self.sjump), initial=0.0)) <= 1e-12
-
-
 class NewtonFailure(RuntimeError):
     pass
-
-
-def _linear_step(model, ev, reduction, free, con: _Constraints, settings):
-    """The Newton step on the free unknowns, PᵀKP Δy = −Pᵀ(r + K s) with s the constrained part
-    of the step (the plate's jump, the insert's) and P the aliasing of the insert's slaves (the
-    gas's rank-one term by Sherman–Morrison): (step, negative pivots of the factor or None)."""
-    n_u, n = model.disc.n_u, model.disc.n
-    factor = factorize(reduction.upper(ev.K), settings.solver, upper=True)
-    s = con.shift()
-    moved = bool(np.any(s))
-    rhs = -ev.r - ev.K @ s if moved else -ev.r
-    rhs = con.condense(rhs)[free]
-    if ev.c > 0.0:
-        gf = np.zeros(n)
-        gf[:n_u] = ev.g
-        gc = con.condense(gf)[free]
-        if moved:
-            rhs -= ev.c * gc * (gf @ s)
-        dx = solve_rank_one(factor, ev.c, gc, rhs)
-    else:
-        dx = factor(rhs)
-    step = s
-    step[free] += dx
-    if con.slaves.size:
-        step[con.slaves] += step[con.master]
-    return step, factor.negative
 
 
 def newton(model: FEMModel, x0, load: Load, settings: Settings, active=None, engaged=None):
@@ -286,11 +185,10 @@ def newton(model: FEMModel, x0, load: Load, settings: Settings, active=None, eng
                     raise NewtonFailure("contact active set does not settle")
                 carried = ev  # x is unchanged: its evaluation stands
                 continue
+        key = _key(free, slaves)
         if converged:
             # the inertia of the last factorised tangent: unknown if the active set changed since
-            key = _key(free, slaves)
             return (x, active, it, ev, negative if factored == key else None, engaged)
-        key = _key(free, slaves)
         reduction = reduction if reduction is not None and reduction.key == key \
             else _Reduction(ev.K, free, slaves, con.master)
         step, negative = _linear_step(model, ev, reduction, free, con, settings)
