@@ -93,7 +93,7 @@ def _dependency_names() -> list[str]:
         reqs = metadata.requires("spsc") or []
     except metadata.PackageNotFoundError:
         reqs = []
-    pyproject = _HERE.parent / "pyproject.toml"
+    pyproject = _HERE.parents[2] / "pyproject.toml"
     if pyproject.is_file():  # the source's list (the installed metadata may be older)
         import tomllib
 
