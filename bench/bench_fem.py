@@ -23,7 +23,7 @@ from spsc.fem.linsolve import available_solvers, factorize
 from spsc.fem.model import FEMModel, Load
 from spsc.fem.mesh import spsc_wall
 from spsc.fem.run import ChamberRun, run_chamber
-from spsc.membrane.materials import material
+from spsc.materials import material
 
 
 def _pair(text):

@@ -30,7 +30,7 @@ from spsc.fem.mesh import cached_mesh, spsc_wall
 from spsc.fem.model import FEMModel
 from spsc.fem.run import ChamberRun, run_chamber
 from spsc.fem.solver import Inflate, solve
-from spsc.membrane.materials import material
+from spsc.materials import material
 from spsc.membrane.solver import inflate as membrane_inflate
 from spsc.membrane.solver import solve as membrane_solve
 

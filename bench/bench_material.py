@@ -25,12 +25,12 @@ import numpy as np
 from spsc.cad.geometry import preset
 from spsc.fem.calibrate import calibrate, scaled
 from spsc.fem.wall import wall_curve
-from spsc.membrane.fit import fit_law, fit_laws
-from spsc.membrane.fit_laws import TESTS, OgdenLaw, law
-from spsc.membrane.identify import BenchData
-from spsc.membrane.material_data import TestData, read_tests
-from spsc.membrane.material_file import material_record
-from spsc.membrane.materials import material
+from spsc.materials.fit import fit_law, fit_laws
+from spsc.materials.fit_laws import TESTS, OgdenLaw, law
+from spsc.core.bench import BenchData
+from spsc.materials.data import TestData, read_tests
+from spsc.materials.file import material_record
+from spsc.materials import material
 
 DATA = Path(__file__).resolve().parents[1] / "tests" / "data"
 #: Known constants (MPa; Ogden's exponents dimensionless), stable, every term significant.

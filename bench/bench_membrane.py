@@ -22,7 +22,7 @@ import numpy as np  # noqa: E402
 
 from spsc.cad.geometry import preset  # noqa: E402
 from spsc.membrane.lumped import jnd_depth, mean_sensitivity, mean_stiffness  # noqa: E402
-from spsc.membrane.materials import material  # noqa: E402
+from spsc.materials import material  # noqa: E402
 from spsc.membrane.solver import solve  # noqa: E402
 
 MODES = {"high": 0.0, "low": 40000.0}

@@ -23,7 +23,7 @@ import numpy as np
 from spsc.cad.geometry import preset
 from spsc.core.curve import Curve
 from spsc.fem.wall import WallSettings, wall_curve
-from spsc.membrane.materials import material
+from spsc.materials import material
 from spsc.membrane.solver import SolverSettings, solve
 
 REF = Path("build/reference")

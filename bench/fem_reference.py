@@ -18,7 +18,7 @@ from pathlib import Path
 
 from spsc.cad.geometry import preset
 from spsc.fem.run import ChamberRun, run_chamber
-from spsc.membrane.materials import material
+from spsc.materials import material
 
 LOW = 40_000.0
 

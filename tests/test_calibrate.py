@@ -10,8 +10,8 @@ from spsc.cad.geometry import preset
 from spsc.core.errors import ParameterError
 from spsc.fem.calibrate import calibrate, scaled
 from spsc.fem.wall import WallSettings, wall_curve
-from spsc.membrane.identify import BenchData
-from spsc.membrane.materials import material
+from spsc.core.bench import BenchData
+from spsc.materials import material
 from spsc.pipeline.cli import main
 
 G = preset("B", l=0.0)

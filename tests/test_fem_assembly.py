@@ -9,7 +9,7 @@ from spsc.fem.element import TET_EDGES
 from spsc.fem.mesh import block, spsc_wall
 from spsc.fem.model import FEMModel, Load
 from spsc.fem.solver import Settings, newton
-from spsc.membrane.materials import material, yeoh
+from spsc.materials import material, yeoh
 
 
 def test_tangent_matches_residual_differences():

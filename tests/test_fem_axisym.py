@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from spsc.cad.geometry import SPSCGeometry, preset
-from spsc.membrane.materials import material
+from spsc.materials import material
 
 pytest.importorskip("felupe")
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from spsc.cad.geometry import preset
-from spsc.membrane.materials import material
+from spsc.materials import material
 from spsc.membrane.solver import solve as membrane_solve
 
 MAT = material("tpu60a")

@@ -17,7 +17,7 @@ from spsc.fem.mesh import spsc_wall
 from spsc.fem.model import FEMModel, Load
 from spsc.fem.solver import (CloseValve, Inflate, Press, _Constraints, _linear_step, _Reduction,
                              Settings, solve)
-from spsc.membrane.materials import material
+from spsc.materials import material
 
 G = preset("B")
 MAT = material("tpu60a")

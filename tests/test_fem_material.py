@@ -1,11 +1,11 @@
-"""The FEM's nearly incompressible law: built on membrane/materials, consistent stress and
+"""The FEM's nearly incompressible law: built on spsc.materials, consistent stress and
 tangent, Hooke's law at small strain."""
 
 import numpy as np
 import pytest
 
 from spsc.fem.material import NearlyIncompressible, invariants
-from spsc.membrane.materials import material, mooney_rivlin, yeoh
+from spsc.materials import material, mooney_rivlin, yeoh
 
 LAWS = [material("tpu60a"), mooney_rivlin(0.3, 0.1), yeoh(0.5056, 0.01, 0.002562)]
 
@@ -38,7 +38,7 @@ def test_stress_and_tangent_are_derivatives(mat):
 
 
 def test_isochoric_part_is_the_membrane_law():
-    """On isochoric F (J = 1, p = 0) the energy is exactly W(I1, I2) of membrane/materials."""
+    """On isochoric F (J = 1, p = 0) the energy is exactly W(I1, I2) of spsc.materials."""
     mat = yeoh(0.5056, 0.01, 0.002562)
     law = NearlyIncompressible(mat)
     lam = np.array([0.7, 1.3, 2.0])

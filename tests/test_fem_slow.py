@@ -10,7 +10,7 @@ from spsc.fem.tetwild import spsc_wall_tetwild
 from spsc.fem.model import FEMModel
 from spsc.fem.run import ChamberRun, run_chamber
 from spsc.fem.solver import Inflate, solve
-from spsc.membrane.materials import material
+from spsc.materials import material
 
 pytestmark = pytest.mark.slow
 MAT = material("tpu60a")

@@ -14,7 +14,7 @@ from spsc.fem.model import FEMModel, Load
 from spsc.fem.run import ChamberRun, run_chamber, write_vtu
 from spsc.fem.solver import Inflate, Press, Settings, solve
 from spsc.core.curve import Curve
-from spsc.membrane.materials import material
+from spsc.materials import material
 
 G = preset("B")
 MAT = material("tpu60a")

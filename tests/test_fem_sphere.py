@@ -10,7 +10,7 @@ from scipy.optimize import brentq
 from spsc.fem.mesh import sphere_shell
 from spsc.fem.model import FEMModel, Load
 from spsc.fem.solver import Inflate, Settings, newton, solve
-from spsc.membrane.materials import material
+from spsc.materials import material
 
 A, B = 1.0, 1.5  # inner and outer radius (mm)
 OCTANT = {"base": (2,), "sym_x": (0,), "sym_y": (1,)}  # z = 0 is a symmetry plane here

@@ -1,4 +1,4 @@
-"""Material fitting (spsc.membrane.fit_laws, .fit, .drucker): the closed-form stresses against
+"""Material fitting (spsc.materials.fit_laws, .fit, .drucker): the closed-form stresses against
 an independent route, recovery of known constants with and without noise (the 95 % intervals
 checked by their coverage over seeded repetitions), Treloar's classic data, Drucker stability.
 """
@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from spsc.core.errors import ParameterError
-from spsc.membrane.drucker import drucker
-from spsc.membrane.fit import choose, fit_law, fit_laws
-from spsc.membrane.fit_laws import TESTS, WORK_DIRECTIONS, OgdenLaw, law, stretches
-from spsc.membrane.material_data import TestData, read_tests
-from spsc.membrane.materials import mooney_rivlin, neo_hookean, yeoh
+from spsc.materials.drucker import drucker
+from spsc.materials.fit import choose, fit_law, fit_laws
+from spsc.materials.fit_laws import TESTS, WORK_DIRECTIONS, OgdenLaw, law, stretches
+from spsc.materials.data import TestData, read_tests
+from spsc.materials import mooney_rivlin, neo_hookean, yeoh
 
 DATA = __import__("pathlib").Path(__file__).parent / "data"
 TRELOAR = [DATA / f"treloar_{t}.csv" for t in ("uniaxial", "equibiaxial", "planar")]
@@ -42,7 +42,7 @@ def synthetic(fl, params, tests=TESTS, *, points=15, noise=0.0, seed=None):
 
 # -- the closed forms ----------------------------------------------------------------------
 def _model_energy(name, params):
-    """W(λ1, λ2, λ3) of the models' own Material (spsc.membrane.materials), or Ogden's."""
+    """W(λ1, λ2, λ3) of the models' own Material (spsc.materials), or Ogden's."""
     if name.startswith("ogden"):
         fl = TRUE[name][0]
         return lambda l1, l2, l3: fl.energy(l1, l2, l3, params)

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from spsc.core.errors import ParameterError
-from spsc.membrane.fit_laws import law
-from spsc.membrane.material_data import read_tests
+from spsc.materials.fit_laws import law
+from spsc.materials.data import read_tests
 from spsc.pipeline.cli import main
 
 DATA = Path(__file__).parent / "data"
@@ -164,7 +164,7 @@ def test_fitted_material_runs_the_membrane_like_the_catalogue_entry(tmp_path, tp
     the catalogue constant (the same coefficients), and to 1e-9 when it was fitted to exact
     data at that μ (the fit reproduces C10 to ~1e-15)."""
     from spsc.core.jsonio import write_json
-    from spsc.membrane.material_file import material_record
+    from spsc.materials.file import material_record
 
     ref = _curve(["--material", "tpu60a"], tmp_path, capsys, "ref.json")
     same = tmp_path / "same.json"
@@ -223,7 +223,7 @@ def test_list_catalogue_shows_law_constants_and_provenance(capsys):
 ])
 def test_one_line_errors(tmp_path, capsys, argv, names):
     from spsc.core.jsonio import write_json
-    from spsc.membrane.material_file import material_record
+    from spsc.materials.file import material_record
 
     ogden = tmp_path / "og.json"
     write_json(ogden, material_record("og", "ogden", {"mu": [0.5], "alpha": [2.0]}))

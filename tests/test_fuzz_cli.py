@@ -55,7 +55,7 @@ WORK = {
     "spsc.fem.wall": ["wall_curve"],
     "spsc.fem.calibrate": ["calibrate"],
     "spsc.pipeline.runner": ["run_all"],
-    "spsc.membrane.fit": ["fit_law", "fit_laws"],
+    "spsc.materials.fit": ["fit_law", "fit_laws"],
     "spsc.pipeline.sweep": ["run_sweep"],
     "spsc.pipeline.design": ["run_design"],
     "spsc.pipeline.executor": ["dask_client"],

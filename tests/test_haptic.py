@@ -114,7 +114,7 @@ def test_the_motor_stiffens_the_first_millimetre(tmp_path):
     from spsc.fem.model import Load
     from spsc.fem.part_run import PartRun, part_curve, part_model
     from spsc.fem.solver import Settings, solve
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     h = _haptic()
     stl = write_stl(manifold_mesh(h.solid), tmp_path / "haptic.stl")

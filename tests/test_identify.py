@@ -8,7 +8,7 @@ from spsc.cad.geometry import preset
 from spsc.core.curve import Curve
 from spsc.membrane.identify import identify, predict, read_bench
 from spsc.membrane.lumped import Setup, lumped_curve
-from spsc.membrane.materials import material
+from spsc.materials import material
 from spsc.membrane.solver import solve
 from spsc.pipeline.cli import main
 

@@ -1,4 +1,4 @@
-"""Material files and the catalogue's provenance (spsc.membrane.material_file, .materials): one
+"""Material files and the catalogue's provenance (spsc.materials.file, .materials): one
 lookup resolves a catalogue name or a material file; every problem with a file is one line
 naming ``material``; the catalogue's constants and their provenance are data."""
 
@@ -11,8 +11,8 @@ import pytest
 
 from spsc.core.errors import ParameterError
 from spsc.core.jsonio import write_json
-from spsc.membrane.material_file import material_record, read_material_file
-from spsc.membrane.materials import CATALOGUE, PROVENANCES, Material, material, neo_hookean
+from spsc.materials.file import material_record, read_material_file
+from spsc.materials import CATALOGUE, PROVENANCES, Material, material, neo_hookean
 
 
 def _write(tmp_path, name="m.json", **changes):
@@ -124,7 +124,7 @@ def test_provenance_is_checked():
 
 def test_polynomial_energy_is_shared():
     """Material's W, dW and d2W are the module functions the fit uses (one definition)."""
-    from spsc.membrane.materials import polynomial_d2W, polynomial_dW, polynomial_energy
+    from spsc.materials import polynomial_d2W, polynomial_dW, polynomial_energy
 
     m = CATALOGUE["elastic50a"]
     I1, I2 = np.array([3.5, 5.0]), np.array([3.2, 4.0])

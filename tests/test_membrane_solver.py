@@ -8,7 +8,7 @@ from scipy.optimize import brentq
 
 from spsc.core.errors import ParameterError
 from spsc.cad.geometry import SPSCGeometry, preset
-from spsc.membrane.materials import material
+from spsc.materials import material
 from spsc.membrane.meridian import Meridian
 from spsc.membrane.solver import SolverSettings, inflate, solve
 

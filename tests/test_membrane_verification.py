@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from spsc.cad.geometry import preset
-from spsc.membrane.materials import material, mooney_rivlin
+from spsc.materials import material, mooney_rivlin
 from spsc.membrane.solver import SolverSettings, inflate, solve
 from verify.membrane_fe import AxisymmetricFE
 

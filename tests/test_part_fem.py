@@ -20,7 +20,7 @@ from spsc.fem.part_run import ContactPatch, PartRun, part_curve, part_model, pre
 from spsc.fem.pressure import CavitySurface
 from spsc.fem.selector import parse_selector
 from spsc.fem.solver import Settings, solve
-from spsc.membrane.materials import material
+from spsc.materials import material
 from spsc.pipeline.cli import main
 
 MAT = material("tpu60a")

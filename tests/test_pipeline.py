@@ -55,7 +55,7 @@ def test_key_follows_inputs_and_the_code_the_model_imports():
     assert a.key() != SMALL.membrane("simplified", "B", "tpu60a", 40, "high").key()
     assert a.key() != SMALL.membrane("membrane", "D", "tpu60a", 40, "high").key()
     names = {p.relative_to(p.parents[1]).as_posix() for p in source_closure("spsc.fem.run")}
-    assert {"fem/run.py", "fem/solver.py", "fem/mesh.py", "membrane/materials.py",
+    assert {"fem/run.py", "fem/solver.py", "fem/mesh.py", "materials/law.py",
             "cad/geometry.py"} <= names
     assert not any(n.startswith(("pipeline/", "membrane/solver")) for n in names)
     mem = {p.relative_to(p.parents[1]).as_posix() for p in source_closure("spsc.membrane.solver")}

@@ -247,7 +247,7 @@ def test_a_bench_test_gets_its_own_section(tmp_path):
     from spsc.cad.geometry import preset
     from spsc.fem.calibrate import scaled
     from spsc.fem.wall import wall_curve
-    from spsc.membrane.materials import material
+    from spsc.materials import material
     from spsc.pipeline.bench_section import BenchSpec
 
     c = wall_curve(preset("B", l=0.0), scaled(material("tpu60a"), 1.4), pressure_kPa=0.0,

@@ -10,7 +10,7 @@ from spsc.fem.material import NearlyIncompressible
 from spsc.fem.section import section_mesh
 from spsc.fem.swept import SweptWall, sweep_stations
 from spsc.fem.wall import WallModel, WallSettings, wall_curve
-from spsc.membrane.materials import material
+from spsc.materials import material
 
 
 def _swept(t="A", l=3.0, size=1.5, sweep=4.0, law="tpu60a"):

@@ -13,7 +13,7 @@ from spsc.fem.material import NearlyIncompressible
 from spsc.fem.section import section_mesh
 from spsc.fem.section_solid import section_solid
 from spsc.fem.wall import WallModel, WallSettings, inflate, wall_curve
-from spsc.membrane.materials import material, neo_hookean
+from spsc.materials import material, neo_hookean
 
 
 @pytest.mark.parametrize("t", "ABCD")

@@ -6,7 +6,7 @@
   against which the box-scheme membrane solver is checked.
 
 Both take the ambient pressure and the gas law from :mod:`spsc.core` and the material law from
-:mod:`spsc.membrane.materials`, so they check the solvers, not a second copy of the physics.
+:mod:`spsc.materials`, so they check the solvers, not a second copy of the physics.
 Importable as ``verify`` from the tests (``tests/conftest.py`` puts ``tests/`` on ``sys.path``)
 and from ``bench/`` scripts (which do the same).
 """

@@ -34,7 +34,7 @@ import scipy.sparse.linalg as spla
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core import GasLaw
 from spsc.fem.mesh import wall_section
-from spsc.membrane.materials import Material
+from spsc.materials import Material
 
 __all__ = ["AxisymmetricDome", "AxiRecord"]
 

@@ -25,7 +25,7 @@ from scipy.sparse import linalg as splinalg
 
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core import GasLaw
-from spsc.membrane.materials import Material
+from spsc.materials import Material
 
 __all__ = ["AxisymmetricFE", "FEState"]
 

@@ -31,8 +31,8 @@ from scipy.optimize import least_squares
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.curve import Curve
 from spsc.core.errors import ParameterError
-from spsc.membrane.identify import BenchData
-from spsc.membrane.materials import Material
+from spsc.core.bench import BenchData
+from spsc.materials import Material
 
 from .wall import WallSettings, wall_curve
 

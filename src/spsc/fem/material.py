@@ -1,10 +1,10 @@
-"""Nearly incompressible hyperelasticity for the FEM, built on the one law of membrane/materials.
+"""Nearly incompressible hyperelasticity for the FEM, built on the one law of spsc.materials.
 
 The strain energy is split (mixed u–p form, Taylor–Hood P2/P1):
 
     Ψ(F, p) = W(Ī1, Ī2) + p (J − 1) − p² / (2κ),
 
-with W the catalogue law of :mod:`spsc.membrane.materials` evaluated at the isochoric invariants
+with W the catalogue law of :mod:`spsc.materials` evaluated at the isochoric invariants
 Ī1 = J^(−2/3) I1, Ī2 = J^(−4/3) I2 of C = FᵀF, p the hydrostatic pressure field (MPa, positive in
 tension) and κ the bulk modulus. Stationarity in p gives p = κ (J − 1); κ → ∞ is the
 incompressible limit the membrane model uses. Everything works on whole arrays of deformation
@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from spsc.core.errors import ParameterError, require
-from spsc.membrane.materials import Material
+from spsc.materials import Material
 
 __all__ = ["NearlyIncompressible", "invariants"]
 
@@ -40,7 +40,7 @@ class NearlyIncompressible:
     Parameters
     ----------
     material : Material
-        The one hyperelastic definition (membrane/materials.py).
+        The one hyperelastic definition (spsc/materials/law.py).
     bulk_ratio : float
         κ / μ0, default 2000 (Poisson's ratio 0.49975 at small strain). The mixed P2/P1
         formulation does not lock, so κ can be this large; it only has to make J − 1 negligible
@@ -63,7 +63,7 @@ class NearlyIncompressible:
 
     def __post_init__(self):
         if not isinstance(self.material, Material):
-            raise ParameterError("material", self.material, "a spsc.membrane.materials.Material")
+            raise ParameterError("material", self.material, "a spsc.materials.Material")
         object.__setattr__(self, "bulk_ratio", require("bulk_ratio", self.bulk_ratio, gt=0))
 
     @property

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from spsc.membrane.materials import Material
+from spsc.materials import Material
 
 from .assembly import Discretisation, assemble, discretise
 from spsc.core.gaslaw import GasLaw

@@ -28,7 +28,7 @@ import numpy as np
 
 from spsc.core.curve import Curve
 from spsc.core.errors import ParameterError, require
-from spsc.membrane.materials import Material
+from spsc.materials import Material
 
 from .insert import RigidInsert
 from .mesh import MESH_VERSION, TetMesh

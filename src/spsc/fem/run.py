@@ -17,7 +17,7 @@ import numpy as np
 from spsc.core.loadcase import check_load
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.curve import Curve, SolveInfo
-from spsc.membrane.materials import Material
+from spsc.materials import Material
 
 from .element import TET_EDGES
 from .mesh import cached_mesh, check_mesh_size, spsc_wall

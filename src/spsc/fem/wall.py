@@ -45,7 +45,7 @@ from spsc.core.constants import KPA_PER_MPA
 from spsc.core.curve import Curve, SolveInfo
 from spsc.core.gaslaw import GasLaw
 from spsc.core.loadcase import check_load
-from spsc.membrane.materials import Material
+from spsc.materials import Material
 
 from .section_solid import InvertedSection
 from .wall_model import WallModel, WallSettings

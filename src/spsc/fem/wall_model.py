@@ -12,7 +12,7 @@ import scipy.sparse as sp
 
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.errors import require
-from spsc.membrane.materials import Material
+from spsc.materials import Material
 
 from .material import NearlyIncompressible
 from .section import section_mesh

@@ -44,7 +44,7 @@ import numpy as np
 from scipy.sparse import csc_matrix
 from scipy.sparse.linalg import splu
 
-from .materials import Material
+from spsc.materials import Material
 from .meridian import Meridian
 from .tension import relaxed_tensions, tensions
 

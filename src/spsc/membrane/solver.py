@@ -21,7 +21,7 @@ from spsc.cad.geometry import SPSCGeometry
 
 from .bvp import BoxScheme
 from spsc.core.curve import Curve, SolveInfo
-from .materials import Material, material as catalogue_material
+from spsc.materials import Material, material as catalogue_material
 from .meridian import Meridian
 from .shape import Shape, make_shape
 from .stroke import StrokeContinuation

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .materials import Material
+from spsc.materials import Material
 
 __all__ = ["invariants", "tensions", "relaxed_tensions", "strain_energy_density"]
 

@@ -33,8 +33,8 @@ class BenchSpec:
         from spsc.cad.geometry import preset
         from spsc.core.errors import require
         from spsc.core.loadcase import PRESSURE_MAX_KPA, check_load
-        from spsc.membrane.identify import REQUIRED, read_bench
-        from spsc.membrane.materials import material
+        from spsc.core.bench import REQUIRED, read_bench
+        from spsc.materials import material
 
         geom = preset(self.type, **dict(self.geometry))
         mat = material(self.material)

@@ -45,7 +45,7 @@ def process_for(material_name: str) -> str:
     """The printing process of a catalogue material; a material file (.json) carries no
     process, so the bladder refuses it in one line."""
     from spsc.core.errors import ParameterError
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     if str(material_name).strip().lower().endswith(".json"):
         raise ParameterError("material", material_name, "a catalogue material ("

@@ -73,8 +73,8 @@ def run(args) -> int:
     from spsc.core.loadcase import check_load
     from spsc.fem.calibrate import calibrate
     from spsc.fem.wall import WallSettings, wall_curve
-    from spsc.membrane.identify import REQUIRED, read_bench
-    from spsc.membrane.materials import material
+    from spsc.core.bench import REQUIRED, read_bench
+    from spsc.materials import material
 
     if args.json is not None:
         check_output_file("--json", args.json)
@@ -132,7 +132,7 @@ def _write_material(args, cal, mat) -> None:
     from pathlib import Path
 
     from spsc.core.jsonio import write_json
-    from spsc.membrane.material_file import LAW_CONSTANTS, material_record
+    from spsc.materials.file import LAW_CONSTANTS, material_record
 
     names = {ij: name for name, ij in LAW_CONSTANTS[cal.material.law].items()}
     constants = {names[(i, j)]: c for i, j, c in cal.material.coefficients}

@@ -103,7 +103,7 @@ def prepare(args) -> Job:
     chamber, the material, the load case (the same limits for every model) and the model's own
     limits and size. ParameterError (one line) on the first problem."""
     from spsc.core.loadcase import check_load
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     model = MODELS[args.model]
     _model_args(args, model)

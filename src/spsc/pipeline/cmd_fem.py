@@ -125,7 +125,7 @@ def _sites(design: dict | None) -> dict:
 def part_run_from_args(args):
     """The PartRun of an invocation: every check before any work (one-line ParameterError)."""
     from spsc.fem.part_run import ContactPatch, PartRun
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     for dest in _CHAMBER_ONLY:
         if getattr(args, dest, None) not in (None, False):

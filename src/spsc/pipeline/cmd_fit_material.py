@@ -29,7 +29,7 @@ LAW_CHOICES = ("neo-hookean", "mooney-rivlin", "yeoh", "ogden", "all")
 
 
 def register(subparsers) -> None:
-    from spsc.membrane.material_data import STRAIN_UNITS, STRESS_UNITS
+    from spsc.materials.data import STRAIN_UNITS, STRESS_UNITS
 
     p = subparsers.add_parser(VERB, help="fit hyperelastic laws to tension tests; write a "
                               "material file", description=__doc__.split("\n\n")[0])
@@ -69,7 +69,7 @@ def register(subparsers) -> None:
 def _test(text: str) -> str:
     import argparse
 
-    from spsc.membrane.material_data import test_name
+    from spsc.materials.data import test_name
 
     t = test_name(text)
     if t is None:
@@ -120,7 +120,7 @@ def _firsts(tests):
 def prepare(args):
     """Every check before any fit: outputs, options, the files (read and checked) and the
     range. Returns (tests, notes, law names, range)."""
-    from spsc.membrane.material_data import read_tests
+    from spsc.materials.data import read_tests
 
     for opt, suffixes in (("--json", None), ("--png", PLOT_SUFFIXES), ("--out", (".json",))):
         value = getattr(args, opt.lstrip("-"))
@@ -142,7 +142,7 @@ def prepare(args):
         tests = kept
     laws = LAW_CHOICES[:-1] if args.law == "all" else (args.law,)
     n = sum(d.points for d in tests)
-    from spsc.membrane.fit_laws import law as make_law
+    from spsc.materials.fit_laws import law as make_law
 
     need = {name: len(make_law(name, ogden_terms=terms).names) for name in laws}
     if all(n <= k for k in need.values()):
@@ -157,7 +157,7 @@ def run(args) -> int:
             raise ParameterError("--list-catalogue", " ".join(args.data), "given alone")
         print(catalogue_table())
         return 0
-    from spsc.membrane.fit import choose, fit_laws
+    from spsc.materials.fit import choose, fit_laws
 
     tests, notes, laws, rng, terms = prepare(args)
     for line in notes:
@@ -224,7 +224,7 @@ def describe_fit(f) -> str:
 
 def catalogue_table() -> str:
     """The catalogue: name, law, constants (MPa), μ0, provenance and source, one block each."""
-    from spsc.membrane.materials import CATALOGUE
+    from spsc.materials import CATALOGUE
 
     names = {(1, 0): "C10", (0, 1): "C01", (2, 0): "C20", (3, 0): "C30"}
     lines = []

@@ -167,7 +167,7 @@ def _types(text: str) -> Dimension:
 
 
 def _material(text: str) -> Dimension:
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     t = text.strip()
     if "," in t:

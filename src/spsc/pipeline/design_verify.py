@@ -51,7 +51,7 @@ def check_mode(params: dict, model: str, mode: str, *, points: int | None, strok
     and the model's limits (ParameterError, one line) without solving anything."""
     from spsc.cad.geometry import SPSCGeometry
     from spsc.core.loadcase import check_load
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     from .curve_models import MODELS, Job
 

@@ -72,7 +72,7 @@ def _part(out: Path) -> tuple[Path, dict]:
 def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | None, log):
     from spsc.fem.part_run import ContactPatch, PartRun, part_curve, part_model, write_part_vtu
     from spsc.fem.solver import solve
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     fem = design["fem"]
     s = fem["sites"][site]
@@ -102,7 +102,7 @@ def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | 
 
 def _single_case(study, geometry, mode, pressure, path: Path) -> Curve:
     from spsc.fem.run import ChamberRun, run_chamber
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     run = ChamberRun(geometry, material(study.material), pressure_kPa=pressure,
                      reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
@@ -122,7 +122,7 @@ def run_study(study: FingertipStudy, out, *, stl=None, design=None, spec=None,
     ``design`` dict and ``spec`` (default: the default fingertip, built under ``out/part``);
     returns and writes the summary."""
     from spsc.cad.specs import FingertipSpec
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     from .fused_estimate import fused_estimate
 

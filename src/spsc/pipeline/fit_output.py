@@ -1,6 +1,6 @@
 """What ``spsc fit-material`` writes: the fit report (``--json``, schema ``spsc.material-fit``),
 the figure (``--png``) and the material file (``--out``, schema ``spsc.material``, read by
-:func:`spsc.membrane.materials.material` for every model's ``--material``)."""
+:func:`spsc.materials.material` for every model's ``--material``)."""
 
 from __future__ import annotations
 
@@ -39,7 +39,7 @@ def _finite_range(rng) -> list:
 def material_file_record(fit, tests, *, name: str, rng, weighting: str, why: str) -> dict:
     """The material file of ``fit`` (a LawFit): constants in MPa, the fit's statistics and
     stability, the data's files and hashes."""
-    from spsc.membrane.material_file import material_record
+    from spsc.materials.file import material_record
 
     d = fit.drucker
     stats = {"range": _finite_range(rng), "stretch_ranges": fit.data_ranges,

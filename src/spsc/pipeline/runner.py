@@ -85,12 +85,12 @@ def curve_model(module: str, function: str, *, material_object: bool = False,
     """The compute entry of a model that is a function returning a :class:`Curve` from a
     geometry and the membrane's setup arguments (``material``, ``pressure_kPa``,
     ``reservoir_mm3``, ``stroke_mm``, ``points``): the simplified model, the wall model.
-    ``material_object``: pass the catalogue :class:`~spsc.membrane.materials.Material`, not its
+    ``material_object``: pass the catalogue :class:`~spsc.materials.Material`, not its
     name. ``meshed``: the run's mesh size and layers go in as the model's ``settings``
     (``<module>.WallSettings``-like: ``mesh_size_mm``, ``layers``)."""
 
     def compute(run: Run, directory: Path, progress, mesh_dir) -> dict:
-        from spsc.membrane.materials import material
+        from spsc.materials import material
 
         mod = importlib.import_module(module)
         fn = getattr(mod, function)
@@ -121,7 +121,7 @@ def _section(model, x, z_centre: float) -> dict:
 
 def _fem(run: Run, directory: Path, progress, mesh_dir) -> dict:
     from spsc.fem.run import ChamberRun, run_chamber, write_vtu
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     spec = ChamberRun(run.geometry(), material(run.material), pressure_kPa=run.pressure_kPa,
                       reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm,

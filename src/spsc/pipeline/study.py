@@ -123,7 +123,7 @@ class Run:
 
     def inputs(self) -> dict:
         """Everything the result depends on, resolved (geometry parameters, material law)."""
-        from spsc.membrane.materials import material
+        from spsc.materials import material
 
         mat = material(self.material)
         return {**asdict(self), "geometry": self.geometry().as_dict(),

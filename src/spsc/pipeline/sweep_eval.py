@@ -58,7 +58,7 @@ def resolve_design(design: dict):
     :class:`Material` and the setup ``{"p_i_kPa", "reservoir_mm3", "polytropic_n"}`` (kPa gauge,
     mm³). ParameterError (one line) naming the first parameter out of range."""
     from spsc.cad.geometry import SPSCGeometry, preset
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     given = {k: design[k] for k in PARAMS if design.get(k) is not None}
     if design.get("type"):

@@ -131,7 +131,7 @@ def check_axis(axis: Axis) -> None:
     """Every value of ``axis`` (a range's two ends) within its input's own limits: a type
     A–D, a known material (catalogue or file), numbers in range. ParameterError otherwise."""
     from spsc.cad.geometry import TYPES
-    from spsc.membrane.materials import material
+    from spsc.materials import material
 
     values = axis.values if axis.kind != "range" else (axis.lo, axis.hi)
     for v in values:

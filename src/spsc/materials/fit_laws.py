@@ -1,5 +1,5 @@
 """Hyperelastic laws for fitting: closed-form incompressible nominal stress of the three
-homogeneous tests, energy and Drucker tangent, for the invariant laws of :mod:`.materials`
+homogeneous tests, energy and Drucker tangent, for the invariant laws of :mod:`.law`
 (neo-Hookean, Mooney–Rivlin, Yeoh: the same W(I1, I2)) and Ogden's law in principal stretches.
 
 The tests (stretch λ ≥ 1 along direction 1, direction 3 traction-free, incompressible):
@@ -21,8 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .material_file import LAW_CONSTANTS
-from .materials import polynomial_d2W, polynomial_dW, polynomial_energy
+from .file import LAW_CONSTANTS
+from .law import polynomial_d2W, polynomial_dW, polynomial_energy
 
 __all__ = ["TESTS", "LAW_NAMES", "stretches", "PolynomialLaw", "OgdenLaw", "law"]
 

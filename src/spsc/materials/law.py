@@ -6,9 +6,8 @@ incompressible membrane the invariants are those of eq. 24; the nearly incompres
 the isochoric invariants Ī1, Ī2 in the same functions plus its own volumetric term.
 
 Each material records where its numbers come from (``provenance``: datasheet, paper,
-literature, assumed or user-fit) beside the ``source`` text. :func:`material` resolves a
-catalogue name or a material file (``*.json``, written by ``spsc fit-material``; see
-:mod:`.material_file`).
+literature, assumed or user-fit) beside the ``source`` text. The catalogue and the resolver of
+a name or a material file are in :mod:`.catalogue`.
 """
 
 from __future__ import annotations
@@ -19,8 +18,8 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 
-__all__ = ["Material", "PROVENANCES", "neo_hookean", "mooney_rivlin", "yeoh", "CATALOGUE",
-           "material", "polynomial_energy", "polynomial_dW", "polynomial_d2W"]
+__all__ = ["Material", "PROVENANCES", "neo_hookean", "mooney_rivlin", "yeoh",
+           "polynomial_energy", "polynomial_dW", "polynomial_d2W"]
 
 #: Where a material's constants come from, from most to least trusted for a printed part:
 #: ``user-fit`` (fitted to the user's own tests), ``literature`` (a published fit of the
@@ -133,46 +132,3 @@ def yeoh(c10: float, c20: float, c30: float, *, name: str = "yeoh", source: str 
          provenance: str = "assumed") -> Material:
     """Yeoh 3rd order W = C10(I1 − 3) + C20(I1 − 3)² + C30(I1 − 3)³, MPa."""
     return Material(name, "yeoh", ((1, 0, c10), (2, 0, c20), (3, 0, c30)), source, provenance)
-
-
-def _shore_a_to_youngs(shore_a: float) -> float:
-    """Gent's (1958) empirical relation between Shore A hardness and Young's modulus (MPa)."""
-    return 0.0981 * (56.0 + 7.62336 * shore_a) / (0.137505 * (254.0 - 2.54 * shore_a))
-
-
-_E_40A = _shore_a_to_youngs(40.0)
-
-CATALOGUE: dict[str, Material] = {
-    "tpu60a": neo_hookean(
-        5.0 / 3.0, name="tpu60a", provenance="datasheet",
-        source="Recreus Filaflex 60A, linearised datasheet E = 5 MPa at 20 % elongation "
-               "(paper sec. 3.1); neo-Hookean with mu = E/3"),
-    "elastic50a": yeoh(
-        0.5056, 0.0, 0.002562, name="elastic50a", provenance="literature",
-        source="Formlabs Elastic 50A (cured), Yeoh fit of Xavier et al., "
-               "Sensors and Actuators A, 2021 (paper ref. [40])"),
-    "silicone40a": neo_hookean(
-        _E_40A / 3.0, name="silicone40a", provenance="assumed",
-        source=f"ASSUMED: Formlabs Silicone 40A, Shore 40A -> E = {_E_40A:.2f} MPa by Gent's "
-               "relation; neo-Hookean mu = E/3. No published hyperelastic fit used."),
-    "as40": neo_hookean(
-        _E_40A / 3.0, name="as40", provenance="assumed",
-        source=f"ASSUMED: Easy Composites AS40 silicone, Shore 40A -> E = {_E_40A:.2f} MPa by "
-               "Gent's relation; neo-Hookean mu = E/3. No published hyperelastic fit used."),
-}
-
-
-def material(name) -> Material:
-    """The catalogue material ``name`` (case-insensitive), or the material file ``name`` (a
-    path ending in ``.json``, :func:`.material_file.load_material`); else a one-line error
-    listing the catalogue."""
-    text = str(name).strip()
-    if text.lower().endswith(".json"):
-        from .material_file import load_material
-
-        return load_material(text)
-    key = text.lower()
-    if key not in CATALOGUE:
-        raise ParameterError("material", name, "one of " + ", ".join(CATALOGUE)
-                             + ", or a material file (.json) from spsc fit-material")
-    return CATALOGUE[key]

@@ -1,5 +1,5 @@
 """Material files: a fitted (or any) hyperelastic law as JSON, loaded by every model through
-:func:`spsc.membrane.materials.material` beside the catalogue names.
+:func:`spsc.materials.material` beside the catalogue names.
 
 The file (``schema`` ``spsc.material``, ``schema_version`` 1)::
 
@@ -22,7 +22,7 @@ import math
 from pathlib import Path
 
 from spsc.core.errors import ParameterError
-from .materials import PROVENANCES, Material
+from .law import PROVENANCES, Material
 
 __all__ = ["SCHEMA", "SCHEMA_VERSION", "INVARIANT_LAWS", "LAW_CONSTANTS", "material_record",
            "read_material_file", "load_material", "material_from_record"]

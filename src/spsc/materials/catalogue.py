@@ -1,0 +1,51 @@
+"""The material catalogue (each entry with its source and provenance) and :func:`material`,
+which resolves a catalogue name or a material file written by ``spsc fit-material``."""
+
+from __future__ import annotations
+
+from spsc.core.errors import ParameterError
+from .file import load_material
+from .law import Material, neo_hookean, yeoh
+
+__all__ = ["CATALOGUE", "material"]
+
+
+def _shore_a_to_youngs(shore_a: float) -> float:
+    """Gent's (1958) empirical relation between Shore A hardness and Young's modulus (MPa)."""
+    return 0.0981 * (56.0 + 7.62336 * shore_a) / (0.137505 * (254.0 - 2.54 * shore_a))
+
+
+_E_40A = _shore_a_to_youngs(40.0)
+
+CATALOGUE: dict[str, Material] = {
+    "tpu60a": neo_hookean(
+        5.0 / 3.0, name="tpu60a", provenance="datasheet",
+        source="Recreus Filaflex 60A, linearised datasheet E = 5 MPa at 20 % elongation "
+               "(paper sec. 3.1); neo-Hookean with mu = E/3"),
+    "elastic50a": yeoh(
+        0.5056, 0.0, 0.002562, name="elastic50a", provenance="literature",
+        source="Formlabs Elastic 50A (cured), Yeoh fit of Xavier et al., "
+               "Sensors and Actuators A, 2021 (paper ref. [40])"),
+    "silicone40a": neo_hookean(
+        _E_40A / 3.0, name="silicone40a", provenance="assumed",
+        source=f"ASSUMED: Formlabs Silicone 40A, Shore 40A -> E = {_E_40A:.2f} MPa by Gent's "
+               "relation; neo-Hookean mu = E/3. No published hyperelastic fit used."),
+    "as40": neo_hookean(
+        _E_40A / 3.0, name="as40", provenance="assumed",
+        source=f"ASSUMED: Easy Composites AS40 silicone, Shore 40A -> E = {_E_40A:.2f} MPa by "
+               "Gent's relation; neo-Hookean mu = E/3. No published hyperelastic fit used."),
+}
+
+
+def material(name) -> Material:
+    """The catalogue material ``name`` (case-insensitive), or the material file ``name`` (a
+    path ending in ``.json``, :func:`.file.load_material`); else a one-line error
+    listing the catalogue."""
+    text = str(name).strip()
+    if text.lower().endswith(".json"):
+        return load_material(text)
+    key = text.lower()
+    if key not in CATALOGUE:
+        raise ParameterError("material", name, "one of " + ", ".join(CATALOGUE)
+                             + ", or a material file (.json) from spsc fit-material")
+    return CATALOGUE[key]
