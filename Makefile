@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem gate test test-slow bench bench-mold bench-compare bench-wall bench-material bench-sweep clean
+.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem gate test test-slow test-all docs bench bench-mold bench-compare bench-wall bench-material bench-sweep clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -23,12 +23,12 @@ help:
 	@echo "make fingertip                                                   -> build/fingertip/"
 	@echo "make fingertip-fem [FT_MESH=2]                                 -> build/fingertip/fem/"
 	@echo "make haptic-fem                                                -> build/haptic-fem/ (the motor's cost)"
-	@echo "make test | make test-slow | make gate | make bench | make report [QUICK=1]"
+	@echo "make test | make test-slow | make test-all | make docs | make gate | make bench | make report [QUICK=1]"
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e ".[test]"
+	$(BIN)/python -m pip install --quiet -e ".[test,docs]"
 	touch $(STAMP)
 
 venv: $(STAMP)
@@ -64,11 +64,22 @@ gate: $(STAMP)
 	@set -e; for t in A B C D; do $(BIN)/spsc mold --type $$t --no-render; done
 	@$(BIN)/spsc mold --type B --process compression --no-render --out build/mold-B-compression
 
+# the fast suite on every core (pytest-xdist), progress as a count, the slowest five at the end
+PYTEST = $(BIN)/python -m pytest -q -n auto --durations=5
 test: $(STAMP)
-	$(BIN)/python -m pytest -q
+	$(PYTEST)
 
+# the slow CAD/FEM/report cases only (@pytest.mark.slow): CI runs make test, then this
 test-slow: $(STAMP)
-	$(BIN)/python -m pytest -q -m ""
+	$(PYTEST) -m slow
+
+# everything in one run: the fast suite and the slow cases
+test-all: $(STAMP)
+	$(PYTEST) -m ""
+
+# the documentation site (MkDocs, API reference from the docstrings) into build/site
+docs: $(STAMP)
+	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict --quiet
 
 # quick benchmarks (minutes); bench-compare runs the FEM-vs-models tables (about 30 min)
 bench: $(STAMP)

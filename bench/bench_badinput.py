@@ -3,7 +3,7 @@
     .venv/bin/python bench/bench_badinput.py [--fork] [--only TEXT] [--timeout S] [--jobs N]
                                              [--designs N] [--determinism] [--list]
 
-Invalid invocations (the table of ``tests/fuzz_cases.py``, over 300) run as subprocesses
+Invalid invocations (the table of ``spsc.testing.fuzz_cases``, over 300) run as subprocesses
 (``python -m spsc.pipeline.cli``) with a timeout, and each outcome is counted: a clean one-line
 error with exit 2 naming the option, a clean error not naming it, a traceback, an argparse usage
 dump, a silent exit 0, a timeout, or anything else. ``--fork`` runs each case in a forked copy
@@ -31,11 +31,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-_TESTS = str(Path(__file__).resolve().parents[1] / "tests")
-if _TESTS not in sys.path:  # the case table lives beside the fuzz test that uses it
-    sys.path.insert(0, _TESTS)
-
-from fuzz_cases import Case, design_argv, invalid_cases, random_design  # noqa: E402
+from spsc.testing.fuzz_cases import Case, design_argv, invalid_cases, random_design
 
 OUTCOMES = ("clean", "clean, not naming the option", "traceback", "internal error (exit 3)",
             "usage dump", "silent exit 0", "timeout", "other")

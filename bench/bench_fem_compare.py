@@ -216,13 +216,10 @@ def _print_qf(rows):
 def axisymmetric(*, mat, type_name="B", pressure=40.0, stroke=4.0, size=1.0, layers=2,
                  axi_meshes=((40, 4), (80, 8)), cache=None):
     """l = 0 dome of ``type_name``: the 3D quarter model (``size``, ``layers``) and the
-    axisymmetric FElupe model (``tests/verify/axisym_felupe.py``, ``axi_meshes`` = (profile
+    axisymmetric FElupe model (``spsc.testing.verify.axisym_felupe``, ``axi_meshes`` = (profile
     elements, layers) pairs), inflated to ``pressure`` kPa, valve closed, plate to ``stroke``
     mm in 1 mm increments. One row per model."""
-    tests = str(Path(__file__).resolve().parents[1] / "tests")
-    if tests not in sys.path:  # the verification models live in the test tree, not in spsc
-        sys.path.insert(0, tests)
-    from verify.axisym_felupe import AxisymmetricDome
+    from spsc.testing.verify.axisym_felupe import AxisymmetricDome
 
     g = preset(type_name, l=0.0)
     n = int(round(stroke))

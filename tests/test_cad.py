@@ -32,6 +32,7 @@ def bladder_b_mesh(bladder_b):
     return tessellate(bladder_b.solid)
 
 
+@pytest.mark.slow
 def test_cavity_brep_and_mesh_volume_match_analytic():
     g = preset("D")
     cav = cavity_solid(g)
@@ -59,6 +60,7 @@ def _meridional(points, l):
                             points[:, 2]])
 
 
+@pytest.mark.slow
 def test_bladder_wall_is_t0_thick(bladder_b, bladder_b_mesh):
     """The printed wall, measured on the built bladder: every vertex of its surface above z = t0
     (below that lie the base, flange and port) is on the cavity or on the outer wall, and each
@@ -182,6 +184,7 @@ FAST = dict(deadline=None, phases=[Phase.explicit, Phase.reuse, Phase.generate],
             suppress_health_check=[HealthCheck.too_slow])
 
 
+@pytest.mark.slow
 @settings(max_examples=3, derandomize=True, **FAST)
 @given(design_space)
 @example(dict(w=5.0, h=2.5, l=0.0, t0=0.1, n1=2.0, n2=1.0, cy=0.0))  # once an invalid solid
@@ -216,6 +219,7 @@ def fingertip():
     return build_fingertip()
 
 
+@pytest.mark.slow
 def test_fingertip_one_cavity_five_pockets(fingertip):
     from spsc.cad.fingertip import measure_pockets
 
@@ -232,6 +236,7 @@ def test_fingertip_one_cavity_five_pockets(fingertip):
     assert m["min_wall_under_pockets_mm"] >= t0 + fingertip.spec.pocket.clearance - 5e-3
 
 
+@pytest.mark.slow
 def test_pocket_probe_fails_without_pockets(fingertip):
     """The measurement can fail: a mesh without the recesses counts no pocket."""
     from spsc.cad.fingertip import measure_pockets

@@ -136,7 +136,7 @@ def test_bad_space_is_one_line_naming_the_input(name, text):
     assert "\n" not in str(err.value)
 
 
-# -- the loop on Dask (closed-form stand-in for the models: tests/design_double.py) -------------
+# -- the loop on Dask (closed-form stand-in for the models: spsc/testing/design_double.py) -------------
 @pytest.fixture(scope="module")
 def cluster():
     """One small cluster of two single-threaded worker processes for the loop's tests (each
@@ -159,7 +159,7 @@ def _problem(targets=("stiffness_high=6", "sensitivity_high>=5"), tol=0.01, spac
 
 
 def _run(problem, out, cluster, trials=12, seed=3, **kw):
-    import design_double
+    from spsc.testing import design_double
     from spsc.pipeline.design import run_design
 
     return run_design(problem, out, trials=trials, seed=seed, scheduler=cluster,
@@ -303,6 +303,7 @@ def test_the_printed_spsc_curve_commands_reproduce_the_best_metrics(tmp_path, ca
     assert curves["low"].setup["reservoir_mm3"] == doc["best"]["params"]["reservoir"] > 0
 
 
+@pytest.mark.slow
 def test_met_goal_and_a_part_that_passes_the_gate_exit_0(tmp_path, capsys):
     import json
 

@@ -51,6 +51,7 @@ def test_canonical_order_keeps_the_surface_and_its_orientation(sphere, tmp_path)
     np.testing.assert_allclose(back.vertices, c.vertices, rtol=0, atol=2e-6)
 
 
+@pytest.mark.slow
 def test_step_of_two_runs_is_the_same(tmp_path):
     """Two processes (as two `spsc bladder` runs) a second apart write the same STEP bytes:
     OCCT would stamp each header with its wall-clock time."""

@@ -1,4 +1,4 @@
-"""Slow FEM cases (``make test-slow``): mesh independence, pytetwild against the structured
+"""Slow FEM cases (``make test-slow`` (and ``make test-all``)): mesh independence, pytetwild against the structured
 mesh, the open chamber's instability report."""
 
 import numpy as np

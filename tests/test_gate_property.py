@@ -2,7 +2,7 @@
 bladder (types A–D in the paper's family, any material, flange holes and tube, a wall at or
 above the process minimum) passes the gate or is refused with a named one-line error. A
 self-intersection or a wall failure here is a geometry bug (issue 10 found Type C with four
-flange holes). The fast suite draws a few designs; ``make test-slow`` more;
+flange holes). The fast suite draws a few designs; ``make test-slow`` (and ``make test-all``) more;
 ``bench/bench_badinput.py --designs 200`` 200 through the CLI.
 """
 
@@ -11,7 +11,7 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
-from fuzz_cases import random_design
+from spsc.testing.fuzz_cases import random_design
 from spsc.cad import meshtopo
 from spsc.cad.bladder import BladderSpec, FlangeSpec, PortSpec, build_bladder
 from spsc.cad.check import check_mesh
@@ -42,6 +42,7 @@ def _gate(seed: int) -> None:
     assert report.passed, (d, report.failed, report.summary())
 
 
+@pytest.mark.slow
 @settings(max_examples=2, derandomize=True, **SLOW_DRAWS)
 @given(st.integers(0, 2**32 - 1))
 def test_random_valid_designs_pass_the_gate(seed):

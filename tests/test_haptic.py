@@ -28,6 +28,7 @@ def _motor(h):
                                 256).translate([0.0, 0.0, z0])
 
 
+@pytest.mark.slow
 def test_haptic_chamber_passes_the_gate():
     h = _haptic()
     m = manifold_mesh(h.solid)

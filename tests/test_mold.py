@@ -30,6 +30,7 @@ def _gate(t, process="casting"):
     return mold_gate(_mold(t, process))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("t,process", [("B", "casting"), ("D", "casting"),
                                        ("A", "compression")])
 def test_mold_passes_its_gate(t, process):
@@ -127,6 +128,7 @@ def test_bad_mold_parameters(kw, name):
         MoldSpec(**kw)
 
 
+@pytest.mark.slow
 def test_mold_command_writes_every_piece(tmp_path, capsys):
     import json
 
@@ -152,6 +154,7 @@ def test_mold_command_writes_every_piece(tmp_path, capsys):
     assert "MOLD PASSED" in capsys.readouterr().out
 
 
+@pytest.mark.slow
 def test_mold_of_a_bladder_file(tmp_path):
     from spsc.pipeline.cli import main
 

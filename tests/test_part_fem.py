@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from part_shapes import dome, dome_port
+from spsc.testing.part_shapes import dome, dome_port
 from spsc.cad.export import TriMesh, write_stl
 from spsc.core.errors import ParameterError
 from spsc.fem.mesh import TetMesh
@@ -143,6 +143,7 @@ def test_plate_force_balances_the_mount_reactions(dome_part, tmp_path):
 MOTOR = {"motor": {"name": "coin", "diameter_mm": 6.0, "height_mm": 4.6, "z_bottom_mm": 0.0}}
 
 
+@pytest.mark.slow
 def test_a_motor_in_the_dome_is_met_by_the_wall_and_balances(dome_part, tmp_path):
     """A rigid coin (Ø6 × 4.6 mm) standing on the dome's free cavity floor, 0.6–1.4 mm under
     the inner dome: pressed 2 mm, the dome comes down onto it; its force is zero before and
@@ -183,6 +184,7 @@ def test_a_motor_needs_its_design_and_an_axial_press(tmp_path):
                 design=MOTOR, motor=True)
 
 
+@pytest.mark.slow
 def test_a_turned_part_pressed_along_its_turned_axis_gives_the_same_curve(dome_part, tmp_path):
     s, mesh = dome_part
     q = np.array([[1.0, 0, 0], [0, 0, -1.0], [0, 1.0, 0]])  # +90° about x: z -> y, base -> y >= 0
@@ -208,6 +210,7 @@ def test_press_rotation_takes_the_normal_to_minus_z():
         assert np.linalg.det(R) > 0
 
 
+@pytest.mark.slow
 def test_contact_patches_report_the_force_through_them(dome_part, tmp_path):
     """A flat patch at the dome's apex carries part of the plate force (the disc where the
     curved dome is within the tolerance of its plane); one on the flange, never reached,
@@ -302,6 +305,7 @@ def test_part_errors_of_the_file(capsys, tmp_path, dome_stl):
     _fails(capsys, ["fem", "--part", str(txt), "--fix", "z<0"], "an .stl, .3mf, .step or .stp")
 
 
+@pytest.mark.slow
 def test_dropping_the_mount_bulk_changes_nothing(dome_part):
     """Elements with every node clamped are left out of the model (the dome's base disc under
     z <= -0.5): the same plate force and volume as the model that keeps them, to the Newton
@@ -331,7 +335,7 @@ def test_a_dome_part_agrees_with_the_structured_chamber_mesh(tmp_path):
     1 mm: force within 2.5 % and pressure rise within 2 % (measured 1.4 % and 1.1 %: the part's
     mesh is about one element through the 1 mm wall), volume gain of the inflation within 5 %
     of itself (measured 0.1 %)."""
-    from part_shapes import dome_geometry
+    from spsc.testing.part_shapes import dome_geometry
     from spsc.fem.part_run import run_part
     from spsc.fem.run import ChamberRun, run_chamber
 
@@ -348,6 +352,7 @@ def test_a_dome_part_agrees_with_the_structured_chamber_mesh(tmp_path):
     assert_allclose(inflation(part), inflation(ref), rtol=0.05)
 
 
+@pytest.mark.slow
 def test_vtus_are_in_part_coordinates_and_render(dome_part, tmp_path):
     """A part pressed sideways (plate along +y) is solved turned; its VTUs come back in the
     part's own coordinates with the patch marked and its force, and render off screen."""

@@ -225,6 +225,7 @@ def _no_cluster():
     raise AssertionError("a cluster was started with nothing to compute")
 
 
+@pytest.mark.slow
 def test_cluster_gives_the_sequential_outcomes_longest_first_and_fills_the_cache(
         tmp_path, cluster):
     runs = MIXED.runs()

@@ -204,8 +204,9 @@ def test_verdict_is_frozen():
         v.ok = False
 
 
-def test_readme_quotes_the_verdict():
-    text = " ".join((Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8").split())
+def test_the_bladder_guide_quotes_the_verdict():
+    guide = Path(__file__).parents[1] / "docs" / "guides" / "bladder.md"
+    text = " ".join(guide.read_text(encoding="utf-8").split())
     assert f'"{printability(preset("B", t0=0.6)).reasons[0]}"' in text
     assert f'"{printability(preset("D", cy=0.7)).reasons[0].split(" (")[0]} …"' in text
     assert f"Type D: {printability(preset('D')).measures['overhang_deg']:.1f}°" in text

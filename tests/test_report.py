@@ -40,6 +40,7 @@ SMALL = Study(name="small", types=("B",), pressures_kPa=(10.0, 40.0), fem_points
               wall_mesh=(2.0, 1))
 
 
+@pytest.mark.slow
 def test_report_is_offline_html_with_local_figures_and_lists_failures(tmp_path):
     bad = Run("membrane", "B", "no-such-material", 40, 0, 6, 7)
     outcomes = run_all(SMALL.runs() + [bad], Cache(tmp_path / "cache"), progress=False)
@@ -70,6 +71,7 @@ def _headline_section(page: str) -> str:
     return page[page.index("<h2>Headline"):page.index("<h2>JND")]
 
 
+@pytest.mark.slow
 def test_headline_shows_the_paper_figures_with_their_citation(tmp_path):
     outcomes = run_all(SMALL.runs(), Cache(tmp_path / "cache"), progress=False)
     page = build_report(SMALL, outcomes, tmp_path / "r", source=CLEAN).read_text(encoding="utf-8")
@@ -99,6 +101,7 @@ def test_a_dirty_tree_is_marked_not_reproducible(tmp_path):
     assert "NOT REPRODUCIBLE" in nogit.read_text(encoding="utf-8")
 
 
+@pytest.mark.slow
 def test_spsc_report_refuses_the_committed_report_from_a_dirty_tree(tmp_path, monkeypatch,
                                                                     capsys):
     from spsc.pipeline import cmd_report, provenance, runner
@@ -143,6 +146,7 @@ def test_a_new_model_plugs_in_with_a_model_entry_and_a_compute_entry(tmp_path, m
     assert "toy p10" in summary["jnd_mm"]["B-tpu60a"]
 
 
+@pytest.mark.slow
 def test_spsc_report_verb_membrane_only(tmp_path, capsys):
     out, cache = tmp_path / "r", tmp_path / "c"
     args = ["report", "--quick", "--no-fem", "--types", "C", "--out", str(out),
@@ -280,6 +284,7 @@ def _report_error(tmp_path, argv) -> str:
     return err.getvalue()
 
 
+@pytest.mark.slow
 def test_spsc_report_runs_on_the_cluster_its_options_name(tmp_path, monkeypatch):
     """--workers N: a LocalCluster of N (1: this process, no cluster); --scheduler: that
     scheduler; neither: one worker per core. The report says where its runs were computed."""
@@ -378,6 +383,7 @@ def test_the_haptic_study_gets_its_own_section(tmp_path):
     assert "make haptic-fem" in none
 
 
+@pytest.mark.slow
 def test_mold_section(tmp_path):
     """The report builds, gates and renders the molds itself, and shows the gate failing on the
     three broken molds with their reasons."""

@@ -26,7 +26,7 @@ from spsc.pipeline.sweep_eval import (COLUMNS, INPUTS, METRICS, design_curves, d
 from spsc.pipeline.sweep_space import build_space, parse_axis
 from spsc.pipeline.sweep_store import SweepStore, journal_path, read_table
 
-import sweep_tasks
+from spsc.testing import sweep_tasks
 
 FAST = dict(model="simplified", process="fdm", points=5, stroke_mm=4.0)
 B = {"type": "B", "w": 11.0, "h": 13.0, "l": 3.0, "t0": 1.0, "n1": 2.0, "n2": 2.2, "cy": 0.0,
@@ -324,6 +324,7 @@ def test_resume_retries_failed_rows_and_computes_only_new_designs(tmp_path, clus
     assert len(journal.read_text(encoding="utf-8").splitlines()) == 16 + 1 + 9
 
 
+@pytest.mark.slow
 def test_a_killed_worker_loses_no_design_and_duplicates_none(tmp_path, monkeypatch):
     """SIGKILL a worker process while it is in the middle of a design: Dask runs that design
     again elsewhere and every design is in the table exactly once."""
@@ -478,8 +479,8 @@ def test_cli_refuses_before_any_work(argv, name, tmp_path, capsys):
     assert not out.exists() and not journal_path(out).exists()
 
 
-def test_readme_sweep_examples_are_valid_and_their_counts_right(tmp_path):
-    """Every ``spsc sweep`` example of the README's Sweeps section passes the command's checks
+def test_the_sweep_guide_examples_are_valid_and_their_counts_right(tmp_path):
+    """Every ``spsc sweep`` example of the sweeps guide (docs/guides/sweeps.md) passes the checks
     and has the number of designs its comment states (they are not run: minutes each)."""
     import re
     import shlex
@@ -488,8 +489,8 @@ def test_readme_sweep_examples_are_valid_and_their_counts_right(tmp_path):
     from spsc.pipeline.cli import build_parser
     from spsc.pipeline.cmd_sweep import prepare
 
-    text = (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
-    section = text.split("## Sweeps", 1)[1].split("\n## ", 1)[0]
+    section = (Path(__file__).parents[1] / "docs" / "guides" / "sweeps.md").read_text(
+        encoding="utf-8")
     examples = re.findall(r"# [^\n]*?= ([\d,]+) designs[^\n]*\n(spsc sweep (?:[^\n]*\\\n)*[^\n]*)",
                           section)
     assert len(examples) == 3

@@ -1,7 +1,7 @@
 """A stand-in for :func:`spsc.pipeline.sweep_eval.evaluate` in the design loop's tests: smooth
 closed-form "metrics" of the parameters (milliseconds, no model), the printability of the wall
 against the process's minimum, and a refused design where w > 13.5 mm. Importable by the
-Dask workers (tests/ is on their sys.path, as on the test process's)."""
+Dask workers (it is part of the installed package)."""
 
 from __future__ import annotations
 

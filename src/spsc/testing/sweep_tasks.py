@@ -1,5 +1,5 @@
-"""Tasks for the sweep tests that must run on Dask's worker processes (importable there: the
-workers inherit the tests' ``sys.path``). Each has :func:`spsc.pipeline.sweep_eval.evaluate`'s
+"""Tasks for the sweep tests that must run on Dask's worker processes (importable there: they
+are part of the installed package). Each has :func:`spsc.pipeline.sweep_eval.evaluate`'s
 signature."""
 
 from __future__ import annotations
