@@ -2,11 +2,14 @@
 its short forms and write the same JSON (timing apart); the model table; the error contract."""
 
 import json
+from dataclasses import dataclass
 
 import numpy as np
 import pytest
 
+from spsc import models
 from spsc.core.curve import Curve, SolveInfo
+from spsc.models import Outcome, cli_options, option
 from spsc.pipeline import cmd_curve
 from spsc.pipeline.cli import build_parser, main
 
@@ -72,19 +75,18 @@ def test_short_forms_have_the_model_defaults(short, long, stroke, points):
     resolved = []
     for argv in (short, long):
         args = parser.parse_args([*argv, "--type", "B"])
-        cmd_curve._model_args(args, cmd_curve.MODELS[args.model])
-        resolved.append({k: v for k, v in vars(args).items()
-                         if k not in ("command", "models", "func")})
-    a, b = resolved
+        options = cmd_curve.model_options(args, models.MODELS[args.model])
+        resolved.append(({k: v for k, v in vars(args).items()
+                          if k not in ("command", "models", "func")}, options))
+    (a, opt_a), (b, opt_b) = resolved
     assert a["stroke"] == b["stroke"] == stroke and a["points"] == b["points"] == points
     for key in set(a) & set(b):
         assert a[key] == b[key], key
-    model = cmd_curve.MODELS[a["model"]]
-    assert all(b[k] is not None or v is None for k, v in model.defaults.items())
+    assert opt_a == opt_b == models.MODELS[a["model"]].Options()
 
 
-def _toy_curve(job, converged=True):
-    y = np.linspace(0.0, job.stroke_mm, job.points)
+def _toy_curve(geometry, material, load, converged=True):
+    y = np.linspace(0.0, load.stroke_mm, load.points)
     conv = np.ones(y.size, bool)
     msg = [""] * y.size
     if not converged:
@@ -92,32 +94,68 @@ def _toy_curve(job, converged=True):
     f = np.where(conv, 2.0 * y, np.nan)
     info = SolveInfo(converged=converged, message="converged" if converged else msg[-1],
                      y_reached_mm=y[conv][-1], seconds=0.0, iterations=3)
-    return Curve(y, f, 40 + y, 10 * y, 5 * y, model="toy", geometry=job.geometry.as_dict(),
-                 material=job.material.name,
-                 setup={"p_i_kPa": job.pressure_kPa, "reservoir_mm3": job.reservoir_mm3,
-                        "polytropic_n": job.polytropic_n},
+    return Curve(y, f, 40 + y, 10 * y, 5 * y, model="toy", geometry=geometry.as_dict(),
+                 material=material.name,
+                 setup={"p_i_kPa": load.pressure_kPa, "reservoir_mm3": load.reservoir_mm3,
+                        "polytropic_n": load.polytropic_n},
                  nominal_volume_mm3=100.0, inflated_volume_mm3=110.0, inflated_height_mm=13.0,
                  converged=conv, message=tuple(msg), solver=info)
 
 
+# -- adding a model: this module (its options and its class) and one line of the registry ----
+@dataclass(frozen=True)
+class ToyOptions:
+    """A toy model's one option (it converges while the knob is below 5)."""
+
+    toy_knob: float = option(1.0, "--toy-knob", "a toy option", kind="number")
+
+
+@dataclass(frozen=True)
+class ToyModel:
+    """F = 2y: a model that only says what the interface asks of a model."""
+
+    calls: list
+    name: str = "toy"
+    help: str = "a toy model"
+    module: str = __name__
+    Options = ToyOptions
+    stroke_mm: float = 2.0
+    points: int = 5
+    bending: bool = False
+    meshed: bool = False
+    fast: bool = True
+    sweep: bool = True
+    color: str = "C4"
+    style: str = ":"
+    seconds_per_point: float = 1e-3
+    zero_stroke: bool = False
+
+    def load_steps(self, load, options) -> int:
+        return 0
+
+    def check(self, geometry, load, options, *, verb, quiet) -> None:
+        pass
+
+    def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
+        self.calls.append(load)
+        return Outcome(_toy_curve(geometry, material, load, converged=options.toy_knob < 5),
+                       {"knob": options.toy_knob})
+
+
 @pytest.fixture
 def toy(monkeypatch):
-    """A model added as one entry of the table (what the wall model will do)."""
+    """The toy model in the registry: the one line adding a model."""
     calls = []
-
-    def options(g):
-        g.add_argument("--toy-knob", type=float, default=None, help="a toy option")
-
-    def compute(job):
-        calls.append(job)
-        return cmd_curve.Computed(_toy_curve(job, converged=job.args.toy_knob < 5),
-                                  {"knob": job.args.toy_knob})
-    monkeypatch.setitem(cmd_curve.MODELS, "toy", cmd_curve.Model(
-        "toy", "a toy model", 2.0, 5, options, {"toy_knob": 1.0}, compute))
+    monkeypatch.setitem(models.MODELS, "toy", ToyModel(calls))
     return calls
 
 
-def test_a_model_is_one_table_entry(toy, tmp_path, capsys):
+def test_the_toy_model_is_a_curve_model():
+    assert isinstance(ToyModel([]), models.CurveModel)
+    assert set(cli_options(ToyOptions)) == {"toy_knob"}
+
+
+def test_a_model_is_one_module_and_one_registry_line(toy, tmp_path, capsys):
     j, c = tmp_path / "t.json", tmp_path / "t.csv"
     assert main(["curve", "--model", "toy", "--type", "A", "--json", str(j), "--csv", str(c)]) == 0
     assert len(toy) == 1 and toy[0].stroke_mm == 2.0 and toy[0].points == 5  # its defaults

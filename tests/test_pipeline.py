@@ -13,8 +13,8 @@ import pytest
 from spsc.core.errors import ParameterError
 from spsc.pipeline.cache import Cache
 from spsc.pipeline.runner import estimated_seconds, run_all
-from spsc.pipeline.study import (MODELS, Run, Study, code_version, full_study, quick_study,
-                                 source_closure)
+from spsc.models import MODELS
+from spsc.pipeline.study import Run, Study, code_version, full_study, quick_study, source_closure
 
 SMALL = Study(name="small", types=("B",), pressures_kPa=(40.0,), fem_points=4, fem=False,
               wall_mesh=(2.0, 1))
@@ -61,14 +61,16 @@ def test_key_follows_inputs_and_the_code_the_model_imports():
     mem = {p.relative_to(p.parents[1]).as_posix() for p in source_closure("spsc.membrane.solver")}
     assert {"membrane/solver.py", "membrane/bvp.py", "membrane/stroke.py"} <= mem
     assert not any(n.startswith("fem/") for n in mem)
-    assert len({code_version(m.name) for m in MODELS}) == len(MODELS)
+    assert len({code_version(m) for m in MODELS}) == len(MODELS)
+    wall = {p.relative_to(p.parents[1]).as_posix() for p in source_closure("spsc.models.wall")}
+    assert {"models/wall.py", "fem/wall.py", "fem/wall_model.py"} <= wall
 
 
-def test_every_model_has_a_compute_entry_and_a_code_version():
-    from spsc.pipeline.runner import _COMPUTE
+def test_every_model_of_the_registry_is_a_curve_model_with_a_code_version():
+    from spsc.models import CurveModel
 
-    assert set(_COMPUTE) == {m.name for m in MODELS}
-    sweep = [m.name for m in MODELS if m.sweep]
+    assert all(isinstance(m, CurveModel) and m.name == k for k, m in MODELS.items())
+    sweep = [m.name for m in MODELS.values() if m.sweep]
     assert {"membrane", "simplified"} <= set(sweep)
     runs = SMALL.runs()  # every sweep model at every setup pressure and mode
     assert sorted({r.model for r in runs}) == sorted(sweep)

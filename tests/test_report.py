@@ -125,15 +125,15 @@ def test_spsc_report_refuses_the_committed_report_from_a_dirty_tree(tmp_path, mo
     assert cmd_report.DEFAULT_OUT[True] == Path("build/report-quick")
 
 
-def test_a_new_model_plugs_in_with_a_model_entry_and_a_compute_entry(tmp_path, monkeypatch):
-    """A model with bending (like the wall model) added to the list is run at every setup
+def test_a_new_model_plugs_in_with_one_registry_entry(tmp_path, monkeypatch):
+    """A model with bending (like the wall model) added to the registry is run at every setup
     pressure, drawn, and enters the headline and the JND table without F_el."""
-    from spsc.pipeline import runner, study
+    from dataclasses import replace
 
-    toy = study.Model("toy", "spsc.membrane.simplified", bending=True)
-    monkeypatch.setattr(study, "MODELS", study.MODELS + (toy,))
-    monkeypatch.setitem(runner._COMPUTE, "toy",
-                        runner.curve_model("spsc.membrane.simplified", "simplified_curve"))
+    from spsc.models import MODELS
+
+    toy = replace(MODELS["simplified"], name="toy", bending=True, color="C4", style=":")
+    monkeypatch.setitem(MODELS, "toy", toy)
     outcomes = run_all(SMALL.runs(), Cache(tmp_path / "cache"), progress=False)
     assert sum(r.model == "toy" for r in outcomes) == len(SMALL.all_pressures) * 2
     path = build_report(SMALL, outcomes, tmp_path / "r", source=CLEAN)

@@ -152,16 +152,15 @@ def test_row_has_every_column_and_the_shared_metrics():
     json.dumps(row, allow_nan=True)
 
 
-def test_membrane_row_uses_the_model_table_like_spsc_curve():
-    from types import SimpleNamespace
-
-    from spsc.pipeline.curve_models import MODELS, Job
+def test_membrane_row_uses_the_model_registry_like_spsc_curve():
+    from spsc.core.loadcase import LoadCase
+    from spsc.models import MODELS
 
     row = evaluate(B, "membrane", "fdm", 7, 4.0)
     assert row["status"] == "ok", row["message"]
     g, mat, _ = resolve_design(B)
-    args = SimpleNamespace(**MODELS["membrane"].defaults)
-    high = MODELS["membrane"].compute(Job(g, mat, 40.0, 0.0, 4.0, 7, 1.0, args, True, "t")).curve
+    m = MODELS["membrane"]
+    high = m.curve(g, mat, LoadCase(40.0, 0.0, 4.0, 7, 1.0), m.Options()).curve
     assert row["stiffness_high"] == pytest.approx(high.mean_stiffness(), rel=1e-9)
 
 
@@ -203,20 +202,20 @@ def test_a_design_the_models_refuse_is_an_invalid_row(change, name):
 
 
 def test_a_solve_that_stops_early_is_a_partial_row_with_what_it_reached(monkeypatch):
-    from spsc.pipeline import curve_models
+    from spsc.models import MODELS, Outcome
 
-    entry = curve_models.MODELS["simplified"]
+    entry = MODELS["simplified"]
 
-    def stops(job):
-        c = entry.compute(job).curve
-        ok = c.y_mm <= 2.0
-        nan = np.where(ok, 1.0, np.nan)
-        return curve_models.Computed(c.replace(
-            force_N=c.force_N * nan, pressure_kPa=c.pressure_kPa * nan, converged=ok,
-            message=tuple("" if k else "no equilibrium" for k in ok), solver=None))
+    class Stops(type(entry)):
+        def curve(self, *args, **kw):
+            c = entry.curve(*args, **kw).curve
+            ok = c.y_mm <= 2.0
+            nan = np.where(ok, 1.0, np.nan)
+            return Outcome(c.replace(
+                force_N=c.force_N * nan, pressure_kPa=c.pressure_kPa * nan, converged=ok,
+                message=tuple("" if k else "no equilibrium" for k in ok), solver=None))
 
-    monkeypatch.setitem(curve_models.MODELS, "simplified",
-                        curve_models.Model(**{**entry.__dict__, "compute": stops}))
+    monkeypatch.setitem(MODELS, "simplified", Stops())
     row = evaluate(B, **FAST)
     assert row["status"] == "partial"
     assert row["message"] == "high mode: no equilibrium; low mode: no equilibrium"
@@ -226,15 +225,13 @@ def test_a_solve_that_stops_early_is_a_partial_row_with_what_it_reached(monkeypa
 
 
 def test_an_unexpected_exception_is_a_failed_row_never_raised(monkeypatch):
-    from spsc.pipeline import curve_models
+    from spsc.models import MODELS
 
-    entry = curve_models.MODELS["simplified"]
+    class Breaks(type(MODELS["simplified"])):
+        def curve(self, *args, **kw):
+            raise ZeroDivisionError("the solver divided by zero\nsecond line")
 
-    def breaks(job):
-        raise ZeroDivisionError("the solver divided by zero\nsecond line")
-
-    monkeypatch.setitem(curve_models.MODELS, "simplified",
-                        curve_models.Model(**{**entry.__dict__, "compute": breaks}))
+    monkeypatch.setitem(MODELS, "simplified", Breaks())
     row = evaluate(B, **FAST)
     assert row["status"] == "failed"
     assert row["message"] == "ZeroDivisionError: the solver divided by zero"

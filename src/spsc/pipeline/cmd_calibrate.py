@@ -20,7 +20,7 @@ from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import PRESSURE_MAX_KPA
 
 from .cmd_identify import _floats
-from .curve_models import wall_size_check
+from spsc.models.wall import wall_size_check
 from .options import (PLOT_SUFFIXES, add_gas_options, add_geometry_options, add_output_options,
                       add_quiet_option, check_output_file, geometry_from_args, integer, number)
 

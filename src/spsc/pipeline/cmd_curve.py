@@ -5,27 +5,80 @@ and a setup, with any model — JSON, CSV and a plot.
                [--stroke MM] [--points N] [--material tpu60a] [model options]
                [--json F] [--csv F] [--png F] [--quiet]
 
-``spsc membrane`` and ``spsc fem`` are its short forms (the same code, the same JSON). A model
-is one entry of :data:`~.curve_models.MODELS`: its default stroke and points, its own options
-(an argparse group) and a function from the setup to a Curve. Pressures kPa gauge, volumes
-mm³, lengths mm. Exit 0 when every plate position converged, 1 when some did not (what was computed is
+``spsc membrane`` and ``spsc fem`` are its short forms (the same code, the same JSON). The
+models are :data:`spsc.models.MODELS`: each brings its default stroke and points, its checks,
+and its options as a dataclass whose fields become this verb's options. Pressures kPa gauge,
+volumes mm³, lengths mm. Exit 0 when every plate position converged, 1 when some did not (what was computed is
 still written, the reason on stderr), 2 on invalid input (one line on stderr).
 """
 
 from __future__ import annotations
 
 import sys
+from dataclasses import dataclass
 
 import numpy as np
 
 from spsc.core.errors import ParameterError
+from spsc.models import MODELS, cli_options, options_from
 
-from .curve_models import MODELS, Computed, Job, Model, mesh_options
 from .options import (PLOT_SUFFIXES, add_geometry_options, add_output_options,
                       add_quiet_option, add_setup_options, check_output_dir,
-                      check_output_file, geometry_from_args, warn)
+                      check_output_file, geometry_from_args, integer, number, warn)
 
-__all__ = ["MODELS", "Model", "Job", "Computed", "add_curve_parser", "register", "run"]
+__all__ = ["Job", "add_curve_parser", "add_model_options", "prepare", "register", "run"]
+
+
+@dataclass(frozen=True)
+class Job:
+    """A checked invocation: the model, the chamber, the material, the load case and the
+    model's options, ready to solve."""
+
+    model: object
+    geometry: object
+    material: object
+    load: object
+    options: object
+
+
+def _argument(group, name: str, meta: dict) -> None:
+    kw = {"default": None, "dest": name, "help": meta["help"]}
+    if meta["kind"] == "flag":
+        kw["action"] = "store_true"
+    elif meta["kind"] == "number":
+        kw["type"] = number(meta["label"], meta["unit"])
+    elif meta["kind"] == "integer":
+        kw["type"] = integer(meta["label"])
+    elif meta["kind"] == "choice":
+        kw["choices"] = meta["choices"]
+    if meta["metavar"]:
+        kw["metavar"] = meta["metavar"]
+    group.add_argument(meta["flag"], **kw)
+
+
+def add_model_options(parser, models) -> None:
+    """The options of ``models`` (names of :data:`MODELS`), from their options dataclasses:
+    the discretisation shared by the meshed models in one group, each model's own in its
+    group. Every option defaults to None (not given), so a model can refuse another's."""
+    shared, done = {}, set()
+    for m in models:
+        for name, meta in cli_options(MODELS[m].Options).items():
+            if meta["group"] == "discretisation":
+                shared.setdefault(name, meta)
+    owners = [m for m in models if any(cli_options(MODELS[m].Options).get(n, {}).get("group")
+                                       == "discretisation" for n in shared)]
+    if shared:
+        g = parser.add_argument_group(f"{' and '.join(owners)} discretisation")
+        for name, meta in shared.items():
+            _argument(g, name, meta)
+            done.add(name)
+    for m in models:
+        own = {n: meta for n, meta in cli_options(MODELS[m].Options).items() if n not in done}
+        if own:
+            g = parser.add_argument_group(f"{m} model options")
+            for name, meta in own.items():
+                _argument(g, name, meta)
+                done.add(name)
 
 
 # -- the verb and its short forms -------------------------------------------------------------
@@ -49,12 +102,7 @@ def add_curve_parser(subparsers, verb: str, *, models: tuple[str, ...], help: st
                        + f" (default {models[0]})")
     else:
         p.set_defaults(model=models[0])
-    solids = [m for m in models if "mesh_size" in MODELS[m].defaults]
-    if solids:
-        mesh_options(p.add_argument_group(f"{' and '.join(solids)} discretisation"))
-    for m in models:
-        if MODELS[m].add_options is not None:
-            MODELS[m].add_options(p.add_argument_group(f"{m} model options"))
+    add_model_options(p, models)
     add_output_options(p, png="write a plot of F, p, A, dV and the stiffness here "
                        "(" + ", ".join(s.lstrip(".") for s in PLOT_SUFFIXES[:3]) + " ...)")
     add_quiet_option(p)
@@ -68,23 +116,21 @@ def register(subparsers) -> None:
                      description=__doc__.split("\n\n")[0])
 
 
-def _model_args(args, model: Model) -> None:
-    """Refuse options of another model; fill in this model's defaults."""
+def model_options(args, model):
+    """The model's options from the arguments; an option of another model is refused. Fills
+    in the model's default stroke and points."""
+    own = cli_options(model.Options)
     for other in args.models:
-        if other == model.name:
-            continue
-        for dest in MODELS[other].defaults:
-            if dest not in model.defaults and getattr(args, dest, None) is not None:
-                owners = [m for m in args.models if dest in MODELS[m].defaults]
-                raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
+        for dest, meta in cli_options(MODELS[other].Options).items():
+            if dest not in own and getattr(args, dest, None) is not None:
+                owners = [m for m in args.models if dest in cli_options(MODELS[m].Options)]
+                raise ParameterError(meta["flag"], getattr(args, dest),
                                      "only with --model " + " or ".join(owners))
-    for dest, value in model.defaults.items():
-        if getattr(args, dest, None) is None:
-            setattr(args, dest, value)
     if args.stroke is None:
         args.stroke = model.stroke_mm
     if args.points is None:
         args.points = model.points
+    return options_from(model.Options, args)
 
 
 def _check_outputs(args) -> None:
@@ -106,34 +152,50 @@ def prepare(args) -> Job:
     from spsc.materials import material
 
     model = MODELS[args.model]
-    _model_args(args, model)
+    options = model_options(args, model)
     _check_outputs(args)
     geom = geometry_from_args(args)
     mat = material(args.material)
     load = check_load(geom, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
                       stroke_mm=args.stroke, points=args.points, polytropic_n=args.polytropic_n,
-                      allow_zero_stroke=model.name == "membrane")
-    job = Job(geom, mat, load.pressure_kPa, load.reservoir_mm3, load.stroke_mm, load.points,
-              load.polytropic_n, args, bool(args.quiet), args.command)
-    if model.check is not None:
-        model.check(job)
-    return job
+                      allow_zero_stroke=model.zero_stroke)
+    model.check(geom, load, options, verb=args.command, quiet=bool(args.quiet))
+    return Job(model, geom, mat, load, options)
+
+
+def solve(job: Job, *, verb: str, quiet: bool):
+    """The job's model solved, with a progress bar on stderr (unless ``quiet``) for a model
+    that reports load steps."""
+    from tqdm import tqdm
+
+    total = job.model.load_steps(job.load, job.options)
+    bar = tqdm(total=total, desc=f"spsc {verb}", unit="step", disable=quiet or not total,
+               file=sys.stderr)
+
+    def progress(done, total):
+        bar.total = total
+        bar.update(done - bar.n)
+
+    try:
+        return job.model.curve(job.geometry, job.material, job.load, job.options,
+                               progress=progress)
+    finally:
+        bar.close()
 
 
 def run(args) -> int:
     verb = args.command
-    model = MODELS[args.model]
     job = prepare(args)
     for msg in job.geometry.design_space_warnings():
         warn(verb, msg)
-    out = model.compute(job)
+    out = solve(job, verb=verb, quiet=bool(args.quiet))
     curve = out.curve
     if args.json:
         curve.to_json(args.json, extra=out.extra or None)
     if args.csv:
         curve.to_csv(args.csv)
     if args.png:
-        plot(curve, out.shapes, args.png)
+        plot(curve, out.state, args.png)
     summary(curve)
     noted = [m for m, c in zip(curve.message, curve.converged) if c and m]
     if noted:

@@ -25,6 +25,7 @@ from pathlib import Path
 
 from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import POINTS_MAX
+from spsc.models import MODELS
 
 from .design_goal import METRIC_NAMES
 from .options import (_HELP, PARAMS, add_quiet_option, check_output_dir, check_output_file,
@@ -33,7 +34,7 @@ from .options import (_HELP, PARAMS, add_quiet_option, check_output_dir, check_o
 __all__ = ["register", "run", "prepare", "DESIGN_MODELS"]
 
 #: The fast models a design searches with (the FEM checks the best: --verify fem).
-DESIGN_MODELS = ("wall", "membrane", "simplified")
+DESIGN_MODELS = tuple(m.name for m in MODELS.values() if m.fast)
 _MAX_TRIALS = 100_000
 _FORMS = "X, a,b or lo:hi"
 

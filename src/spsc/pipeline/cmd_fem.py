@@ -196,7 +196,7 @@ def run_part_cli(args) -> int:
     from spsc.fem.part_run import check_part_run, part_curve, part_model, write_part_vtu
     from spsc.fem.solver import Settings, solve
 
-    from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
+    from spsc.models.resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 
     verb = "fem"
     run = part_run_from_args(args)

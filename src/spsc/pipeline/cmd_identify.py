@@ -81,7 +81,7 @@ def run(args) -> int:
                      polytropic_n=args.polytropic_n, elastic_force_N=bench.elastic_force_N)
              for r in reservoirs for p in pressures]
     if args.json:
-        # the Curve JSON of DESIGN.md, the predictions under "extra"
+        # the Curve JSON of docs/design.md, the predictions under "extra"
         ident.to_json(args.json, extra={"predictions": [c.to_dict() for c in preds]})
     if args.csv:
         ident.to_csv(args.csv)

@@ -21,7 +21,7 @@ import sys
 from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import POINTS_MAX
 
-from .curve_models import MODELS
+from spsc.models import MODELS
 from .options import (_HELP, PARAMS, _RenamedSize, add_quiet_option, check_output_dir,
                       check_output_file, integer, number, typed_command)
 from .sweep_eval import INPUTS, STATUSES
@@ -29,7 +29,7 @@ from .sweep_eval import INPUTS, STATUSES
 __all__ = ["register", "run", "SWEEP_MODELS"]
 
 #: The models a sweep runs (the 3D FEM is for checking one design: spsc curve --model fem).
-SWEEP_MODELS = ("membrane", "wall", "simplified")
+SWEEP_MODELS = tuple(m.name for m in MODELS.values() if m.fast)
 _FORMS = "X, a,b,c, lo:hi:n or (with --samples) lo:hi"
 
 

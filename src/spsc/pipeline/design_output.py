@@ -50,9 +50,9 @@ def rerun_commands(params: dict, model: str, points: int | None, stroke_mm: floa
     """``{"high": cmd, "low": cmd}``: the ``spsc curve`` commands computing the design's two
     modes (closed; with its reservoir) as the study did; every parameter written so it reads
     back to the same float."""
-    from .curve_models import MODELS
+    from spsc.models import get
 
-    n = MODELS[model].points if points is None else points
+    n = get(model).points if points is None else points
     head = ["spsc", "curve", "--model", model]
     if params.get("type"):
         head += ["--type", str(params["type"])]

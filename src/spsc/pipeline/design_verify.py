@@ -4,7 +4,7 @@ and the part built and put through the full printability gate.
 The FEM runs both modes over the fast model's stroke (plate positions every 0.5 mm), the two
 modes as two tasks on the Dask workers; the fast model's curves are recomputed beside them. The
 comparison is per metric, (fast − FEM)/FEM in %; the wall model is expected within 5 % of the
-FEM (README, the wall model's bench), the membrane models further (no bending). The part is
+FEM (docs/theory/wall.md, the wall model's bench), the membrane models further (no bending). The part is
 the bladder of ``spsc bladder`` (wall, floor, flange, barbed port): STEP, STL, 3MF and the
 gate's ``check.json`` for the process.
 """
@@ -14,7 +14,6 @@ from __future__ import annotations
 import math
 import time
 from pathlib import Path
-from types import SimpleNamespace
 
 from .design_goal import METRIC_NAMES, Goal
 
@@ -36,37 +35,34 @@ def fem_points(stroke_mm: float) -> int:
 def mode_curve(params: dict, model: str, mode: str, *, points: int | None, stroke_mm: float,
                options: dict | None = None):
     """The Curve of a design (``params`` under the CLI's names, all seven parameters) with
-    ``model`` of :data:`~.curve_models.MODELS` in ``mode`` high (closed chamber) or low
+    ``model`` of :data:`spsc.models.MODELS` in ``mode`` high (closed chamber) or low
     (with the design's reservoir); ``options`` override the model's defaults (e.g. the FEM's
-    ``mesh_size``). The same Job, checks and defaults as ``spsc curve``."""
-    from .curve_models import MODELS
-
-    return MODELS[model].compute(check_mode(params, model, mode, points=points,
-                                            stroke_mm=stroke_mm, options=options)).curve
+    ``mesh_size``). The same checks and defaults as ``spsc curve``."""
+    m, geom, mat, load, opts = check_mode(params, model, mode, points=points,
+                                          stroke_mm=stroke_mm, options=options)
+    return m.curve(geom, mat, load, opts).curve
 
 
 def check_mode(params: dict, model: str, mode: str, *, points: int | None, stroke_mm: float,
                options: dict | None = None):
-    """The :class:`~.curve_models.Job` of :func:`mode_curve`, checked against the load case's
-    and the model's limits (ParameterError, one line) without solving anything."""
+    """``(model, geometry, material, load, options)`` of :func:`mode_curve`, checked against
+    the load case's and the model's limits (ParameterError, one line) without solving
+    anything."""
     from spsc.cad.geometry import SPSCGeometry
     from spsc.core.loadcase import check_load
     from spsc.materials import material
 
-    from .curve_models import MODELS, Job
+    from spsc.models import get, options_from
 
-    entry = MODELS[model]
+    entry = get(model)
     geom = SPSCGeometry(**{k: float(params[k]) for k in _PARAMS})
     reservoir = 0.0 if mode == "high" else float(params["reservoir"])
     load = check_load(geom, pressure_kPa=params["pressure"], reservoir_mm3=reservoir,
                       stroke_mm=stroke_mm, points=entry.points if points is None else points,
                       polytropic_n=1.0)
-    args = SimpleNamespace(**(dict(entry.defaults) | dict(options or {})))
-    job = Job(geom, material(params["material"]), load.pressure_kPa, load.reservoir_mm3,
-              load.stroke_mm, load.points, load.polytropic_n, args, True, "design")
-    if entry.check is not None:
-        entry.check(job)
-    return job
+    opts = options_from(entry.Options, options or {})
+    entry.check(geom, load, opts, verb="design", quiet=True)
+    return entry, geom, material(params["material"]), load, opts
 
 
 def metrics_of(high, low) -> dict:

@@ -1,6 +1,6 @@
 """Where parallel work runs: a Dask client on an in-process LocalCluster (the default, nothing to
 set up) or on an existing scheduler given by address (a cluster started by hand, or by
-dask-jobqueue on a SLURM machine; see the README).
+dask-jobqueue on a SLURM machine; see docs/guides/sweeps.md).
 
 Workers are processes with one thread each: the models are numpy/scipy code that holds the GIL
 between small kernels, and their BLAS is kept single-threaded (multi-threaded OpenBLAS spins on

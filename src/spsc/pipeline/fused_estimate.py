@@ -17,11 +17,9 @@ the fast models) and the pockets' pads; the closing note states its error agains
 
 from __future__ import annotations
 
-from types import SimpleNamespace
-
 from spsc.core.curve import Curve
-
-from .curve_models import MODELS, Job
+from spsc.core.loadcase import LoadCase
+from spsc.models import get
 
 __all__ = ["fused_estimate", "compliance"]
 
@@ -30,11 +28,10 @@ AMBIENT_KPA = 101.325
 
 def _curve(model: str, geometry, material, pressure_kPa, reservoir_mm3, stroke_mm, points,
            polytropic_n=1.0) -> Curve:
-    entry = MODELS[model]
-    args = SimpleNamespace(**entry.defaults)
-    job = Job(geometry, material, float(pressure_kPa), float(reservoir_mm3), float(stroke_mm),
-              int(points), float(polytropic_n), args, True, "fused")
-    return entry.compute(job).curve
+    m = get(model)
+    load = LoadCase(float(pressure_kPa), float(reservoir_mm3), float(stroke_mm), int(points),
+                    float(polytropic_n))
+    return m.curve(geometry, material, load, m.Options()).curve
 
 
 def compliance(model: str, geometry, material, pressure_kPa: float, dp_kPa: float = 2.0):
@@ -53,7 +50,8 @@ def fused_estimate(pressed, others, material, *, pressure_kPa: float, channel_mm
     (``wall`` or ``membrane``); its setup records the equivalent reservoir and its parts."""
     if model not in ("wall", "membrane"):
         from spsc.core.errors import ParameterError
-        raise ParameterError("model", model, "wall or membrane (the fast models)")
+        raise ParameterError("model", model, "wall or membrane (the fast models that inflate "
+                             "a chamber)")
     p_abs = pressure_kPa + AMBIENT_KPA
     parts = []
     for g in others:

@@ -1,6 +1,6 @@
 """Metrics of the validation report and of design studies: pure functions of :class:`Curve` s.
 
-DESIGN.md defines the headline once: stroke y ∈ [0, 6] mm, setup pressures p_i = 10, 20, 30,
+docs/design.md defines the headline once: stroke y ∈ [0, 6] mm, setup pressures p_i = 10, 20, 30,
 40 kPa; mean stiffness = mean of dF/dy over the stroke and the pressures (likewise sensitivity
 dP/dy), per type and mode, then over types; JND depth = first y where
 |F_high − F_low| ≥ max(0.1·F_low, 5 N). The per-curve means and the JND depth are those of
@@ -24,7 +24,7 @@ from spsc.membrane.lumped import jnd_depth, mean_sensitivity, mean_stiffness
 __all__ = ["COLUMNS", "DesignMetrics", "HeadlineRow", "Jnd", "design_metrics", "headline",
            "headline_row", "interp", "jnd", "model_errors", "type_mean", "with_f_el"]
 
-#: the compared columns of a curve (DESIGN.md order)
+#: the compared columns of a curve (docs/design.md order)
 COLUMNS = ("force_N", "pressure_kPa", "contact_area_mm2", "volume_change_mm3")
 
 

@@ -1,6 +1,6 @@
 """The paper's printed bench figures (``data/paper_bench.json``), each with the section it is
 printed in and the sentence that prints it: only numbers in the text, never digitised from a
-plot (DESIGN.md)."""
+plot (docs/design.md)."""
 
 from __future__ import annotations
 

@@ -1,9 +1,9 @@
 """The report's sections as data: each function takes the study and its outcomes and returns
 what the template shows (numbers, not HTML) and what ``summary.json`` keeps.
 
-The models are the study's (:data:`~.study.MODELS`): every sweep model (membrane, simplified,
+The models are the study's (:data:`spsc.models.MODELS`): every sweep model (membrane, simplified,
 …) is drawn, compared with the FEM, and enters the headline and the JND table, with the FEM's
-open-chamber F_el(y) added to its force when it has no bending (DESIGN.md).
+open-chamber F_el(y) added to its force when it has no bending (docs/design.md).
 """
 
 from __future__ import annotations

@@ -83,7 +83,7 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
 
 
 def write_run_data(outcomes: dict, directory: Path) -> None:
-    """One JSON (DESIGN.md format, with its solver block) and one CSV per successful run."""
+    """One JSON (docs/design.md format, with its solver block) and one CSV per successful run."""
     for run, oc in outcomes.items():
         if oc.ok:
             oc.curve.to_json(directory / f"{run.label}.json")

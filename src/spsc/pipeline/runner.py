@@ -13,7 +13,6 @@ cache; the client only reads hits and collects outcomes.
 from __future__ import annotations
 
 import functools
-import importlib
 import math
 import sys
 import time
@@ -26,9 +25,9 @@ import numpy as np
 from spsc.core.curve import Curve, SolveInfo
 
 from .cache import Cache
-from .study import Run
+from .study import Run, model
 
-__all__ = ["Outcome", "compute", "curve_model", "estimated_seconds", "run_all"]
+__all__ = ["Outcome", "compute", "estimated_seconds", "run_all"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -66,44 +65,15 @@ def _meridian(shape) -> dict | None:
     return {"x": np.round(x, 6), "rho": np.round(rho, 6), "eta": np.round(eta, 6)}
 
 
-def _membrane(run: Run, directory: Path, progress, mesh_dir) -> dict:
-    from spsc.membrane.solver import solve
-
-    r = solve(run.geometry(), run.material, pressure_kPa=run.pressure_kPa,
-              reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm, points=run.points)
+def _membrane_files(run: Run, out, directory: Path) -> dict:
+    """The membrane's meridians (nominal, inflated, last pressed) for the report's figures."""
+    r = out.state
     last = max((i for i, s in enumerate(r.shapes) if s is not None), default=None)
-    return {"curve": r.curve.to_dict(),
-            "meridians": {"nominal": {"x": r.inflated.x, "y": r.inflated.y}
+    return {"meridians": {"nominal": {"x": r.inflated.x, "y": r.inflated.y}
                           if r.inflated is not None else None,
                           "inflated": _meridian(r.inflated),
                           "pressed": _meridian(r.shapes[last]) if last else None,
                           "pressed_y_mm": float(r.curve.y_mm[last]) if last else None}}
-
-
-def curve_model(module: str, function: str, *, material_object: bool = False,
-                meshed: bool = False):
-    """The compute entry of a model that is a function returning a :class:`Curve` from a
-    geometry and the membrane's setup arguments (``material``, ``pressure_kPa``,
-    ``reservoir_mm3``, ``stroke_mm``, ``points``): the simplified model, the wall model.
-    ``material_object``: pass the catalogue :class:`~spsc.materials.Material`, not its
-    name. ``meshed``: the run's mesh size and layers go in as the model's ``settings``
-    (``<module>.WallSettings``-like: ``mesh_size_mm``, ``layers``)."""
-
-    def compute(run: Run, directory: Path, progress, mesh_dir) -> dict:
-        from spsc.materials import material
-
-        mod = importlib.import_module(module)
-        fn = getattr(mod, function)
-        mat = material(run.material) if material_object else run.material
-        kw = {}
-        if meshed:
-            kw["settings"] = mod.WallSettings(mesh_size_mm=run.mesh_mm, layers=run.layers)
-        c = fn(run.geometry(), material=mat, pressure_kPa=run.pressure_kPa,
-               reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm, points=run.points,
-               **kw)
-        return {"curve": c.to_dict()}
-
-    return compute
 
 
 def _section(model, x, z_centre: float) -> dict:
@@ -119,20 +89,17 @@ def _section(model, x, z_centre: float) -> dict:
             "rho": np.round(X[sel, 0] + u[:, 0], 6), "eta": np.round(X[sel, 2] + u[:, 2], 6)}
 
 
-def _fem(run: Run, directory: Path, progress, mesh_dir) -> dict:
-    from spsc.fem.run import ChamberRun, run_chamber, write_vtu
-    from spsc.materials import material
-
-    spec = ChamberRun(run.geometry(), material(run.material), pressure_kPa=run.pressure_kPa,
-                      reservoir_mm3=run.reservoir_mm3, stroke_mm=run.stroke_mm,
-                      points=run.points, mesh_size_mm=run.mesh_mm, layers=run.layers)
-    curve, result, model = run_chamber(spec, progress=progress, cache_dir=mesh_dir)
+def _fem_files(run: Run, out, directory: Path) -> dict:
+    """The FEM's VTUs (inflated and last pressed state) and the deformed cavity section of
+    each, and the solve's facts the curve's protocol may not carry yet."""
+    model, result = out.state
+    curve = out.curve
     infl, presses = result.of("inflate"), result.of("press")
     keep = {"inflated": infl[-1] if infl else result.records[0]}
     if presses:
         keep["pressed"] = presses[-1]
     paths = write_vtu(model, replace(result, records=list(keep.values())), directory)
-    info = curve.solver  # the run's facts the curve's protocol may not carry yet
+    info = curve.solver
     info = replace(info, instability=info.instability or result.instability,
                    iterations=info.iterations or sum(r.iterations for r in result.records),
                    details={"dofs": model.disc.n, "tetrahedra": model.mesh.n_tets,
@@ -144,36 +111,45 @@ def _fem(run: Run, directory: Path, progress, mesh_dir) -> dict:
                          for name, rec in keep.items()}}
 
 
-#: model name -> compute(run, directory, progress, mesh_dir) -> payload; one entry per model
-#: of :data:`~.study.MODELS` (the wall model: ``"wall": curve_model("spsc.fem.wall",
-#: "wall_curve", material_object=True)`` with ``Model("wall", "spsc.fem.wall", bending=True)``)
-_COMPUTE = {
-    "membrane": _membrane,
-    "simplified": curve_model("spsc.membrane.simplified", "simplified_curve"),
-    "wall": curve_model("spsc.fem.wall", "wall_curve", material_object=True, meshed=True),
-    "fem": _fem,
-}
+def write_vtu(model, result, directory):
+    from spsc.fem.run import write_vtu as write
+
+    return write(model, result, directory)
+
+
+#: model name -> files(run, outcome, directory) -> payload additions: what the report shows
+#: of a model beyond its curve (a model without an entry stores its curve only)
+_FILES = {"membrane": _membrane_files, "fem": _fem_files}
+
+
+def _compute(run: Run, directory: Path, progress, mesh_dir) -> dict:
+    from spsc.core.loadcase import LoadCase
+    from spsc.materials import material
+
+    m = model(run.model)
+    options = m.Options(**({"mesh_size": run.mesh_mm, "layers": run.layers} if m.meshed
+                           else {}))
+    load = LoadCase(run.pressure_kPa, run.reservoir_mm3, run.stroke_mm, run.points, 1.0)
+    out = m.curve(run.geometry(), material(run.material), load, options, progress=progress,
+                  cache_dir=mesh_dir)
+    files = _FILES.get(run.model)
+    return {"curve": out.curve.to_dict(), **(files(run, out, directory) if files else {})}
 
 
 def compute(run: Run, directory: Path, progress=None, *, mesh_dir=None) -> dict:
     """Compute ``run`` (files into ``directory``; FEM meshes cached in ``mesh_dir``) →
     JSON-able payload with ``seconds``."""
     t0 = time.perf_counter()
-    out = _COMPUTE[run.model](run, directory, progress, mesh_dir)
+    out = _compute(run, directory, progress, mesh_dir)
     out["seconds"] = round(time.perf_counter() - t0, 3)
     return out
-
-
-#: rough compute seconds per plate position at a 1 mm mesh with 2 layers (the full study on
-#: the 2-core machine), for ordering the runs on a cluster; unknown models count as the wall
-_SECONDS_PER_POINT = {"membrane": 0.025, "simplified": 0.004, "wall": 0.9, "fem": 12.0}
 
 
 def estimated_seconds(run: Run) -> float:
     """A rough compute time of ``run`` (s), used only to start the longest runs first: per
     plate position by model, scaled by the mesh's unknowns (∝ layers / size², a wall meshed
     through its thickness) and doubled for the open FEM chamber (more Newton steps)."""
-    s = _SECONDS_PER_POINT.get(run.model, _SECONDS_PER_POINT["wall"]) * run.points
+    s = model(run.model).seconds_per_point * run.points
     if run.mesh_mm:
         s *= run.layers / 2 / run.mesh_mm**2
     if run.model == "fem" and run.mode == "open":

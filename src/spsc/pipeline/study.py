@@ -19,54 +19,21 @@ from pathlib import Path
 
 from spsc.core.errors import ParameterError, require
 from spsc.cad.geometry import TYPES, SPSCGeometry, preset
+from spsc.models import MODELS
 
-__all__ = ["MODELS", "Model", "Run", "Study", "code_version", "model", "source_closure",
+__all__ = ["Run", "Study", "code_version", "model", "source_closure",
            "quick_study", "full_study"]
 
 
-@dataclass(frozen=True)
-class Model:
-    """A model the study runs and the report shows; a new model is one entry of
-    :data:`MODELS` (plus its compute entry in :mod:`.runner`).
-
-    name : ``Run.model``, the runner's compute entry and the report's label.
-    module : the module that computes it; its import closure is the run's code version.
-    sweep : True: run at every setup pressure of the study on the fine grid (the models with the
-        membrane's setup arguments); False: the FEM — the comparison pressure on its own grid
-        and mesh, plus the open chamber (F_el).
-    bending : the model's force includes the wall's own structural force; False: its force is
-        p·A and the report adds the FEM's F_el(y) to it (DESIGN.md).
-    meshed : the model takes a mesh size and layers (the solid models: wall, fem).
-    color, style : how its curves are drawn (matplotlib colour and format).
-    """
-
-    name: str
-    module: str
-    sweep: bool = True
-    bending: bool = False
-    meshed: bool = False
-    color: str = "C1"
-    style: str = "-."
-
-
-#: every model, in the order the report shows them
-MODELS = (
-    Model("membrane", "spsc.membrane.solver", color="C0", style="-"),
-    Model("simplified", "spsc.membrane.simplified", color="C2", style="--"),
-    Model("wall", "spsc.fem.wall", bending=True, meshed=True, color="C1", style="-."),
-    Model("fem", "spsc.fem.run", sweep=False, bending=True, meshed=True, color="C3",
-          style="o"),
-)
 #: bump when the runner changes what it stores for a run (2: the curve's JSON with its solver)
 PAYLOAD_VERSION = 2
 
 
-def model(name: str) -> Model:
-    """The :class:`Model` called ``name``."""
-    for m in MODELS:
-        if m.name == name:
-            return m
-    raise ParameterError("model", name, "one of " + ", ".join(m.name for m in MODELS))
+def model(name: str):
+    """The :class:`~spsc.models.CurveModel` called ``name`` (:data:`spsc.models.MODELS`)."""
+    from spsc.models import get
+
+    return get(name)
 
 
 @dataclass(frozen=True)
@@ -241,19 +208,19 @@ class Study:
 
     # -- the runs ---------------------------------------------------------------------------
     @property
-    def models(self) -> tuple[Model, ...]:
+    def models(self) -> tuple:
         """The models this study runs: every model of :data:`MODELS`, the FEM only with
         ``fem``."""
-        return tuple(m for m in MODELS if m.sweep or self.fem)
+        return tuple(m for m in MODELS.values() if m.sweep or self.fem)
 
     @property
-    def sweep_models(self) -> tuple[Model, ...]:
+    def sweep_models(self) -> tuple:
         """The models run at every setup pressure (membrane, simplified, …)."""
-        return tuple(m for m in MODELS if m.sweep)
+        return tuple(m for m in MODELS.values() if m.sweep)
 
     def membrane(self, model: str, type_: str, material: str, pressure: float, mode: str) -> Run:
         """The run of a sweep ``model`` (membrane, simplified, wall …) at one setup pressure."""
-        meshed = next(m for m in MODELS if m.name == model).meshed
+        meshed = MODELS[model].meshed
         mesh = (float(self.wall_mesh[0]), int(self.wall_mesh[1])) if meshed else (None, None)
         return Run(model, type_, material, float(pressure), self.reservoir(mode),
                    self.stroke_mm, self.membrane_points, *mesh)

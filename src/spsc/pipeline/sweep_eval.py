@@ -6,8 +6,8 @@ A design is a dict of :data:`INPUTS`: ``type`` (A–D, or None for a chamber giv
 parameters), the seven parameters w, h, l, t0 (mm), n1, n2, cy, ``material`` (catalogue name or
 material file), ``pressure`` (setup pressure, kPa gauge) and ``reservoir`` (mm³, the volume that
 makes the low-stiffness mode). The high mode is the closed chamber (no reservoir), the low mode
-the chamber with that reservoir (eqs. 6–7); both run through the model table of ``spsc curve``
-(:data:`~.curve_models.MODELS`), so every model a curve takes a sweep takes.
+the chamber with that reservoir (eqs. 6–7); both run through the models' registry
+(:data:`spsc.models.MODELS`), so every model a curve takes a sweep takes.
 
 :func:`evaluate` never raises: a design the models refuse is an ``invalid`` row with the
 :class:`ParameterError`'s line, a solve that stops early a ``partial`` row with what it computed,
@@ -21,14 +21,13 @@ import hashlib
 import json
 import math
 import time
-from dataclasses import asdict, fields
+from dataclasses import asdict, fields, replace
 from pathlib import Path
-from types import SimpleNamespace
 
 from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import PRESSURE_MAX_KPA, check_load
 
-from .curve_models import MODELS, Job
+from spsc.models import MODELS, get
 from .metrics import DesignMetrics, design_metrics
 from .options import PARAMS
 
@@ -77,13 +76,6 @@ def resolve_design(design: dict):
     return geometry, mat, setup
 
 
-def model_entry(model: str):
-    """The :data:`MODELS` entry ``model``; ParameterError if there is none."""
-    if model not in MODELS:
-        raise ParameterError("model", model, "one of " + ", ".join(MODELS))
-    return MODELS[model]
-
-
 def design_curves(design: dict, model: str, modes=("high", "low"), *, points=None,
                   stroke_mm=None) -> dict:
     """``{mode: Curve}`` of a design with ``model`` (membrane, simplified, wall, fem): ``high``
@@ -93,7 +85,7 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
 
     ParameterError when the design, the load case or the model's own limits refuse it (before
     any solve)."""
-    entry = model_entry(model)
+    entry = get(model)
     geometry, mat, setup = resolve_design(design)
     load = check_load(geometry, pressure_kPa=setup["p_i_kPa"],
                       reservoir_mm3=setup["reservoir_mm3"],
@@ -103,20 +95,15 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
     unknown = [m for m in modes if m not in ("high", "low")]
     if unknown:
         raise ParameterError("mode", unknown[0], "high or low")
-    args = SimpleNamespace(**entry.defaults)
-
-    def job(reservoir):
-        return Job(geometry, mat, load.pressure_kPa, reservoir, load.stroke_mm, load.points,
-                   load.polytropic_n, args, True, _VERB)
-
-    if entry.check is not None:
-        entry.check(job(load.reservoir_mm3))
+    options = entry.Options()
+    entry.check(geometry, load, options, verb=_VERB, quiet=True)
     reservoirs = {"high": 0.0, "low": load.reservoir_mm3}
     curves, by_reservoir = {}, {}
     for mode in modes:
         v = reservoirs[mode]
         if v not in by_reservoir:
-            by_reservoir[v] = entry.compute(job(v)).curve
+            by_reservoir[v] = entry.curve(geometry, mat, replace(load, reservoir_mm3=v),
+                                          options).curve
         curves[mode] = by_reservoir[v]
     return curves
 
@@ -216,9 +203,9 @@ def design_key(design: dict, model: str, process: str, points: int | None = None
 def _code(model: str) -> str:
     """The model's code version (:func:`~.study.code_version`; '' for a name it does not know,
     which the evaluation then refuses)."""
-    from .study import MODELS as STUDY_MODELS, code_version
+    from .study import code_version
 
-    return code_version(model) if any(m.name == model for m in STUDY_MODELS) else ""
+    return code_version(model) if model in MODELS else ""
 
 
 def _canonical(name: str, value):

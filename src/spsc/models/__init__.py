@@ -1,0 +1,33 @@
+"""The curve models, one interface and one registry: every model of a chamber's static
+response — membrane, simplified, wall, fem — is a :class:`~.base.CurveModel` in
+:data:`MODELS`, and the command line, sweeps, inverse design, calibration, the report and the
+fused estimate reach models only through it.
+
+Adding a model is one module (its class and its options dataclass) and one line of
+:data:`MODELS`.
+"""
+
+from spsc.core.errors import ParameterError
+from .base import CurveModel, Outcome, cli_options, option, options_from
+from .fem import FEMCurveModel
+from .membrane import MembraneModel
+from .simplified import SimplifiedModel
+from .wall import WallCurveModel
+
+__all__ = ["MODELS", "CurveModel", "Outcome", "cli_options", "get", "option", "options_from"]
+
+#: Every model, in the order the report shows them.
+MODELS: dict[str, CurveModel] = {m.name: m for m in (
+    MembraneModel(),
+    SimplifiedModel(),
+    WallCurveModel(),
+    FEMCurveModel(),
+)}
+
+
+def get(name: str) -> CurveModel:
+    """The model called ``name``; a one-line ParameterError naming the models otherwise."""
+    try:
+        return MODELS[name]
+    except (KeyError, TypeError):
+        raise ParameterError("model", name, "one of " + ", ".join(MODELS)) from None

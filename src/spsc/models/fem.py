@@ -1,0 +1,83 @@
+"""The 3D FEM of the printed wall (mixed P2/P1 tetrahedra, follower pressure, the gas with its
+reservoir, the rigid plate) as a :class:`~spsc.models.base.CurveModel`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .base import Outcome, option
+from .meshed import force_option, layers_option, mesh_size_option
+
+__all__ = ["FEMCurveModel", "FEMOptions"]
+
+
+@dataclass(frozen=True)
+class FEMOptions:
+    """``mesh_size`` (mm), ``layers`` through the wall, ``force`` (beyond the size limits),
+    ``full`` (the whole chamber, not the quarter on the symmetry planes), ``solver`` (sparse
+    linear solver), ``vtu`` (a folder for one VTU per converged step, or None)."""
+
+    mesh_size: float = mesh_size_option(1.0)
+    layers: int = layers_option(2)
+    force: bool = force_option()
+    full: bool = option(False, "--full", "full model instead of the quarter on the symmetry "
+                        "planes", kind="flag")
+    solver: str = option("auto", "--solver", "sparse linear solver (default auto: pardiso if "
+                         "installed)", kind="choice",
+                         choices=("auto", "pardiso", "superlu", "superlu-mmd"))
+    vtu: str | None = option(None, "--vtu", "write one VTU per converged step into this "
+                             "folder (for ParaView)", kind="value", metavar="DIR")
+
+
+@dataclass(frozen=True)
+class FEMCurveModel:
+    """The reference: the printed wall in 3D, quarter model by default (minutes per curve)."""
+
+    name: str = "fem"
+    help: str = "3D hyperelastic FEM of the printed wall (quarter model by default)"
+    module: str = "spsc.models.fem"
+    Options = FEMOptions
+    stroke_mm: float = 4.0
+    points: int = 11
+    bending: bool = True
+    meshed: bool = True
+    fast: bool = False
+    sweep: bool = False
+    color: str = "C3"
+    style: str = "o"
+    seconds_per_point: float = 12.0
+    zero_stroke: bool = False
+
+    def load_steps(self, load, options) -> int:
+        from spsc.fem.run import ChamberRun
+
+        inflate = ChamberRun.inflate_increments if load.pressure_kPa > 0 else 0
+        return load.points - 1 + inflate
+
+    def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
+        from spsc.fem.mesh import check_mesh_size, wall_mesh_counts
+
+        from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
+
+        size, layers = check_mesh_size(geometry, options.mesh_size, options.layers)
+        counts = wall_mesh_counts(geometry, size, layers, full=bool(options.full))
+        steps = load.points - 1 + (4 if load.pressure_kPa > 0 else 0)
+        check_size(verb, counts, steps, limit=FEM_MAX_UNKNOWNS,
+                   gib=fem_memory_gib(counts["unknowns"]), force=bool(options.force),
+                   quiet=quiet, mesh_size=size, points=load.points)
+
+    def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
+        from spsc.fem.run import ChamberRun, run_chamber, write_vtu
+        from spsc.fem.solver import Settings
+
+        spec = ChamberRun(geometry, material, pressure_kPa=load.pressure_kPa,
+                          reservoir_mm3=load.reservoir_mm3, stroke_mm=load.stroke_mm,
+                          points=load.points, mesh_size_mm=options.mesh_size,
+                          layers=options.layers, polytropic_index=load.polytropic_n,
+                          full=bool(options.full))
+        curve, result, model = run_chamber(spec, settings=Settings(solver=options.solver),
+                                           progress=progress, cache_dir=cache_dir)
+        extra = {}
+        if options.vtu:
+            extra["vtu"] = [p.name for p in write_vtu(model, result, options.vtu)]
+        return Outcome(curve, extra, (model, result))

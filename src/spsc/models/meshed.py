@@ -1,0 +1,29 @@
+"""The options every meshed model shares (mesh size, layers through the wall, --force), declared
+once so that the wall model and the 3D FEM spell and explain them alike."""
+
+from __future__ import annotations
+
+from .base import option
+
+__all__ = ["mesh_size_option", "layers_option", "force_option"]
+
+
+def mesh_size_option(default: float | None):
+    """Element edge along the wall (mm); None: the model's default for the chamber."""
+    return option(default, "--mesh-size", "element edge along the wall, mm (default: fem 1.0, "
+                  "wall 0.5 on a dome, 1.0 on a stadium)", kind="number",
+                  group="discretisation", label="mesh size", unit="mm", metavar="MM")
+
+
+def layers_option(default: int = 2):
+    """Quadratic elements through the wall thickness."""
+    return option(default, "--layers", "quadratic elements through the wall thickness "
+                  "(default: fem 2, wall 2)", kind="integer", group="discretisation",
+                  label="layers", metavar="N")
+
+
+def force_option():
+    """Run beyond the size limits."""
+    return option(False, "--force", "run a model beyond the size limits (the estimate of "
+                  "unknowns, memory and load steps is printed and checked before the run)",
+                  kind="flag", group="discretisation")

@@ -1,0 +1,85 @@
+"""The wall model (the thick wall as a nearly incompressible solid: axisymmetric on a dome,
+swept along a stadium; with the gas and the plate) as a :class:`~spsc.models.base.CurveModel`."""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+from .base import Outcome
+from .meshed import force_option, layers_option, mesh_size_option
+
+__all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
+
+
+@dataclass(frozen=True)
+class WallOptions:
+    """``mesh_size`` (mm; None: 0.5 on a dome, 1.0 on a stadium), ``layers`` through the wall,
+    ``force``: run beyond the size limits."""
+
+    mesh_size: float | None = mesh_size_option(None)
+    layers: int = layers_option(2)
+    force: bool = force_option()
+
+
+def wall_size_check(verb: str, geometry, mesh_size, layers, steps: int, *, force: bool,
+                    quiet: bool, points: int) -> None:
+    """The wall model's discretisation checked and its size estimated before any work
+    (ParameterError beyond the limits unless ``force``; the estimate on stderr unless
+    ``quiet``). ``mesh_size`` None: the model's default for the chamber."""
+    from spsc.fem.mesh import check_mesh_size
+    from spsc.fem.wall_model import WallSettings
+
+    from .resources import WALL_MAX_UNKNOWNS, check_size, wall_counts
+
+    size = mesh_size if mesh_size is not None else \
+        WallSettings().profile_size(geometry.l > 0)
+    size, layers = check_mesh_size(geometry, size, layers)
+    counts = wall_counts(geometry, size, layers, WallSettings().sweep_size_mm)
+    check_size(verb, counts, steps, limit=WALL_MAX_UNKNOWNS, gib=None, force=force,
+               quiet=quiet, mesh_size=size, points=points)
+
+
+@dataclass(frozen=True)
+class WallCurveModel:
+    """Pressure and bending in one solve: the wall's own structural force F_el(y) of the vented
+    chamber as well as the pressurised one (seconds per curve)."""
+
+    name: str = "wall"
+    help: str = ("the thick wall as a solid (axisymmetric dome; swept stadium) with gas and "
+                 "plate: pressure and bending in one solve (seconds)")
+    module: str = "spsc.models.wall"
+    Options = WallOptions
+    stroke_mm: float = 6.0
+    points: int = 25
+    bending: bool = True
+    meshed: bool = True
+    fast: bool = True
+    sweep: bool = True
+    color: str = "C1"
+    style: str = "-."
+    seconds_per_point: float = 0.9
+    zero_stroke: bool = False
+
+    def load_steps(self, load, options) -> int:
+        from spsc.fem.wall import WallSettings
+
+        inflate = WallSettings().inflate_increments if load.pressure_kPa > 0 else 0
+        return load.points - 1 + inflate
+
+    def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
+        wall_size_check(verb, geometry, options.mesh_size, options.layers,
+                        load.points - 1 + (2 if load.pressure_kPa > 0 else 0),
+                        force=bool(options.force), quiet=quiet, points=load.points)
+
+    def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
+        from spsc.fem.wall import WallSettings, wall_curve
+
+        ws = WallSettings(mesh_size_mm=options.mesh_size, layers=options.layers)
+        total = self.load_steps(load, options)
+        done = itertools.count(1)
+        step = None if progress is None else (lambda: progress(next(done), total))
+        return Outcome(wall_curve(geometry, material, pressure_kPa=load.pressure_kPa,
+                                  reservoir_mm3=load.reservoir_mm3, stroke_mm=load.stroke_mm,
+                                  points=load.points, polytropic_n=load.polytropic_n,
+                                  settings=ws, progress=step))
