@@ -6,7 +6,7 @@
     python bench/bench_fem_compare.py --quarter-vs-full     # open chamber, quarter vs full
     python bench/bench_fem_compare.py --axisym              # l = 0 dome: 3D vs axisymmetric
 
-Comparison table (DESIGN.md "Comparing models"): the membrane carries no bending, its force is
+Comparison table (docs/design.md, "Comparing models and the paper"): the membrane carries no bending, its force is
 p·A, so the FEM plate force F is compared with membrane p·A + FEM F_el (the FEM's open chamber,
 p = 0, same mesh), and the FEM pressure with the membrane pressure, at y = 1, 2, 3, 4 mm;
 ``F/pA%`` is FEM F against membrane p·A alone (the open chamber's bending force does not add

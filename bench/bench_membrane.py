@@ -5,7 +5,7 @@
 Prints, for Types A–D × p_i ∈ {10, 40} kPa × {high, low} stiffness: converged over the full
 stroke (0–6 mm, 41 positions), mean stiffness dF/dy (N/mm), mean sensitivity dP/dy (kPa/mm) and
 the time per curve (inflation + 40 plate positions, best of --repeat, one core). --full adds
-the DESIGN.md headline means over p_i = 10, 20, 30, 40 kPa, the JND depths at 10 kPa and the
+the docs/design.md headline means over p_i = 10, 20, 30, 40 kPa, the JND depths at 10 kPa and the
 GS1 inflation percentages with Elastic 50A at 10 kPa (sec. 2.3.3).
 """
 
@@ -65,7 +65,7 @@ def main(argv=None) -> None:
     print(f"time per curve: median {np.median(times):.3f} s, max {np.max(times):.3f} s")
     if not args.full:
         return
-    print("\nheadline means over p_i = 10, 20, 30, 40 kPa (DESIGN.md)")
+    print("\nheadline means over p_i = 10, 20, 30, 40 kPa (docs/design.md)")
     print(f"{'type':4} {'mode':5} {'stiff N/mm':>10} {'sens kPa/mm':>11}")
     allm = {m: ([], []) for m in MODES}
     curves10 = {}

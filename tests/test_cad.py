@@ -152,7 +152,7 @@ def test_port_bore_must_fit_inside_tube():
         PortSpec(tube_id=2.0, bore=2.5)
 
 
-# -- property test over the design space (DESIGN.md) -----------------------------------------
+# -- property test over the design space (docs/design.md) -----------------------------------------
 
 design_space = st.builds(
     lambda w, hw, lw, tw, n1, n2, cy: dict(w=w, h=hw * w, l=lw * w, t0=tw * w, n1=n1, n2=n2,

@@ -71,7 +71,7 @@ def test_cli_identify_writes_predictions(tmp_path, capsys):
     import json
     d = json.loads(out.read_text(encoding="utf-8"))
     assert len(d["extra"]["predictions"]) == 4  # 2 pressures × 2 reservoirs
-    ident = Curve.from_json(out)  # a Curve JSON (DESIGN.md), predictions in "extra"
+    ident = Curve.from_json(out)  # a Curve JSON (docs/design.md), predictions in "extra"
     assert ident.model == "identified"
     np.testing.assert_allclose(ident.contact_area_mm2, a, rtol=1e-9, atol=1e-9)
     hi40 = d["extra"]["predictions"][1]

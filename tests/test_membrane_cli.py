@@ -1,4 +1,4 @@
-"""``spsc membrane``: outputs (JSON of DESIGN.md, CSV, PNG) and one-line errors."""
+"""``spsc membrane``: outputs (JSON of docs/design.md, CSV, PNG) and one-line errors."""
 
 import json
 

@@ -1,6 +1,6 @@
 """The printable bladder: chamber wall + floor/clamping flange + barbed inlet port.
 
-Layout (part coordinates, DESIGN.md): the wall rises from the base plane z = 0; a stadium-shaped
+Layout (part coordinates, docs/design.md): the wall rises from the base plane z = 0; a stadium-shaped
 plate below it (z ∈ [−floor, 0]) closes the cavity and extends outward as the clamping flange with
 screw holes. The inlet port is a barbed nipple lying horizontally along −y with its barbs resting
 on the build plane, so the part prints standing on its base (print plane i–k, Table 2 note 3)
@@ -138,7 +138,7 @@ def bladder_design(spec: BladderSpec) -> dict:
         "exclude": [{"center": [0.0, y_riser, 0.0], "radius": p.bore / 2 + 0.5}],
         "bbox_mm": [[-r_flange, y_tip, -f.thickness], [r_flange, g.l / 2 + r_flange, g.h + g.t0]],
         "print": {"build_direction": [0.0, 0.0, 1.0], "plane": "i-k (x-y), base down"},
-        # spsc fem --part: the wall is clamped on its base plane (DESIGN.md), floor and flange
+        # spsc fem --part: the wall is clamped on its base plane (docs/design.md), floor and flange
         # below it held by the mount; a plate first touches the outer apex
         "fem": {"mount": "z<=0",
                 "sites": {"apex": {"at": [0.0, 0.0, g.h + g.t0], "normal": [0.0, 0.0, -1.0]}}},

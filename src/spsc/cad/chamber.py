@@ -80,5 +80,5 @@ def outer_solid(g: SPSCGeometry) -> cq.Solid:
 
 def wall_solid(g: SPSCGeometry) -> cq.Solid:
     """The chamber wall above the base plane: outer envelope minus cavity (the mechanical model
-    of DESIGN.md, clamped on z = 0)."""
+    of docs/design.md, clamped on z = 0)."""
     return outer_solid(g).cut(cavity_solid(g)).clean()

@@ -2,7 +2,7 @@
 
 All lengths in mm, volumes in mm³. The cavity is bounded by the nominal profile (``w`` and ``h``
 are the cavity's semi-width at the base and its height); the wall is that profile thickened by
-``t0`` along its outward normal. Part coordinates (DESIGN.md): base plane z = 0, dome along +z,
+``t0`` along its outward normal. Part coordinates (docs/design.md): base plane z = 0, dome along +z,
 extrusion of length ``l`` along y, width along x, cavity centred on the origin.
 """
 
@@ -35,7 +35,7 @@ TABLE1_VOLUME_CM3 = {"A": 4.96, "B": 4.09, "C": 3.04, "D": 6.50}
 #: Footprints (w, h, l, t0) in mm: Table 1 (sec. 3.1) and the GS1 set (sec. 2.3.3).
 SIZES = {"table1": (11.0, 13.0, 3.0, 1.0), "GS1": (10.0, 10.0, 10.0, 1.0)}
 
-#: The design space tests and solvers cover (DESIGN.md); outside it a warning, not an error.
+#: The design space tests and solvers cover (docs/design.md); outside it a warning, not an error.
 DESIGN_SPACE = {
     "n1": (2.0, 8.0),
     "n2": (1.0, 8.0),
@@ -277,7 +277,7 @@ class SPSCGeometry:
     def outer_profile_points(self, n: int = 121) -> np.ndarray:
         """The outer wall surface: the profile offset by t0 along its normal, from (0, h + t0)
         down to the base plane z = 0. Where the offset ends above z = 0 (Type C) it is prolonged
-        along its end tangent; where it dips below (Type D) it is cut there (DESIGN.md)."""
+        along its end tangent; where it dips below (Type D) it is cut there (docs/design.md)."""
         return self.wall_profiles(n)[1]
 
     def wall_profiles(self, n: int = 121) -> tuple[np.ndarray, np.ndarray]:

@@ -16,7 +16,7 @@ from .mold import Mold
 
 __all__ = ["write_mold", "ROLES"]
 
-#: What each role does, for mold.json and the README.
+#: What each role does, for mold.json and docs/guides/molds.md.
 ROLES = {
     "half": "outer mold half, pulled off along its pull direction",
     "pin": "forms a flange hole; pulled down before the halves",

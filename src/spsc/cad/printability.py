@@ -25,7 +25,7 @@ ceiling    report-only, as in the gate: the cavity's ceiling faces down up to th
 
 With ``port`` or ``flange`` (the other then takes its default), the mounting hardware's thin
 walls are judged against the process minimum as well, which the gate does not (it judges the
-chamber wall only, DESIGN.md): the nipple's wall (:attr:`PortSpec.wall`), the roof of the bore
+chamber wall only, docs/design.md): the nipple's wall (:attr:`PortSpec.wall`), the roof of the bore
 under the flange top (:attr:`BladderSpec.bore_roof`) and the flange around its screw holes
 (:attr:`FlangeSpec.ligament`). The nipple's shaft, lying on its barbs, and the bore's ceiling
 are short horizontal-cylinder overhangs of every design; the gate counts them in its outer

@@ -2,7 +2,7 @@
 solve went.
 
 Every model (membrane, simplified, wall, FEM, lumped) and the bench produce a :class:`Curve`.
-Units are those of the edge (DESIGN.md): y in mm from first contact with the inflated chamber
+Units are those of the edge (docs/design.md): y in mm from first contact with the inflated chamber
 (the paper's contact depth y_s), force in N, gauge pressure in kPa, contact area in mm², volume
 change in mm³ (cavity volume lost since first contact).
 
@@ -235,7 +235,7 @@ class Curve:
 
     # -- JSON --------------------------------------------------------------------------------
     def to_dict(self, extra: dict | None = None) -> dict:
-        """The DESIGN.md JSON object, schema ``spsc.curve`` v2 (NaN written as null).
+        """The docs/design.md JSON object, schema ``spsc.curve`` v2 (NaN written as null).
 
         ``extra``: model-specific additions (meridians, VTU files ...) under the key ``extra``.
         """

@@ -173,7 +173,7 @@ def jnd_depth(high: Curve, low: Curve, *, relative: float = 0.10, absolute_N: fl
 
 def mean_stiffness(curves) -> float:
     """Mean of dF/dy (N/mm) over the stroke each curve reached (:meth:`Curve.mean_stiffness`,
-    the integral mean), then over the curves (DESIGN.md: over the setup pressures of one type
+    the integral mean), then over the curves (docs/design.md: over the setup pressures of one type
     and mode; apply again over types)."""
     return float(np.mean([c.mean_stiffness(reached=True) for c in _as_list(curves)]))
 

@@ -68,7 +68,7 @@ class AxisymmetricDome:
     """Meridional-section model of the l = 0 chamber ``g`` (``g.l`` must be 0).
 
     ``n_profile`` elements along the profile, ``layers`` through the thickness; ``base``
-    ``"clamped"`` (the chamber, DESIGN.md) or ``"symmetry"`` (u_z = 0 only: with n1 = n2 = 2,
+    ``"clamped"`` (the chamber, docs/design.md) or ``"symmetry"`` (u_z = 0 only: with n1 = n2 = 2,
     c_y = 0 and w = h the wall is half of a thick sphere, for the exact solution).
     """
 
