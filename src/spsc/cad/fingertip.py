@@ -29,6 +29,11 @@ from .specs import FingertipSpec, MountSpec, PocketSpec
 __all__ = ["PocketSpec", "MountSpec", "FingertipSpec", "Fingertip", "build_fingertip",
            "measure_pockets"]
 
+#: Chord sag (mm) and angle (rad) of the fingertip's export mesh: its many small features would
+#: give 600k triangles at the bladder's settings; the SLA gate (0.5 mm) has ample margin.
+MESH_TOLERANCE = (0.005, 0.1)
+
+
 
 @dataclass(frozen=True)
 class Fingertip:

@@ -13,7 +13,8 @@ from spsc.core.errors import ParameterError, require
 
 from .geometry import SPSCGeometry
 
-__all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "PocketSpec", "MountSpec", "FingertipSpec"]
+__all__ = ["PortSpec", "FlangeSpec", "BladderSpec", "PocketSpec", "MountSpec", "FingertipSpec",
+           "bladder_spec"]
 
 
 @dataclass(frozen=True)
@@ -183,3 +184,9 @@ class FingertipSpec:
         """Body width across the finger (x), mm."""
         return max(2 * (self.pulp.w + self.pulp.t0),
                    self.distal.l + 2 * (self.distal.w + self.distal.t0)) + 2 * self.margin
+
+
+def bladder_spec(geom, flange_holes, tube_id):
+    """The :class:`BladderSpec` of a chamber with ``flange_holes`` screw holes (0, 2 or 4) and
+    a port for a tube of ``tube_id`` mm inner diameter (validated: one-line ParameterError)."""
+    return BladderSpec(geom, FlangeSpec(holes=flange_holes), PortSpec(tube_id=tube_id))

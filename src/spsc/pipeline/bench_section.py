@@ -52,7 +52,7 @@ def bench_section(spec: BenchSpec, study, fig_dir: Path) -> dict:
     from spsc.fem.calibrate import calibrate
     from spsc.fem.wall import wall_curve
 
-    from .cmd_calibrate import identification, mean_slope, plot_calibration
+    from .calibration import identification, mean_slope, plot_calibration
 
     geom, mat, bench = spec.check()
     cal = calibrate(bench, geom, mat, pressure_kPa=spec.pressure_kPa,

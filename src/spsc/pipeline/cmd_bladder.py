@@ -6,6 +6,8 @@ import argparse
 import time
 from pathlib import Path
 
+from spsc.cad.specs import bladder_spec
+
 from .options import (add_geometry_options, check_output_dir, geometry_from_args, integer,
                       number, warn)
 
@@ -32,13 +34,6 @@ def register(sub) -> None:
                    "insert the motor (the design file gives the height)")
     p.add_argument("--no-check", action="store_true", help="skip the printability gate")
     p.set_defaults(func=run)
-
-
-def bladder_spec(geom, flange_holes, tube_id):
-    """The BladderSpec of the CLI's options (validated: one-line ParameterError)."""
-    from spsc.cad.specs import BladderSpec, FlangeSpec, PortSpec
-
-    return BladderSpec(geom, FlangeSpec(holes=flange_holes), PortSpec(tube_id=tube_id))
 
 
 def process_for(material_name: str) -> str:

@@ -7,11 +7,10 @@ import argparse
 import time
 
 from .cmd_bladder import gate
+from spsc.cad.fingertip import MESH_TOLERANCE
+
 from .options import check_output_dir, number
 
-#: Chord sag (mm) and angle (rad) of the fingertip's export mesh: its many small features would
-#: give 600k triangles at the bladder's settings; the SLA gate (0.5 mm) has ample margin.
-MESH_TOLERANCE = (0.005, 0.1)
 
 
 def register(sub) -> None:

@@ -52,7 +52,7 @@ def _bladder(args):
     from spsc.cad.checkdesign import design_path_for
     from spsc.cad.geometry import SPSCGeometry
 
-    from .cmd_bladder import bladder_spec
+    from spsc.cad.specs import bladder_spec
 
     if args.part is not None:
         if geometry_given(args):

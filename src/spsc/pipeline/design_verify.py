@@ -153,7 +153,7 @@ def build_part(params: dict, process: str, out: Path, name: str = "bladder") -> 
     from spsc.cad.geometry import SPSCGeometry
     from spsc.cad.meshbuild import bladder_mesh
 
-    from .cmd_bladder import bladder_spec
+    from spsc.cad.specs import bladder_spec
 
     out = Path(out)
     t0 = time.perf_counter()

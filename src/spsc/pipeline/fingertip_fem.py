@@ -59,9 +59,7 @@ def _part(out: Path) -> tuple[Path, dict]:
     design = stl.with_name("fingertip.design.json")
     if not (stl.exists() and design.exists()):
         from spsc.cad.export import export_part, tessellate
-        from spsc.cad.fingertip import build_fingertip
-
-        from .cmd_fingertip import MESH_TOLERANCE
+        from spsc.cad.fingertip import MESH_TOLERANCE, build_fingertip
 
         tip = build_fingertip()
         export_part(tip.solid, tip.design, stl.parent, "fingertip",
