@@ -4,7 +4,7 @@
                                              [--designs N] [--determinism] [--list]
 
 Invalid invocations (the table of ``spsc.testing.fuzz_cases``, over 300) run as subprocesses
-(``python -m spsc.pipeline.cli``) with a timeout, and each outcome is counted: a clean one-line
+(``python -m spsc.cli.main``) with a timeout, and each outcome is counted: a clean one-line
 error with exit 2 naming the option, a clean error not naming it, a traceback, an argparse usage
 dump, a silent exit 0, a timeout, or anything else. ``--fork`` runs each case in a forked copy
 of one warm interpreter instead (same classification, ~20x faster; for iterating).
@@ -67,7 +67,7 @@ def names(name: str, message: str) -> bool:
 
 def run_subprocess(case: Case, timeout: float, cwd: Path) -> tuple:
     try:
-        r = subprocess.run([sys.executable, "-m", "spsc.pipeline.cli", *case.argv],
+        r = subprocess.run([sys.executable, "-m", "spsc.cli.main", *case.argv],
                            capture_output=True, text=True, timeout=timeout, cwd=cwd,
                            stdin=subprocess.DEVNULL)
         return r.returncode, r.stderr
@@ -78,7 +78,7 @@ def run_subprocess(case: Case, timeout: float, cwd: Path) -> tuple:
 
 def run_forked(case: Case, timeout: float, cwd: Path) -> tuple:
     """Run ``case`` through ``cli.main`` in a forked child (imports already warm)."""
-    from spsc.pipeline.cli import main
+    from spsc.cli.main import main
 
     r, w = os.pipe()
     pid = os.fork()
@@ -132,7 +132,7 @@ def bad_input(args) -> dict:
     t0 = time.perf_counter()
     if args.fork:  # warm the heavy imports once, before any thread starts
         for mod in ("spsc.cad.bladder", "spsc.cad.check", "spsc.cad.fingertip",
-                    "spsc.membrane.solver", "spsc.fem.run", "spsc.pipeline.report"):
+                    "spsc.membrane.solver", "spsc.fem.run", "spsc.report.build"):
             __import__(mod)
         results = (run_forked(c, args.timeout, cwd) for c in cases)
     else:
@@ -168,7 +168,7 @@ def designs(n: int, seed: int, timeout: float, jobs: int) -> None:
         argv = ["bladder", *argvs[k], "--out", str(tmp / f"d{k}")]
         t = time.perf_counter()
         try:
-            r = subprocess.run([sys.executable, "-m", "spsc.pipeline.cli", *argv],
+            r = subprocess.run([sys.executable, "-m", "spsc.cli.main", *argv],
                                capture_output=True, text=True, timeout=timeout,
                                stdin=subprocess.DEVNULL)
             rc, out, err = r.returncode, r.stdout, r.stderr
@@ -210,7 +210,7 @@ def determinism() -> None:
     tmp = Path(tempfile.mkdtemp(prefix="spsc-determinism-"))
     argv = ["bladder", "--type", "D", "--no-check"]
     for k in (1, 2):
-        subprocess.run([sys.executable, "-m", "spsc.pipeline.cli", *argv, "--out",
+        subprocess.run([sys.executable, "-m", "spsc.cli.main", *argv, "--out",
                         str(tmp / f"run{k}")], check=True, capture_output=True)
     print(f"determinism: spsc {' '.join(argv)}, built twice in two processes:")
     for suffix in (".stl", ".3mf", ".step", ".design.json"):

@@ -23,7 +23,7 @@ from spsc.cad.meshbuild import bladder_mesh
 
 def check(path: Path, design: dict) -> tuple[int, str]:
     path.with_suffix(".design.json").write_text(json.dumps(design), encoding="utf-8")
-    r = subprocess.run([sys.executable, "-m", "spsc.pipeline.cli", "check", str(path)],
+    r = subprocess.run([sys.executable, "-m", "spsc.cli.main", "check", str(path)],
                        capture_output=True, text=True)
     return r.returncode, (r.stdout.strip().splitlines() or [""])[-1]
 

@@ -12,7 +12,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from spsc.pipeline.report_mold import broken_molds
+from spsc.report.mold import broken_molds
 
 
 def main() -> int:

@@ -28,7 +28,7 @@ OUT = Path("build/bench-part")
 
 
 def _spsc(*argv) -> None:
-    subprocess.run([sys.executable, "-m", "spsc.pipeline.cli", *argv], check=True)
+    subprocess.run([sys.executable, "-m", "spsc.cli.main", *argv], check=True)
 
 
 def _curve(path: Path, make) -> Curve:
@@ -40,7 +40,7 @@ def _curve(path: Path, make) -> Curve:
 
 def _part_json(path, part, *extra):
     def make(p):
-        code = subprocess.run([sys.executable, "-m", "spsc.pipeline.cli", "fem", "--part",
+        code = subprocess.run([sys.executable, "-m", "spsc.cli.main", "fem", "--part",
                                str(part), "--json", str(p), "--force", *extra]).returncode
         if code not in (0, 1):
             raise SystemExit(f"spsc fem --part failed ({code})")

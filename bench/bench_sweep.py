@@ -5,7 +5,7 @@
 
 Each sweep is a Latin hypercube over Types A–D (crossed) × w 8–14 mm × t0 0.8–1.5 mm ×
 p_i 10–40 kPa (Table 1 footprint otherwise, tpu60a, low mode 40 000 mm³), run from scratch (no
-resume) once per worker count through :func:`spsc.pipeline.sweep.run_sweep`, the code behind
+resume) once per worker count through :func:`spsc.sweep.run.run_sweep`, the code behind
 ``spsc sweep``. A sampler thread records every 0.25 s the resident memory (RSS) of the client
 process and of each worker process (psutil) with the rows written so far. Printed per run:
 designs/s over the evaluation (cluster start excluded, shown apart), speed-up over the first
@@ -92,9 +92,9 @@ class MemorySampler(threading.Thread):
 
 def one_run(model: str, designs: int, workers: int, points, out_dir: Path,
             every: int = 1) -> dict:
-    from spsc.pipeline.sweep import run_sweep
-    from spsc.pipeline.sweep_space import build_space
-    from spsc.pipeline.sweep_store import journal_path
+    from spsc.sweep.run import run_sweep
+    from spsc.sweep.space import build_space
+    from spsc.sweep.store import journal_path
 
     space = build_space(SPACE, samples=max(1, designs // 4), seed=0, force=True)
     if every > 1:  # every k-th design of the same hypercube (all types, the same spread)

@@ -263,7 +263,7 @@ def test_fingertip_bad_angle():
 def test_gate_passes_preset_and_fails_thin_wall(tmp_path, capsys):
     import json
 
-    from spsc.pipeline.cli import main
+    from spsc.cli.main import main
 
     assert main(["bladder", "--type", "B", "--out", str(tmp_path / "b")]) == 0
     report = json.loads((tmp_path / "b" / "check.json").read_text(encoding="utf-8"))

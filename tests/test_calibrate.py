@@ -12,7 +12,7 @@ from spsc.fem.calibrate import calibrate, scaled
 from spsc.fem.wall import WallSettings, wall_curve
 from spsc.core.bench import BenchData
 from spsc.materials import material
-from spsc.pipeline.cli import main
+from spsc.cli.main import main
 
 G = preset("B", l=0.0)
 MAT = material("tpu60a")

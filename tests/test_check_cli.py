@@ -11,7 +11,7 @@ import pytest
 from spsc.testing.check_shapes import R_OUT, M, arrays, bladder, port_design, write_stl
 from spsc.cad.check import check_mesh, design_path_for, parse_design
 from spsc.core.errors import ParameterError
-from spsc.pipeline.cli import main
+from spsc.cli.main import main
 
 
 # -- design dict, files, command line ------------------------------------------------------------

@@ -6,7 +6,7 @@ import sys
 
 import pytest
 
-from spsc.pipeline.cli import build_parser, main
+from spsc.cli.main import build_parser, main
 
 
 @pytest.mark.parametrize("argv,name", [
@@ -131,7 +131,7 @@ def test_help_of_every_verb(verb, capsys):
 
 
 def test_console_script_help():
-    out = subprocess.run([sys.executable, "-m", "spsc.pipeline.cli", "--help"],
+    out = subprocess.run([sys.executable, "-m", "spsc.cli.main", "--help"],
                          capture_output=True, encoding="utf-8", check=True).stdout
     for verb in KEY_OPTIONS:
         assert verb in out

@@ -10,8 +10,8 @@ import pytest
 from spsc import models
 from spsc.core.curve import Curve, SolveInfo
 from spsc.models import Outcome, cli_options, option
-from spsc.pipeline import cmd_curve
-from spsc.pipeline.cli import build_parser, main
+from spsc.cli import curve as cmd_curve
+from spsc.cli.main import build_parser, main
 
 #: The only field allowed to differ between two runs of the same inputs: the wall-clock time,
 #: kept in one place.

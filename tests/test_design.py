@@ -9,8 +9,8 @@ import math
 import pytest
 
 from spsc.core.errors import ParameterError
-from spsc.pipeline.design_goal import Goal, Target, parse_goal, parse_target, parse_tol
-from spsc.pipeline.design_space import parse_space
+from spsc.design.goal import Goal, Target, parse_goal, parse_target, parse_tol
+from spsc.design.space import parse_space
 
 
 # -- the goal ----------------------------------------------------------------------------------
@@ -143,7 +143,7 @@ def cluster():
     run reaches it by address, as --scheduler does)."""
     from distributed import LocalCluster
 
-    from spsc.pipeline.executor import WORKER_ENV
+    from spsc.study.executor import WORKER_ENV
 
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                       dashboard_address=":0", env=dict(WORKER_ENV)) as c:
@@ -152,7 +152,7 @@ def cluster():
 
 def _problem(targets=("stiffness_high=6", "sensitivity_high>=5"), tol=0.01, space=None,
              minimize=(), maximize=(), process="fdm"):
-    from spsc.pipeline.design import Problem
+    from spsc.design.loop import Problem
 
     return Problem(parse_goal(list(targets), minimize, maximize, tol),
                    parse_space(space or {}, process), "simplified", process, 5, 4.0)
@@ -160,7 +160,7 @@ def _problem(targets=("stiffness_high=6", "sensitivity_high>=5"), tol=0.01, spac
 
 def _run(problem, out, cluster, trials=12, seed=3, **kw):
     from spsc.testing import design_double
-    from spsc.pipeline.design import run_design
+    from spsc.design.loop import run_design
 
     return run_design(problem, out, trials=trials, seed=seed, scheduler=cluster,
                       progress=False, evaluate=design_double.evaluate, **kw)
@@ -204,7 +204,7 @@ def test_refused_designs_are_failed_trials_with_their_reason(cluster, tmp_path):
 def test_a_run_continues_from_its_journal(cluster, tmp_path):
     import optuna
 
-    from spsc.pipeline.design import INTERRUPTED, open_study
+    from spsc.design.loop import INTERRUPTED, open_study
 
     p = _problem(tol=0.0)
     first = _run(p, tmp_path / "f", cluster, trials=5)
@@ -241,7 +241,7 @@ def test_multi_objective_pareto_front_is_feasible_and_non_dominated(cluster, tmp
 
 # -- the command end to end (the simplified model: milliseconds per curve) ----------------------
 def _design(tmp_path, *extra, name="run"):
-    from spsc.pipeline.cli import main
+    from spsc.cli.main import main
 
     out = tmp_path / name
     argv = ["design", "--model", "simplified", "--points", "7", "--workers", "2",
@@ -284,8 +284,8 @@ def test_the_printed_spsc_curve_commands_reproduce_the_best_metrics(tmp_path, ca
     import shlex
 
     from spsc.core.curve import Curve
-    from spsc.pipeline.cli import main
-    from spsc.pipeline.design_verify import metrics_of
+    from spsc.cli.main import main
+    from spsc.design.verify import metrics_of
 
     rc, out = _design(tmp_path, "--target", "stiffness_high=6", "--reservoir", "5000:40000",
                       "--trials", "4", "--seed", "2", "--no-build")
@@ -330,7 +330,7 @@ def test_verify_fem_on_a_coarse_mesh(tmp_path, capsys):
     wall model's metrics compared with the coarse 3D FEM's (a 2 mm mesh: within 10 %)."""
     import json
 
-    from spsc.pipeline.cli import main
+    from spsc.cli.main import main
 
     out = tmp_path / "fem"
     rc = main(["design", "--target", "sensitivity_high>=1", "--type", "B", "--w", "10",

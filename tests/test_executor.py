@@ -8,7 +8,7 @@ import time
 import pytest
 
 from spsc.core.errors import ParameterError
-from spsc.pipeline.executor import _NO_DASHBOARD, check_scheduler, check_workers, dask_client
+from spsc.study.executor import _NO_DASHBOARD, check_scheduler, check_workers, dask_client
 
 
 def _worker_facts(_):
@@ -91,7 +91,7 @@ def test_worker_count_defaults_to_usable_cores():
 
 
 def test_cluster_options_are_checked_together():
-    from spsc.pipeline.executor import check_cluster, default_workers
+    from spsc.study.executor import check_cluster, default_workers
 
     assert check_cluster() == (default_workers(), None)
     assert check_cluster("3") == (3, None)

@@ -11,7 +11,7 @@ from spsc.cad.geometry import preset
 from spsc.core.errors import ParameterError
 from spsc.membrane.simplified import simplified_curve
 from spsc.membrane.solver import solve
-from spsc.pipeline.cli import main
+from spsc.cli.main import main
 
 
 def test_failed_inflation_keeps_the_states_it_reached():

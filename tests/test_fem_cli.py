@@ -3,7 +3,7 @@
 import json
 
 from spsc.core.curve import Curve
-from spsc.pipeline.cli import main
+from spsc.cli.main import main
 
 
 def test_spsc_fem_writes_the_curve_json(tmp_path, capsys, monkeypatch):

@@ -11,8 +11,8 @@ import pytest
 
 from spsc.cad.specs import FingertipSpec
 from spsc.core.curve import Curve
-from spsc.pipeline import fingertip_fem as ff
-from spsc.pipeline.fingertip_figures import draw_all
+from spsc.studies import fingertip as ff
+from spsc.studies.fingertip_figures import draw_all
 
 POCKETS = ("pulp1", "pulp2", "pulp3", "distal1", "distal2")
 

@@ -13,7 +13,7 @@ import pytest
 from spsc.core.errors import ParameterError
 from spsc.materials.fit_laws import law
 from spsc.materials.data import read_tests
-from spsc.pipeline.cli import main
+from spsc.cli.main import main
 
 DATA = Path(__file__).parent / "data"
 TRELOAR = [str(DATA / f"treloar_{t}.csv") for t in ("uniaxial", "equibiaxial", "planar")]

@@ -9,7 +9,7 @@ from numpy.testing import assert_allclose
 from spsc.cad.specs import FingertipSpec
 from spsc.core.errors import ParameterError
 from spsc.materials import material
-from spsc.pipeline.fused_estimate import AMBIENT_KPA, _curve, compliance, fused_estimate
+from spsc.studies.fused import AMBIENT_KPA, _curve, compliance, fused_estimate
 
 SPEC = FingertipSpec()
 MAT = material("silicone40a")

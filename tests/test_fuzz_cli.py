@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from spsc.testing.fuzz_cases import Case, invalid_cases
-from spsc.pipeline.cli import COMMANDS, main
+from spsc.cli.main import COMMANDS, main
 
 #: Seconds a case may take in-process: validation is milliseconds; importing the CAD kernel
 #: or the FEM the first time a verb runs is about 3 s.
@@ -45,20 +45,20 @@ WORK = {
     "spsc.cad.bladder": ["build_bladder"],
     "spsc.cad.fingertip": ["build_fingertip"],
     "spsc.cad.check": ["check_mesh"],
-    "spsc.pipeline.cmd_check": ["check_mesh"],
+    "spsc.cli.check": ["check_mesh"],
     "spsc.membrane.solver": ["solve"],
     "spsc.membrane.simplified": ["simplified_curve"],
     "spsc.membrane.identify": ["identify"],
     "spsc.fem.run": ["run_chamber"],
     "spsc.fem.part_run": ["part_model", "run_part"],
-    "spsc.pipeline.fingertip_fem": ["run_study"],
+    "spsc.studies.fingertip": ["run_study"],
     "spsc.fem.wall": ["wall_curve"],
     "spsc.fem.calibrate": ["calibrate"],
-    "spsc.pipeline.runner": ["run_all"],
+    "spsc.study.runner": ["run_all"],
     "spsc.materials.fit": ["fit_law", "fit_laws"],
-    "spsc.pipeline.sweep": ["run_sweep"],
-    "spsc.pipeline.design": ["run_design"],
-    "spsc.pipeline.executor": ["dask_client"],
+    "spsc.sweep.run": ["run_sweep"],
+    "spsc.design.loop": ["run_design"],
+    "spsc.study.executor": ["dask_client"],
 }
 
 

@@ -20,7 +20,7 @@ from spsc.cad.geometry import SPSCGeometry, preset
 from spsc.cad.meshbuild import (MESH_PROFILE_POINTS, bladder_mesh, chamber_manifold,
                                 hull_meridian)
 from spsc.core.errors import ParameterError
-from spsc.pipeline.cmd_bladder import MATERIAL_PROCESS
+from spsc.cli.bladder import MATERIAL_PROCESS
 
 # each draw builds and checks a part (about 10 s): no shrinking, the failing seed is printed
 SLOW_DRAWS = dict(deadline=None, phases=[Phase.explicit, Phase.reuse, Phase.generate],

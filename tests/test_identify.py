@@ -10,7 +10,7 @@ from spsc.membrane.identify import identify, predict, read_bench
 from spsc.membrane.lumped import Setup, lumped_curve
 from spsc.materials import material
 from spsc.membrane.solver import solve
-from spsc.pipeline.cli import main
+from spsc.cli.main import main
 
 VB = 6505.0
 

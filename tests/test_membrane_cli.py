@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from spsc.core.curve import CURVE_COLUMNS, Curve
-from spsc.pipeline.cli import main
+from spsc.cli.main import main
 
 
 def test_membrane_writes_json_csv_png(tmp_path, capsys):

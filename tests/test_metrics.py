@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from spsc.core.curve import Curve
-from spsc.pipeline.metrics import (DesignMetrics, design_metrics, headline, headline_row, interp,
+from spsc.study.metrics import (DesignMetrics, design_metrics, headline, headline_row, interp,
                                    jnd, model_errors, type_mean, with_f_el)
 
 Y = np.linspace(0.0, 6.0, 13)

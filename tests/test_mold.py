@@ -132,7 +132,7 @@ def test_bad_mold_parameters(kw, name):
 def test_mold_command_writes_every_piece(tmp_path, capsys):
     import json
 
-    from spsc.pipeline.cli import main
+    from spsc.cli.main import main
 
     out = tmp_path / "m"
     assert main(["mold", "--type", "B", "--process", "compression", "--out", str(out),
@@ -156,7 +156,7 @@ def test_mold_command_writes_every_piece(tmp_path, capsys):
 
 @pytest.mark.slow
 def test_mold_of_a_bladder_file(tmp_path):
-    from spsc.pipeline.cli import main
+    from spsc.cli.main import main
 
     assert main(["bladder", "--type", "C", "--out", str(tmp_path / "b"), "--no-check"]) == 0
     assert main(["mold", str(tmp_path / "b" / "bladder-C.stl"), "--out", str(tmp_path / "m"),

@@ -21,7 +21,7 @@ from spsc.fem.pressure import CavitySurface
 from spsc.fem.selector import parse_selector
 from spsc.fem.solver import Settings, solve
 from spsc.materials import material
-from spsc.pipeline.cli import main
+from spsc.cli.main import main
 
 MAT = material("tpu60a")
 SIZE = 2.0  # mm: a coarse dome mesh (~5k tetrahedra, ~8 s of fTetWild)
@@ -359,7 +359,7 @@ def test_vtus_are_in_part_coordinates_and_render(dome_part, tmp_path):
     import pyvista as pv
 
     from spsc.fem.part_run import write_part_vtu
-    from spsc.pipeline.fingertip_figures import render_part
+    from spsc.studies.fingertip_figures import render_part
 
     s, mesh = dome_part
     q = np.array([[1.0, 0, 0], [0, 0, -1.0], [0, 1.0, 0]])

@@ -11,10 +11,10 @@ from pathlib import Path
 import pytest
 
 from spsc.core.errors import ParameterError
-from spsc.pipeline.cache import Cache
-from spsc.pipeline.runner import estimated_seconds, run_all
+from spsc.study.cache import Cache
+from spsc.study.runner import estimated_seconds, run_all
 from spsc.models import MODELS
-from spsc.pipeline.study import Run, Study, code_version, full_study, quick_study, source_closure
+from spsc.study.runs import Run, Study, code_version, full_study, quick_study, source_closure
 
 SMALL = Study(name="small", types=("B",), pressures_kPa=(40.0,), fem_points=4, fem=False,
               wall_mesh=(2.0, 1))
@@ -110,7 +110,7 @@ def test_a_failed_run_is_isolated_reported_and_retried(tmp_path):
         calls.append(run.label)
         if run == boom:
             raise RuntimeError("deliberate failure")
-        from spsc.pipeline.runner import compute as real
+        from spsc.study.runner import compute as real
         return real(run, directory, progress, **kw)
 
     stream = io.StringIO()
@@ -216,7 +216,7 @@ def cluster():
     import dask
     import distributed  # noqa: F401 — its config defaults loaded before they are overridden
 
-    from spsc.pipeline.executor import dask_client
+    from spsc.study.executor import dask_client
 
     with dask.config.set({"distributed.scheduler.allowed-failures": 0}), \
             dask_client(workers=2) as client:

@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 
 from spsc.core.curve import Curve
-from spsc.pipeline.cache import Cache
-from spsc.pipeline.cli import main
-from spsc.pipeline.paper_bench import paper_bench
-from spsc.pipeline.provenance import Provenance
-from spsc.pipeline.report import build_report
-from spsc.pipeline.runner import run_all
-from spsc.pipeline.study import Run, Study
+from spsc.study.cache import Cache
+from spsc.cli.main import main
+from spsc.report.paper import paper_bench
+from spsc.study.provenance import Provenance
+from spsc.report.build import build_report
+from spsc.study.runner import run_all
+from spsc.study.runs import Run, Study
 
 PAPER_TEXT = Path(__file__).resolve().parents[2] / "shared" / "paper" / "spsc-paper.txt"
 CLEAN = Provenance("0123456789abcdef0123456789abcdef01234567")
@@ -104,7 +104,9 @@ def test_a_dirty_tree_is_marked_not_reproducible(tmp_path):
 @pytest.mark.slow
 def test_spsc_report_refuses_the_committed_report_from_a_dirty_tree(tmp_path, monkeypatch,
                                                                     capsys):
-    from spsc.pipeline import cmd_report, provenance, runner
+    from spsc.cli import report as cmd_report
+    from spsc.study import provenance
+    from spsc.study import runner
 
     dirty = Provenance(CLEAN.commit, ("?? stray.py",))
     monkeypatch.setattr(provenance, "provenance", lambda *a: dirty)
@@ -166,7 +168,7 @@ def test_spsc_report_verb_membrane_only(tmp_path, capsys):
     assert "12 from the cache" in capsys.readouterr().out
     again = json.loads((out / "summary.json").read_text(encoding="utf-8"))["sweep"]
     assert (summary["evaluated"], again["evaluated"], again["ok"]) == (6, 0, 6)
-    from spsc.pipeline.cmd_report import DEFAULT_OUT
+    from spsc.cli.report import DEFAULT_OUT
     assert DEFAULT_OUT == {False: Path("reports/validation"), True: Path("build/report-quick")}
 
 
@@ -215,7 +217,7 @@ def test_report_with_fem_renders_compares_and_reuses_its_figures(tiny, tmp_path,
     assert e["force_N"]["n"] == 3 and e["pressure_kPa"]["rms"] >= 0
     assert len(list(figs.iterdir())) == 3  # curves, shapes, convergence
 
-    from spsc.pipeline import figures
+    from spsc.report import figures
 
     def no_drawing(*a, **k):
         raise AssertionError("a cached figure was drawn again")
@@ -241,7 +243,7 @@ def test_quick_report_end_to_end(tmp_path, capsys):
         assert word in page
     capsys.readouterr()
     assert main(args) == 0
-    n = len(__import__("spsc.pipeline.study", fromlist=["quick_study"]).quick_study().runs())
+    n = len(__import__("spsc.study.runs", fromlist=["quick_study"]).quick_study().runs())
     assert f"{n} runs, {n} from the cache, 0 failed" in capsys.readouterr().out
 
 
@@ -252,7 +254,7 @@ def test_a_bench_test_gets_its_own_section(tmp_path):
     from spsc.fem.calibrate import scaled
     from spsc.fem.wall import wall_curve
     from spsc.materials import material
-    from spsc.pipeline.bench_section import BenchSpec
+    from spsc.report.bench import BenchSpec
 
     c = wall_curve(preset("B", l=0.0), scaled(material("tpu60a"), 1.4), pressure_kPa=0.0,
                    stroke_mm=2.0, points=9)
@@ -291,8 +293,10 @@ def test_spsc_report_runs_on_the_cluster_its_options_name(tmp_path, monkeypatch)
     import functools
     import socket
 
-    from spsc.pipeline import provenance, runner
-    from spsc.pipeline.executor import dask_client, default_workers
+    from spsc.study import provenance
+
+    from spsc.study import runner
+    from spsc.study.executor import dask_client, default_workers
 
     monkeypatch.setattr(provenance, "provenance", lambda *a: CLEAN)
     seen = []

@@ -17,14 +17,14 @@ import numpy as np
 import pytest
 
 from spsc.core.errors import ParameterError
-from spsc.pipeline import sweep as sweep_module
-from spsc.pipeline.cli import main
-from spsc.pipeline.metrics import design_metrics
-from spsc.pipeline.sweep import run_sweep
-from spsc.pipeline.sweep_eval import (COLUMNS, INPUTS, METRICS, design_curves, design_key,
+from spsc.sweep import run as sweep_module
+from spsc.cli.main import main
+from spsc.study.metrics import design_metrics
+from spsc.sweep.run import run_sweep
+from spsc.sweep.evaluate import (COLUMNS, INPUTS, METRICS, design_curves, design_key,
                                       evaluate, failed_row, resolve_design)
-from spsc.pipeline.sweep_space import build_space, parse_axis
-from spsc.pipeline.sweep_store import SweepStore, journal_path, read_table
+from spsc.sweep.space import build_space, parse_axis
+from spsc.sweep.store import SweepStore, journal_path, read_table
 
 from spsc.testing import sweep_tasks
 
@@ -39,7 +39,7 @@ def cluster():
     (reached by address, as --scheduler would)."""
     from distributed import LocalCluster
 
-    from spsc.pipeline.executor import _NO_DASHBOARD
+    from spsc.study.executor import _NO_DASHBOARD
 
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                       dashboard_address=None, scheduler_kwargs=_NO_DASHBOARD) as c:
@@ -66,8 +66,8 @@ def test_grid_and_lists_cross_multiply_with_presets_filled_in():
 def test_a_changed_model_changes_the_key(monkeypatch):
     """The key holds the model's code version, so a sweep re-run after the model's source
     changed computes again instead of reading the old rows back."""
-    import spsc.pipeline.sweep_eval as se
-    from spsc.pipeline.study import code_version
+    import spsc.sweep.evaluate as se
+    from spsc.study.runs import code_version
 
     args = {k: FAST[k] for k in ("model", "process")}
     before = design_key(B, **args)
@@ -367,7 +367,7 @@ def test_a_design_that_keeps_killing_its_worker_is_a_failed_row(tmp_path):
     (KilledWorker), the sweep gives it one more chance and then records it as failed; the other
     designs are all there, once, and a re-run retries only the failed one."""
     import dask
-    import distributed  # noqa: F401  (its config section first, see spsc.pipeline.sweep)
+    import distributed  # noqa: F401  (its config section first, see spsc.sweep.run)
 
     out = tmp_path / "p.parquet"
     space = build_space({"type": "B", "w": f"{sweep_tasks.POISON_W},9,9.5,10,10.5,11,11.5,12"})
@@ -483,8 +483,8 @@ def test_the_sweep_guide_examples_are_valid_and_their_counts_right(tmp_path):
     import shlex
     from pathlib import Path
 
-    from spsc.pipeline.cli import build_parser
-    from spsc.pipeline.cmd_sweep import prepare
+    from spsc.cli.main import build_parser
+    from spsc.cli.sweep import prepare
 
     section = (Path(__file__).parents[1] / "docs" / "guides" / "sweeps.md").read_text(
         encoding="utf-8")

@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 from spsc.core.errors import ParameterError
-from spsc.pipeline.cli import build_parser
-from spsc.pipeline.sweep_eval import COLUMNS, evaluate, failed_row
-from spsc.pipeline.sweep_figures import Front, pareto_mask
-from spsc.pipeline.sweep_page import write_page
-from spsc.pipeline.sweep_store import frame
+from spsc.cli.main import build_parser
+from spsc.sweep.evaluate import COLUMNS, evaluate, failed_row
+from spsc.report.sweep_figures import Front, pareto_mask
+from spsc.report.sweep_page import write_page
+from spsc.sweep.store import frame
 
 FAST = dict(model="simplified", process="fdm", points=5, stroke_mm=4.0)
 

@@ -6,7 +6,7 @@ from spsc.core.curve import Curve
 
 
 def test_spsc_curve_model_wall_writes_the_curve_json(tmp_path):
-    from spsc.pipeline.cli import main
+    from spsc.cli.main import main
 
     out = tmp_path / "w.json"
     rc = main(["curve", "--model", "wall", "--type", "C", "--l", "0", "--mesh-size", "1",
@@ -18,7 +18,7 @@ def test_spsc_curve_model_wall_writes_the_curve_json(tmp_path):
 
 
 def test_the_membrane_taut_law_is_an_option(tmp_path):
-    from spsc.pipeline.cli import main
+    from spsc.cli.main import main
 
     paths = {}
     for wr in ("on", "off"):

@@ -21,7 +21,12 @@ __all__ = [
     "TYPES",
     "TABLE1_VOLUME_CM3",
     "preset",
+    "PARAMS",
 ]
+
+#: The seven parameters of a chamber (mm: w, h, l, t0; dimensionless: n1, n2, c_y), under
+#: the names the command line and the tables use.
+PARAMS = ("w", "h", "l", "t0", "n1", "n2", "cy")
 
 #: Form factors (n1, n2, c_y) of the four notable types, Table 1.
 TYPES: dict[str, tuple[float, float, float]] = {

@@ -1,4 +1,4 @@
-"""A stand-in for :func:`spsc.pipeline.sweep_eval.evaluate` in the design loop's tests: smooth
+"""A stand-in for :func:`spsc.sweep.evaluate.evaluate` in the design loop's tests: smooth
 closed-form "metrics" of the parameters (milliseconds, no model), the printability of the wall
 against the process's minimum, and a refused design where w > 13.5 mm. Importable by the
 Dask workers (it is part of the installed package)."""

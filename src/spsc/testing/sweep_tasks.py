@@ -1,5 +1,5 @@
 """Tasks for the sweep tests that must run on Dask's worker processes (importable there: they
-are part of the installed package). Each has :func:`spsc.pipeline.sweep_eval.evaluate`'s
+are part of the installed package). Each has :func:`spsc.sweep.evaluate.evaluate`'s
 signature."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import os
 import time
 from pathlib import Path
 
-from spsc.pipeline.sweep_eval import evaluate
+from spsc.sweep.evaluate import evaluate
 
 #: A design whose ``w`` is this kills its worker every time it runs.
 POISON_W = 9.75

@@ -1,0 +1,246 @@
+"""``spsc fem``: the short form of ``spsc curve --model fem``: the 3D hyperelastic FEM check
+of one chamber, one setup — the membrane's JSON; or, with ``--part``, of any closed part.
+
+    spsc fem --type B --pressure 40 [--reservoir 40000] [--stroke 4] [--points 11]
+             [--material tpu60a] [--mesh-size 1.0] [--layers 2] [--full] [--solver auto]
+             [--json F] [--csv F] [--png F] [--vtu DIR] [--quiet]
+    spsc fem --part FILE.stl|.3mf|.step [--design FILE.design.json] [--fix "z<=0"]
+             [--plate-normal 0,0,-1] [--plate-at X,Y,Z|SITE] [--motor]
+             [setup and outputs as above]
+
+Chamber: quarter model of the wall (clamped on z = 0, symmetry planes x = 0, y = 0), P2/P1
+mixed tetrahedra, follower cavity pressure, closed gas volume with reservoir after inflation,
+rigid frictionless plate. ``--pressure 0`` is the open chamber (F_el).
+
+Part: the whole part meshed by fTetWild (quadratic, curved boundary), its one enclosed cavity
+found and loaded by the gas; the nodes the ``--fix`` selector takes are clamped (default: the
+design file's mount); the plate moves along ``--plate-normal`` from where it first touches the
+part (``--plate-at`` checks that point, or names a site of the design file: ``apex``, ``pulp``,
+``distal``). A design file ``STEM.design.json`` beside the part is read when ``--design`` is not
+given: it plugs the inlet bore, names the mount, the sites and the FSR pockets, whose forces
+(the plate pressing the sensor in each pocket) are written as ``force_<pocket>_N`` columns.
+``--motor`` holds the design's motor (a haptic chamber's, ``spsc bladder --haptic``) as a rigid
+insert: seated on its ledge, met by the dome above it, its volume taken off the gas; its force
+is the ``force_motor_N`` column.
+
+Pressures kPa gauge, volumes mm³, lengths mm. Exit 0 when every point converged, 1 when not
+(what converged is written), 2 on invalid input.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from spsc.core.errors import ParameterError
+
+from spsc.cli.curve import add_curve_parser, exit_status, plot, run as run_curve, summary
+from spsc.cli.options import PARAMS, PLOT_SUFFIXES, check_output_dir, check_output_file
+
+#: the options that belong to one mode only
+_PART_ONLY = ("design", "fix", "plate_normal", "plate_at", "motor")
+_CHAMBER_ONLY = ("type", "layers", "full") + tuple(PARAMS)
+
+
+def register(subparsers) -> None:
+    p = add_curve_parser(subparsers, "fem", models=("fem",),
+                         help="3D hyperelastic FEM: inflation and plate contact "
+                         "(= spsc curve --model fem), of a chamber or of any part (--part)",
+                         description=__doc__.split("\n\n")[0])
+    g = p.add_argument_group("any closed part (instead of --type)")
+    g.add_argument("--part", metavar="FILE", default=None,
+                   help="the part: .stl, .3mf or .step with one enclosed cavity")
+    g.add_argument("--design", metavar="FILE.design.json", default=None,
+                   help="its design file (default: STEM.design.json beside the part, if any): "
+                   "plugs the inlet bore, names the mount, plate sites and FSR pockets")
+    g.add_argument("--fix", metavar="SELECTOR", default=None,
+                   help="nodes to clamp, e.g. 'z<=0' or 'y<-12 & z<1' (default: the design's "
+                   "mount)")
+    g.add_argument("--plate-normal", metavar="NX,NY,NZ", default=None,
+                   type=_vector("plate-normal"),
+                   help="the plate's direction of travel (default 0,0,-1, or the site's)")
+    g.add_argument("--motor", action="store_true", default=None,
+                   help="hold the design file's motor as a rigid insert (haptic chamber: seated "
+                   "on its ledge, met by the dome; its volume off the gas; force_motor_N)")
+    g.add_argument("--plate-at", metavar="X,Y,Z|SITE", default=None,
+                   help="the point the plate first touches, or a site of the design file")
+    p.set_defaults(func=run)
+
+
+def _vector(name: str):
+    def parse(text: str):
+        parts = str(text).split(",")
+        try:
+            v = [float(s) for s in parts]
+        except ValueError:
+            v = []
+        if len(v) != 3 or not all(math.isfinite(x) for x in v):
+            import argparse
+            raise argparse.ArgumentTypeError(
+                str(ParameterError(name, text, "three numbers separated by commas")))
+        return tuple(v)
+    parse.__name__ = "vector"
+    return parse
+
+
+def run(args) -> int:
+    if args.part is None:
+        for dest in _PART_ONLY:
+            if getattr(args, dest, None) is not None:
+                raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
+                                     "only with --part")
+        return run_curve(args)
+    return run_part_cli(args)
+
+
+# -- part mode ------------------------------------------------------------------------------
+def _design_of(args) -> tuple[dict | None, str | None]:
+    from spsc.core.jsonio import read_json
+
+    path = args.design
+    if path is None:
+        beside = Path(args.part).with_name(Path(args.part).stem + ".design.json")
+        if not beside.is_file():
+            return None, None
+        path = beside
+    path = Path(path)
+    if not path.is_file():
+        raise ParameterError("design", str(path), "an existing design file (.design.json)")
+    try:
+        data = read_json(path)
+    except (ValueError, UnicodeDecodeError) as exc:
+        raise ParameterError("design", str(path), f"a JSON design file ({exc})") from None
+    if not isinstance(data, dict):
+        raise ParameterError("design", str(path), "a JSON object (a .design.json)")
+    return data, str(path)
+
+
+def _sites(design: dict | None) -> dict:
+    return dict(((design or {}).get("fem") or {}).get("sites") or {})
+
+
+def part_run_from_args(args):
+    """The PartRun of an invocation: every check before any work (one-line ParameterError)."""
+    from spsc.fem.part_run import ContactPatch, PartRun
+    from spsc.materials import material
+
+    for dest in _CHAMBER_ONLY:
+        if getattr(args, dest, None) not in (None, False):
+            raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
+                                 "not with --part (the part file is the geometry; the mesh "
+                                 "size is --mesh-size)")
+    for opt, path in (("--json", args.json), ("--csv", args.csv)):
+        if path is not None:
+            check_output_file(opt, path)
+    if args.png is not None:
+        check_output_file("--png", args.png, PLOT_SUFFIXES)
+    if args.vtu is not None:
+        check_output_dir("--vtu", args.vtu)
+    part = Path(args.part)
+    if not part.is_file():
+        raise ParameterError("part", str(part), "an existing .stl, .3mf or .step file")
+    design, _ = _design_of(args)
+    fem = (design or {}).get("fem") or {}
+    fix = args.fix if args.fix is not None else fem.get("mount")
+    if fix is None:
+        raise ParameterError("fix", None, "a selector of the nodes to clamp, e.g. --fix 'z<=0' "
+                             "(the design file names no mount)")
+    normal, at = args.plate_normal, None
+    if args.plate_at is not None:
+        sites = _sites(design)
+        if args.plate_at in sites:
+            site = sites[args.plate_at]
+            at = tuple(site["at"])
+            normal = normal if normal is not None else tuple(site["normal"])
+        else:
+            try:
+                at = tuple(float(s) for s in args.plate_at.split(","))
+            except ValueError:
+                at = ()
+            if len(at) != 3 or not all(math.isfinite(x) for x in at):
+                names = ", ".join(sites) or "none in the design file"
+                raise ParameterError("plate-at", args.plate_at,
+                                     f"X,Y,Z in mm or a site name ({names})")
+    contacts = tuple(ContactPatch(p["name"], tuple(p["center"]), tuple(p["normal"]),
+                                  float(p["radius"]), float(p.get("insert_mm", 0.0)))
+                     for p in fem.get("contacts", ()))
+    mesh_size = args.mesh_size if args.mesh_size is not None else 1.0
+    stroke = args.stroke if args.stroke is not None else 4.0
+    points = args.points if args.points is not None else 11
+    return PartRun(str(part), material(args.material), fix,
+                   plate_normal=normal if normal is not None else (0.0, 0.0, -1.0),
+                   plate_at=at, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
+                   stroke_mm=stroke, points=points, mesh_size_mm=mesh_size,
+                   polytropic_index=args.polytropic_n, design=design, contacts=contacts,
+                   motor=bool(args.motor))
+
+
+def _estimate(run, surface) -> dict:
+    """Unknowns of the part mesh before meshing: fTetWild fills the solid at about 20 / size³
+    tetrahedra per mm³ (measured on a dome and Type B at 1 mm: 17–22), 1.45 P2 nodes each."""
+    from spsc.cad.meshtopo import signed_volume
+
+    volume = abs(signed_volume(surface.vertices, surface.faces))
+    tets = 20.0 * volume / run.mesh_size_mm ** 3
+    nodes = 1.45 * tets
+    return {"tetrahedra": int(tets), "nodes": int(nodes), "unknowns": int(3 * nodes + tets / 5)}
+
+
+def run_part_cli(args) -> int:
+    from tqdm import tqdm
+
+    from spsc.fem.part import load_part
+    from spsc.fem.part_run import check_part_run, part_curve, part_model, write_part_vtu
+    from spsc.fem.solver import Settings, solve
+
+    from spsc.models.resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
+
+    verb = "fem"
+    run = part_run_from_args(args)
+    surface = load_part(run.part, run.design)
+    check_part_run(run, surface)
+    counts = _estimate(run, surface)
+    steps = run.points - 1 + (run.inflate_increments if run.pressure_kPa > 0 else 0)
+    check_size(verb, counts, steps, limit=FEM_MAX_UNKNOWNS,
+               gib=fem_memory_gib(counts["unknowns"]), force=bool(args.force), quiet=bool(args.quiet), mesh_size=run.mesh_size_mm,
+               points=run.points)
+    if not args.quiet:
+        print(f"spsc {verb}: meshing {Path(run.part).name} (cavity "
+              f"{surface.cavity_volume:.1f} mm³{', port plugged' if surface.capped else ''})",
+              file=sys.stderr)
+    import time
+
+    t0 = time.perf_counter()
+    model, R, surface = part_model(run, surface=surface)
+    mesh_seconds = time.perf_counter() - t0
+    bar = tqdm(total=steps, desc=f"spsc {verb}", unit="step", disable=bool(args.quiet),
+               file=sys.stderr)
+
+    def progress(done, total):
+        bar.total = total
+        bar.update(done - bar.n)
+
+    try:
+        result = solve(model, run.steps(), settings=Settings(solver=args.solver or "auto"),
+                       progress=progress)
+    finally:
+        bar.close()
+    curve = part_curve(run, model, result, surface, mesh_seconds=mesh_seconds)
+    extra = {}
+    if args.vtu:
+        extra["vtu"] = [p.name for p in write_part_vtu(model, result, R, args.vtu)]
+    if args.json:
+        curve.to_json(args.json, extra=extra or None)
+    if args.csv:
+        curve.to_csv(args.csv)
+    if args.png:
+        plot(curve, None, args.png)
+    summary(curve)
+    if curve.series:
+        last = int(np.flatnonzero(curve.converged)[-1]) if curve.converged.any() else 0
+        forces = ", ".join(f"{k[6:-2]} {v[last]:.3g}" for k, v in curve.series.items())
+        print(f"contact forces at y = {curve.y_mm[last]:.3g} mm (N): {forces}")
+    return exit_status(verb, curve)

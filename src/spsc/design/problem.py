@@ -1,0 +1,28 @@
+"""The problem an inverse-design study answers (a study continues only with the same one)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from spsc.design.goal import Goal
+from spsc.design.space import Space
+
+__all__ = ["Problem"]
+
+
+@dataclass(frozen=True)
+class Problem:
+    """What a study answers: the goal, the space, the fast model, the process whose
+    printability is the constraint, the plate positions (None: the model's) and the stroke
+    (mm). A study continues only with the same problem."""
+
+    goal: Goal
+    space: Space
+    model: str
+    process: str
+    points: int | None
+    stroke_mm: float
+
+    def to_dict(self) -> dict:
+        return {"goal": self.goal.to_dict(), "space": self.space.to_dict(), "model": self.model,
+                "process": self.process, "points": self.points, "stroke_mm": self.stroke_mm}

@@ -1,1 +1,0 @@
-"""The spsc command line and the study runner."""

@@ -1,0 +1,216 @@
+"""The fingertip study (issue 14, ``make fingertip-fem``): the fused fingertip of sec. 4.1 in
+the 3D FEM, pressed by a plate on the pulp and on the distal edge, in both modes at two setup
+pressures; the five FSR pocket forces; the same presses on a single Type A chamber of the same
+size; and the fast estimate (:mod:`.fused_estimate`) against the FEM.
+
+Every curve is a JSON file under ``OUT/curves/`` reused when present (delete it to run again);
+``OUT/summary.json`` holds the figures the report shows. The part is the one ``spsc
+fingertip`` builds (default :class:`~spsc.cad.specs.FingertipSpec`), in Silicone 40A (the
+paper's fingertip material); the mount is the underside and the slot for the gripper finger
+(the design file's ``fem.mount``); the plate sites are the design file's ``pulp`` (straight
+down) and ``distal`` (along the distal chamber's axis); the low mode opens a 40 cm³ reservoir
+(the paper's).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from spsc.core.curve import Curve
+
+__all__ = ["FingertipStudy", "CASES", "run_study", "case_name"]
+
+#: (site, mode, setup pressure kPa)
+CASES = tuple((site, mode, p) for site in ("pulp", "distal") for mode in ("high", "low")
+              for p in (10.0, 40.0))
+LOW_RESERVOIR_MM3 = 40000.0
+#: the cases whose deformed state is rendered
+RENDERED = (("pulp", "high", 40.0), ("distal", "high", 40.0))
+
+
+def case_name(site, mode, pressure) -> str:
+    return f"{site}-{mode}-{pressure:g}kPa"
+
+
+@dataclass(frozen=True)
+class FingertipStudy:
+    """The study's setup: mesh size at the chambers' walls (mm), stroke (mm) and points,
+    material, the cases; ``single`` and ``fast``: run the single-chamber and fast-estimate
+    comparisons."""
+
+    mesh_size_mm: float = 2.0
+    stroke_mm: float = 3.0
+    points: int = 7
+    material: str = "silicone40a"
+    cases: tuple = CASES
+    single: bool = True
+    fast: bool = True
+    fast_model: str = "wall"
+
+
+def _part(out: Path) -> tuple[Path, dict]:
+    """The fingertip's STL and design file under ``out/part`` (built once)."""
+    stl = out / "part" / "fingertip.stl"
+    design = stl.with_name("fingertip.design.json")
+    if not (stl.exists() and design.exists()):
+        from spsc.cad.export import export_part, tessellate
+        from spsc.cad.fingertip import MESH_TOLERANCE, build_fingertip
+
+        tip = build_fingertip()
+        export_part(tip.solid, tip.design, stl.parent, "fingertip",
+                    mesh=tessellate(tip.solid, *MESH_TOLERANCE))
+    return stl, json.loads(design.read_text(encoding="utf-8"))
+
+
+def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | None, log):
+    from spsc.fem.part_run import ContactPatch, PartRun, part_curve, part_model, write_part_vtu
+    from spsc.fem.solver import solve
+    from spsc.materials import material
+
+    fem = design["fem"]
+    s = fem["sites"][site]
+    contacts = tuple(ContactPatch(c["name"], tuple(c["center"]), tuple(c["normal"]),
+                                  c["radius"], c["insert_mm"]) for c in fem["contacts"])
+    run = PartRun(str(stl), material(study.material), fem["mount"],
+                  plate_normal=tuple(s["normal"]), plate_at=tuple(s["at"]),
+                  pressure_kPa=pressure,
+                  reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
+                  stroke_mm=study.stroke_mm, points=study.points,
+                  mesh_size_mm=study.mesh_size_mm, design=design, contacts=contacts)
+    t0 = time.perf_counter()
+    model, R, surface = part_model(run)
+    mesh_s = time.perf_counter() - t0
+    log(f"  {path.stem}: {model.disc.n:,} unknowns, {model.mesh.n_tets:,} tetrahedra "
+        f"(mesh {mesh_s:.0f} s)")
+    result = solve(model, run.steps(),
+                   progress=lambda d, n: log(f"    step {d}/{n} ({time.perf_counter() - t0:.0f} s)"))
+    curve = part_curve(run, model, result, surface, mesh_seconds=mesh_s)
+    extra = {}
+    if vtu is not None:
+        paths = write_part_vtu(model, result, R, vtu)
+        extra["vtu"] = [str(p) for p in paths]
+    curve.to_json(path, extra=extra or None)
+    return curve
+
+
+def _single_case(study, geometry, mode, pressure, path: Path) -> Curve:
+    from spsc.fem.run import ChamberRun, run_chamber
+    from spsc.materials import material
+
+    run = ChamberRun(geometry, material(study.material), pressure_kPa=pressure,
+                     reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
+                     stroke_mm=study.stroke_mm, points=study.points, mesh_size_mm=1.0, layers=2)
+    curve, _, _ = run_chamber(run)
+    curve.to_json(path)
+    return curve
+
+
+def _load(path: Path):
+    return Curve.from_json(path) if path.exists() else None
+
+
+def run_study(study: FingertipStudy, out, *, stl=None, design=None, spec=None,
+              log=print) -> dict:
+    """Run (or reuse) every curve of ``study`` under ``out`` on the fingertip ``stl`` with its
+    ``design`` dict and ``spec`` (default: the default fingertip, built under ``out/part``);
+    returns and writes the summary."""
+    from spsc.cad.specs import FingertipSpec
+    from spsc.materials import material
+
+    from spsc.studies.fused import fused_estimate
+
+    out = Path(out)
+    (out / "curves").mkdir(parents=True, exist_ok=True)
+    if stl is None:
+        stl, design = _part(out)
+    spec = spec or FingertipSpec()
+    chambers = {"pulp": spec.pulp, "distal": spec.distal}
+    channel = design["cavity_volume_mm3"] - spec.pulp.cavity_volume() - spec.distal.cavity_volume()
+    summary = {"mesh_size_mm": study.mesh_size_mm, "material": study.material,
+               "stroke_mm": study.stroke_mm, "low_reservoir_mm3": LOW_RESERVOIR_MM3,
+               "cavity_volume_mm3": design["cavity_volume_mm3"], "channel_mm3": channel,
+               "cases": {}}
+    for site, mode, p in study.cases:
+        name = case_name(site, mode, p)
+        row = {"site": site, "mode": mode, "pressure_kPa": p}
+        path = out / "curves" / f"fem-{name}.json"
+        t0 = time.perf_counter()
+        fem = _load(path)
+        if fem is None:
+            log(f"fingertip FEM {name}")
+            vtu = out / "vtu" / name if (site, mode, p) in RENDERED else None
+            fem = _fem_case(study, stl, design, site, mode, p, path, vtu, log)
+            log(f"  done in {time.perf_counter() - t0:.0f} s: {fem.solver.message}")
+        row["fem"] = _metrics(fem)
+        if study.single:
+            spath = out / "curves" / f"single-{name}.json"
+            single = _load(spath) or _single_case(study, chambers[site], mode, p, spath)
+            row["single"] = _metrics(single)
+            row["sensitivity_ratio_fused_to_single"] = _ratio(fem, single)
+        if study.fast:
+            fpath = out / "curves" / f"fast-{name}.json"
+            fast = _load(fpath)
+            if fast is None:
+                t1 = time.perf_counter()
+                others = [g for k, g in chambers.items() if k != site]
+                fast = fused_estimate(chambers[site], others, material(study.material),
+                                      pressure_kPa=p, channel_mm3=channel,
+                                      reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
+                                      stroke_mm=study.stroke_mm, points=study.points,
+                                      model=study.fast_model)
+                fast = fast.replace(solver=fast.solver.__class__(
+                    **{**fast.solver.to_dict(), "seconds": time.perf_counter() - t1}))
+                fast.to_json(fpath)
+            row["fast"] = _metrics(fast)
+            row["fast_error"] = _errors(fast, fem)
+        summary["cases"][name] = row
+    (out / "summary.json").write_text(json.dumps(summary, indent=1, allow_nan=False,
+                                                 default=_nan_to_none), encoding="utf-8")
+    return summary
+
+
+def _nan_to_none(x):
+    return None
+
+
+def _metrics(c: Curve) -> dict:
+    ok = c.converged
+    return {"y_mm": c.y_mm.tolist(), "force_N": _list(c.force_N),
+            "pressure_kPa": _list(c.pressure_kPa),
+            "pockets_N": {k[6:-2]: _list(v) for k, v in c.series.items()},
+            "mean_stiffness_N_per_mm": _num(c.mean_stiffness(reached=True)),
+            "mean_sensitivity_kPa_per_mm": _num(c.mean_sensitivity(reached=True)),
+            "converged": bool(ok.all()), "seconds": _num(c.solver.seconds),
+            "dofs": c.solver.details.get("dofs"), "message": c.solver.message}
+
+
+def _ratio(a: Curve, b: Curve) -> float | None:
+    return _num(a.mean_sensitivity(reached=True) / b.mean_sensitivity(reached=True))
+
+
+def _errors(fast: Curve, fem: Curve) -> dict:
+    """Relative errors of the fast estimate against the FEM over the points both reached,
+    y > 0: force, and pressure rise from the setup pressure (max |·| and at the full stroke)."""
+    ok = fem.converged & fast.converged & (fem.y_mm > 0)
+    if not ok.any():
+        return {"force_max": None, "pressure_rise_max": None}
+    eF = fast.force_N[ok] / fem.force_N[ok] - 1
+    dp_fem = fem.pressure_kPa[ok] - fem.pressure_kPa[0]
+    eP = (fast.pressure_kPa[ok] - fast.pressure_kPa[0]) / dp_fem - 1
+    return {"force_max": _num(np.max(np.abs(eF))), "force_end": _num(eF[-1]),
+            "pressure_rise_max": _num(np.max(np.abs(eP))), "pressure_rise_end": _num(eP[-1]),
+            "y_end_mm": float(fem.y_mm[ok][-1])}
+
+
+def _list(a) -> list:
+    return [None if not np.isfinite(v) else float(v) for v in a]
+
+
+def _num(x) -> float | None:
+    x = float(x)
+    return x if np.isfinite(x) else None
