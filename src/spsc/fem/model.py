@@ -18,7 +18,7 @@ import numpy as np
 from spsc.materials import Material
 
 from .assembly import Discretisation, assemble, discretise
-from spsc.core.gaslaw import GasLaw
+from .engine.steps import Load
 from .insert import RigidInsert
 from .material import NearlyIncompressible
 from .mesh import TetMesh
@@ -28,16 +28,6 @@ __all__ = ["FEMModel", "Load", "CLAMPED_QUARTER", "Evaluation"]
 
 #: Supports of the chamber wall, quarter model: clamped base, symmetry planes.
 CLAMPED_QUARTER = {"base": (0, 1, 2), "sym_x": (0,), "sym_y": (1,)}
-
-
-@dataclass(frozen=True)
-class Load:
-    """Cavity gauge pressure ``pressure`` (MPa) unless ``gas`` is given; rigid plate at height
-    ``plate`` (mm, None: no plate)."""
-
-    pressure: float = 0.0
-    gas: GasLaw | None = None
-    plate: float | None = None
 
 
 @dataclass(frozen=True, eq=False)

@@ -17,7 +17,7 @@ from __future__ import annotations
 import logging
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -27,33 +27,11 @@ from spsc.core.gaslaw import GasLaw
 from .insert import insert_constraints, insert_force, update_engaged
 from .newton_step import Constraints as _Constraints, Reduction as _Reduction
 from .newton_step import constraint_key as _key, linear_step as _linear_step
-from .model import FEMModel, Load
+from .engine.result import NewtonFailure, Record, Result
+from .engine.steps import CloseValve, Inflate, Load, Press
+from .model import FEMModel
 
 __all__ = ["Inflate", "CloseValve", "Press", "Settings", "Record", "Result", "solve", "newton"]
-
-
-@dataclass(frozen=True)
-class Inflate:
-    """Ramp the cavity gauge pressure to ``pressure`` (MPa) in ``increments``."""
-
-    pressure: float
-    increments: int = 4
-
-
-@dataclass(frozen=True)
-class CloseValve:
-    """Close the valve: the cavity plus ``reservoir`` (mm³) holds its gas, P·Vⁿ = const."""
-
-    reservoir: float = 0.0
-    polytropic_index: float = 1.0
-
-
-@dataclass(frozen=True)
-class Press:
-    """Lower the plate from first contact by ``stroke`` (mm) in ``increments`` recorded points."""
-
-    stroke: float
-    increments: int = 10
 
 
 @dataclass(frozen=True)
@@ -75,53 +53,7 @@ class Settings:
     softening: float = 1e-2
 
 
-@dataclass(frozen=True, eq=False)
-class Record:
-    """One converged load point: which step, its load, and the measured quantities (mm, N,
-    MPa, mm³, mm²; force and area of the full part)."""
-
-    step: int
-    kind: str
-    x: np.ndarray = field(repr=False)
-    pressure: float
-    volume: float
-    plate: float | None
-    force: float
-    contact_area: float
-    iterations: int
-    unstable_modes: int | None = None  # negative pivots beyond the pressure block (None: n/a)
-    #: force (N) through each named contact surface of the model (e.g. an FSR pocket floor)
-    group_forces: dict = field(default_factory=dict)
-    #: the rigid insert's force (N, ≥ 0: the wall above it pressed onto it; None: no insert)
-    insert_force: float | None = None
-
-
-@dataclass(frozen=True, eq=False)
-class Result:
-    """All converged records, whether every step converged (``converged``), why and where
-    the run stopped (``message``, "converged" if it did not), a detected instability, and
-    the wall-clock time of the solve (s)."""
-
-    records: list
-    converged: bool
-    message: str
-    instability: str = ""
-    seconds: float = float("nan")
-
-    def of(self, kind: str) -> list:
-        return [r for r in self.records if r.kind == kind]
-
-    @property
-    def iterations(self) -> int:
-        """Newton iterations over the converged load points."""
-        return sum(r.iterations for r in self.records)
-
-
 _log = logging.getLogger(__name__)
-
-
-class NewtonFailure(RuntimeError):
-    pass
 
 
 def newton(model: FEMModel, x0, load: Load, settings: Settings, active=None, engaged=None):

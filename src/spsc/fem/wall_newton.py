@@ -13,14 +13,15 @@ import scipy.sparse.linalg as spla
 
 from spsc.core.gaslaw import GasLaw
 
+from .engine.result import NewtonFailure
 from .linsolve import solve_rank_one
 from .wall_model import WallModel, WallSettings
 
 __all__ = ["WallFailure", "WallState", "newton"]
 
 
-class WallFailure(RuntimeError):
-    """Newton did not converge for one increment (the reason is the message)."""
+#: Newton did not converge for one increment: the engine's one failure
+WallFailure = NewtonFailure
 
 
 @dataclass(frozen=True, eq=False)
