@@ -26,7 +26,7 @@ def _bench():
 def test_compare_bench_runs_small(tmp_path, capsys):
     """bench/bench_fem_compare.py on a tiny case (Type B, 3 mm / 1 layer, plate to 1 mm): the
     row holds the membrane model's own numbers at y = 1 mm, and the comparisons it computes
-    show what DESIGN.md and the README say about the models. Measured: P −0.29 %, FEM F 1.98 N
+    show what docs/design.md and docs/theory/fem.md say about the models. Measured: P −0.29 %, FEM F 1.98 N
     against F_el 1.14 N and membrane p·A + F_el 3.39 N, FEM wall inflating 26 % more than the
     membrane; thin wall (t0 = 1 mm, l = 0): FEM ΔV +8.4 %."""
     bench = _bench()
@@ -47,10 +47,10 @@ def test_compare_bench_runs_small(tmp_path, capsys):
     # the gas is the same in both models: the pressures at 1 mm agree closely
     assert abs(pt["P_diff_pct"]) < 2.0
     # the pressurised wall carries more than the open one, but less than p·A + F_el (the
-    # README's finding: the wall's structural force does not simply add onto p·A)
+    # docs/theory/fem.md's finding: the wall's structural force does not simply add onto p·A)
     assert pt["fem_Fel_N"] < pt["fem_F_N"] < pt["membrane_pA_plus_Fel_N"]
     assert pt["F_diff_pct"] < 0
-    # a solid wall inflates more than a membrane on its cavity surface (DESIGN.md)
+    # a solid wall inflates more than a membrane on its cavity surface (docs/design.md)
     assert row["inflated_volume_fem_mm3"] > row["inflated_volume_membrane_mm3"] > \
         row["nominal_volume_mm3"]
     thin = bench.main(["--thin-wall", "--thicknesses", "1", "--size", "3", "--layers", "1",

@@ -1,5 +1,5 @@
 """3D hyperelastic FEM check of an SPSC: P2/P1 mixed tetrahedra of the wall, follower cavity
-pressure, closed gas cavity with reservoir, frictionless rigid plate (DESIGN.md, issue 4)."""
+pressure, closed gas cavity with reservoir, frictionless rigid plate (docs/design.md)."""
 
 from spsc.core.gaslaw import GasLaw
 from .material import NearlyIncompressible
@@ -8,7 +8,7 @@ from .tetwild import spsc_wall_tetwild, tetwild_mesh
 from .model import FEMModel, Load
 from .pressure import CavitySurface
 from .run import ChamberRun, run_chamber, to_curve, write_vtu
-from .solver import CloseValve, Inflate, Press, Result, Settings, solve
+from .engine import CloseValve, Inflate, Press, Result, Settings, solve
 
 __all__ = [
     "CavitySurface",

@@ -270,7 +270,7 @@ def _wall_cells(g: SPSCGeometry, size: float) -> tuple[int, int, int]:
 
 def spsc_wall(g: SPSCGeometry, size: float = 1.0, *, layers: int | None = None,
               full: bool = False) -> TetMesh:
-    """Structured P2 mesh of the chamber wall, clamped-base model (DESIGN.md).
+    """Structured P2 mesh of the chamber wall, clamped-base model (docs/design.md).
 
     ``size`` (mm) is the target element edge along the surfaces; ``layers`` the number of
     elements through the thickness (default: t0/size rounded, at least 1). Quarter model on

@@ -4,7 +4,7 @@ boundary sets.
 The wall model (:mod:`spsc.fem.wall`) solves a dome (l = 0) as the axisymmetric body of
 revolution of this section about the z axis, and sweeps the same section along a stadium
 (l > 0, :mod:`spsc.fem.swept`). It is the section of :func:`spsc.fem.mesh.wall_section` (the 3D
-model's structured section: cavity profile to outer profile, clamped on z = 0; DESIGN.md),
+model's structured section: cavity profile to outer profile, clamped on z = 0; docs/design.md),
 meshed with 9-node biquadratic quadrilaterals (isoparametric, scikit-fem's
 ``MeshQuad2``/``ElementQuad2``). Reference gradients, quadrature points and weights come from
 scikit-fem's ``CellBasis``; the weights carry the measure 2πR, so nodal forces are whole-ring
@@ -155,7 +155,7 @@ def section_mesh(g: SPSCGeometry, *, size: float = 0.5,
                  layers: int = 2, base: str = "clamped") -> Section:
     """The meshed wall section of ``g``: about ``size`` mm elements along the profile,
     ``layers`` quadratic elements through the thickness (defaults: the mesh-convergence study
-    of :mod:`spsc.fem.wall`). ``base``: ``"clamped"`` on z = 0 (the chamber, DESIGN.md) or
+    of :mod:`spsc.fem.wall`). ``base``: ``"clamped"`` on z = 0 (the chamber, docs/design.md) or
     ``"sliding"`` (u_z = 0 only: with n1 = n2 = 2, c_y = 0, w = h the dome is half of a thick
     sphere, for the exact solution)."""
     from skfem import CellBasis, ElementQuad2, MeshQuad1, MeshQuad2
@@ -202,7 +202,7 @@ def section_mesh(g: SPSCGeometry, *, size: float = 0.5,
     on_base = np.nonzero(np.abs(nodes[:, 1]) < tol)[0]
     fixed[2 * on_base + 1] = True
     if base == "clamped":
-        fixed[2 * on_base] = True  # clamped on z = 0 (DESIGN.md)
+        fixed[2 * on_base] = True  # clamped on z = 0 (docs/design.md)
     axis = np.nonzero(np.abs(nodes[:, 0]) < tol)[0]
     fixed[2 * axis] = True  # u_R = 0 on the axis
     if np.any(basis.dx <= 0):

@@ -22,14 +22,14 @@ half-domes' axes, in 27-node hexahedra on the quarter model. The wall carries
 ``pressure_kPa = 0`` is the vented chamber: gauge pressure held at zero, no gas; its force is
 the structural F_el(y) of the paper's open-chamber bench test (Fig. 5b).
 
-Accuracy against the converged 3D FEM (README, ``bench/bench_wall.py``): domes within 0.6 % in
+Accuracy against the converged 3D FEM (docs/theory/wall.md, ``bench/bench_wall.py``): domes within 0.6 % in
 force and 1.7 % in pressure rise, in about a second per curve; stadium chambers (Table 1, l = 3
-and l = 10) within the README's table, in tens of seconds.
+and l = 10) within the table of docs/theory/wall.md, in tens of seconds.
 
 Stability: every recorded point's tangent (with the active constraints and the gas) is
 factorised with its inertia; a negative eigenvalue is an unstable equilibrium (limit point,
 snap-through or buckling of the wall). It is reported, and the solve stops there: no point past
-it is reported as converged (DESIGN.md).
+it is reported as converged (docs/design.md).
 """
 
 from __future__ import annotations
@@ -202,7 +202,7 @@ def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reserv
         F[0], P[0], A[0], dV[0], conv[0] = 0.0, pressure_kPa, 0.0, 0.0, True
     for k, st in enumerate(pressed, start=1):
         F[k], P[k], A[k] = st.force, st.pressure * KPA_PER_MPA, st.area
-        # an unstable equilibrium is kept but not converged: the wall leaves it (DESIGN.md)
+        # an unstable equilibrium is kept but not converged: the wall leaves it (docs/design.md)
         dV[k], conv[k] = v_inf - st.volume, not st.negative
         if st.negative:
             msg[k] = path.instability

@@ -22,7 +22,7 @@ from .swept import SweptWall, sweep_stations
 __all__ = ["WallSettings", "WallModel"]
 
 #: default element length along the profile (mm): the dome's 2D section is cheap, the
-#: stadium's swept hexahedra are not (both within 0.5 % of their converged answer, README)
+#: stadium's swept hexahedra are not (both within 0.5 % of their converged answer, docs/theory/wall.md)
 DOME_MESH_MM, STADIUM_MESH_MM = 0.5, 1.0
 
 
