@@ -54,7 +54,7 @@ fingertip-fem: $(STAMP)
 # the haptic chamber's cost: Type D, the haptic chamber without and with its motor (part FEM,
 # three curves, 10–15 min; reused when they exist)
 haptic-fem: $(STAMP)
-	$(BIN)/python -m spsc.studies.haptic --out build/haptic-fem
+	$(BIN)/spsc haptic --out build/haptic-fem
 
 # the printability gate on every preset and the mold gate on every type (run by CI)
 gate: $(STAMP)

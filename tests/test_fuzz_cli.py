@@ -52,6 +52,7 @@ WORK = {
     "spsc.fem.run": ["run_chamber"],
     "spsc.fem.part_run": ["part_model", "run_part"],
     "spsc.studies.fingertip": ["run_study"],
+    "spsc.studies.haptic": ["run_study"],
     "spsc.fem.wall": ["wall_curve"],
     "spsc.fem.calibrate": ["calibrate"],
     "spsc.study.runner": ["run_all"],

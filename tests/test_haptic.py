@@ -137,3 +137,36 @@ def test_the_motor_stiffens_the_first_millimetre(tmp_path):
     assert held[2] > 1.0 and np.all(held <= curves[True].force_N + 1e-9)
     # y = 1 mm: +27 % at 1.2 mm; a coarser mesh is stiffer in both, so ask for half of it
     assert curves[True].force_N[2] > 1.13 * curves[False].force_N[2]
+
+
+def test_the_haptic_study_reuses_a_curve_only_while_command_part_and_code_are_the_same(
+        tmp_path, monkeypatch):
+    """``spsc haptic``'s curves (each a ``spsc fem --part`` run of minutes) are kept with the
+    key of what computed them: computed once, read back, computed again when the part file
+    changes."""
+    from spsc.core.curve import Curve
+    from spsc.studies import haptic
+
+    stl = tmp_path / "parts" / "bladder-D" / "bladder-D.stl"
+    stl.parent.mkdir(parents=True)
+    stl.write_bytes(b"solid a\nendsolid a\n")
+    runs = []
+
+    def fake_spsc(*argv):
+        runs.append(argv)
+        y = [0.0, 0.5, 1.0]
+        Curve(y, [0.0, 1.0, 2.0], [40.0, 41.0, 42.0], [0.0, 1.0, 2.0], [0.0, 1.0, 2.0],
+              model="fem").to_json(argv[argv.index("--json") + 1])
+        return 0
+
+    monkeypatch.setattr(haptic, "_spsc", fake_spsc)
+    out = tmp_path / "out"
+    out.mkdir()
+    first = haptic._case(out, tmp_path / "parts", "plain", "bladder-D", (), 1.2)
+    again = haptic._case(out, tmp_path / "parts", "plain", "bladder-D", (), 1.2)
+    assert len(runs) == 1 and again.force_N.tolist() == first.force_N.tolist()
+    haptic._case(out, tmp_path / "parts", "plain", "bladder-D", (), 1.0)  # another mesh
+    assert len(runs) == 2
+    stl.write_bytes(b"solid b\nendsolid b\n")  # another part
+    haptic._case(out, tmp_path / "parts", "plain", "bladder-D", (), 1.0)
+    assert len(runs) == 3

@@ -106,12 +106,36 @@ def motor_top(bladder: BladderSpec, spec: "HapticSpec | None" = None) -> float:
     return float(z[ok[-1]])
 
 
+def _wire_exit(K, bladder: BladderSpec, spec: HapticSpec):
+    """The wire exit (its solid, and its start at the floor under the pocket, mm): down from the
+    floor, two 45° turns, then level through the flange's middle to its +y edge, ending in a
+    funnel for the sealant."""
+    g, f = bladder.geometry, bladder.flange
+    r_flange = widest_outer_radius(g) + f.width
+    z_c = -f.thickness / 2
+    rw = spec.wire / 2
+    p0 = np.array([0.0, g.l / 2, 0.3])
+    p1 = np.array([0.0, g.l / 2, z_c + 1.0])
+    p2 = np.array([0.0, g.l / 2 + 1.0, z_c])
+    p3 = np.array([0.0, g.l / 2 + r_flange + 0.5, z_c])
+    legs = []
+    for q0, q1 in ((p0, p1), (p1, p2), (p2, p3)):
+        dq = q1 - q0
+        legs.append(K.cylinder(rw, float(np.linalg.norm(dq)) + 1e-3, q0,
+                               dq / np.linalg.norm(dq)))
+        legs.append(K.sphere(rw, q1) if q1 is not p3 else None)
+    funnel = 3.0
+    legs.append(K.cylinder(rw, funnel + 0.01, p3 - np.array([0, funnel + 0.5, 0]),
+                           [0.0, 1.0, 0.0], r_top=spec.wire))
+    return K.union(legs), p0
+
+
 def build_haptic(bladder: BladderSpec, spec: HapticSpec = HapticSpec(), *,
                  kernel: str = "mesh") -> Haptic:
     """The haptic chamber of ``bladder`` (see the module docstring) on ``kernel`` (``mesh``:
     manifold3d, ``brep``: cadquery)."""
     K = {"mesh": MeshKernel, "brep": BrepKernel}[kernel]()
-    g, f = bladder.geometry, bladder.flange
+    g = bladder.geometry
     m = spec.motor
     r_p = m.diameter / 2 + spec.clearance          # pocket radius
     r_s = r_p + spec.ring                           # ring's outside
@@ -142,25 +166,7 @@ def build_haptic(bladder: BladderSpec, spec: HapticSpec = HapticSpec(), *,
     # part beyond the ring stays gas)
     cap = K.cylinder(r_p, 10.0, [0, 0, z_top], up)
     support = K.cut(K.union([ring, cone, cap]), cuts)
-    # the wire exit: down from the floor under the pocket, two 45° turns, then level through
-    # the flange's middle to its +y edge, ending in a funnel for the sealant
-    r_flange = widest_outer_radius(g) + f.width
-    z_c = -f.thickness / 2
-    rw = spec.wire / 2
-    p0 = np.array([0.0, g.l / 2, 0.3])
-    p1 = np.array([0.0, g.l / 2, z_c + 1.0])
-    p2 = np.array([0.0, g.l / 2 + 1.0, z_c])
-    p3 = np.array([0.0, g.l / 2 + r_flange + 0.5, z_c])
-    legs = []
-    for q0, q1 in ((p0, p1), (p1, p2), (p2, p3)):
-        dq = q1 - q0
-        legs.append(K.cylinder(rw, float(np.linalg.norm(dq)) + 1e-3, q0,
-                               dq / np.linalg.norm(dq)))
-        legs.append(K.sphere(rw, q1) if q1 is not p3 else None)
-    funnel = 3.0
-    legs.append(K.cylinder(rw, funnel + 0.01, p3 - np.array([0, funnel + 0.5, 0]),
-                           [0.0, 1.0, 0.0], r_top=spec.wire))
-    wire = K.union(legs)
+    wire, p0 = _wire_exit(K, bladder, spec)
     # the cavity less the support is cut from the body: the support's faces then never lie on
     # the cavity's (a union of touching solids leaves slivers)
     gas = K.cut(raw["cavity"], [support])

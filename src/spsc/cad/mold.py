@@ -148,8 +148,7 @@ def bladder_bbox(b: BladderSpec) -> tuple[np.ndarray, np.ndarray]:
 
 def _build(bladder: BladderSpec, spec: MoldSpec, kernel: str, parting: str) -> Mold:
     K = {"mesh": MeshKernel, "brep": BrepKernel}[kernel]()
-    k = spec.scale
-    f, p = bladder.flange, bladder.port
+    k, p = spec.scale, bladder.port
     raw = K.bladder(bladder)
     body = K.scale(raw["body"], k)
     void = K.scale(K.union([raw["cavity"], raw["bore"]]), k)
@@ -160,7 +159,6 @@ def _build(bladder: BladderSpec, spec: MoldSpec, kernel: str, parting: str) -> M
     filled = K.cut(body, [holes]) if (holes is not None and parting == "z") else body
     lo, hi = (a * k for a in bladder_bbox(bladder))
     z_axis = bladder.port_axis_z * k
-    y_tip = lo[1]
     side, wall = spec.side, spec.wall
     pad_lo = np.array([side, side, wall]) if parting == "z" else np.array([wall, side, side])
     blo, bhi = lo - pad_lo, hi + pad_lo
@@ -171,22 +169,14 @@ def _build(bladder: BladderSpec, spec: MoldSpec, kernel: str, parting: str) -> M
 
     # the core: cavity, bore, the stem out of the port's tip and its square print to the face
     c = spec.core_print
-    y_print = y_tip - spec.stem_length
+    y_print = lo[1] - spec.stem_length  # the port's tip less the stem
     # built at nominal size and scaled, like the bore it continues, so both share their facets
     stem = K.scale(K.cylinder(p.bore / 2, (spec.stem_length + 1.0) / k,
                               [0.0, (y_print - 0.5) / k, bladder.port_axis_z], [0.0, 1.0, 0.0]), k)
     core_print = K.box([-c / 2, blo[1], z_axis - c / 2], [c / 2, y_print, z_axis + c / 2])
     core = K.union([void, stem, core_print])
 
-    pins = []
-    if parting == "x" and holes is not None:
-        z0 = blo[2] - 3.0
-        for x, y in flange_hole_centres(bladder):
-            shaft = K.scale(K.cylinder(f.hole_diameter / 2, (1.0 - z0) / k, [x, y, z0 / k],
-                                       [0.0, 0.0, 1.0]), k)
-            head = K.cylinder(f.hole_diameter / 2 * k + 2.0, 3.0 - 1e-3, [x * k, y * k, z0],
-                              [0.0, 0.0, 1.0])
-            pins.append(K.union([shaft, head]))
+    pins = _pins(K, bladder, k, blo) if (parting == "x" and holes is not None) else []
 
     # the halves are cut by the raw channels (they overlap the part: no shared surface); the
     # channels as voids of the closed mold stop at the part's surface
@@ -198,28 +188,12 @@ def _build(bladder: BladderSpec, spec: MoldSpec, kernel: str, parting: str) -> M
     u_lo, u_hi = R.T @ blo, R.T @ bhi
     spots = _spots(R, u_lo, u_hi, side, lo, hi, [(-c / 2, blo[1], z_axis - c / 2),
                                                    (c / 2, y_print, z_axis + c / 2)])
-    # each cone starts 0.5 mm inside the first half, so key and half share no face
-    tan = math.tan(math.radians(spec.key_draft_deg))
-    r_top = spec.key_radius - spec.key_height * tan
-    r_base, h = spec.key_radius + 0.5 * tan, spec.key_height + 0.5
-    keys, sockets = [], []
-    for u, v in spots["keys"]:
-        at = origin + R[:, 0] * u + R[:, 1] * v - n * 0.5
-        keys.append(K.cylinder(r_base, h, at, n, r_top=r_top))
-        sockets.append(K.cylinder(r_base + spec.clearance, h + spec.clearance, at, n,
-                                  r_top=r_top + spec.clearance))
-    bolts = []
-    depth = float(n @ (bhi - blo))
-    for u, v in spots["bolts"]:
-        at = origin + R[:, 0] * u + R[:, 1] * v
-        at = at - n * (n @ (at - blo)) - n * 1.0
-        bolts.append(K.cylinder(spec.bolt_diameter / 2, depth + 2.0, at, n))
+    keys, sockets = _keys(K, spec, spots["keys"], R, origin)
+    bolts = _bolts(K, spec, spots["bolts"], R, origin, blo, bhi)
 
     space = K.cut(block, [filled, stem, core_print] + list(raw_channels.values()) + pins + bolts)
-    half_box = {
-        "lo": K.box(blo - 1.0, np.where(n > 0, origin, bhi + 1.0)),
-        "hi": K.box(np.where(n > 0, origin, blo - 1.0), bhi + 1.0),
-    }
+    half_box = {"lo": K.box(blo - 1.0, np.where(n > 0, origin, bhi + 1.0)),
+                "hi": K.box(np.where(n > 0, origin, blo - 1.0), bhi + 1.0)}
     first = K.union([K.intersect(space, half_box["lo"])] + keys)
     second = K.cut(K.intersect(space, half_box["hi"]), sockets)
     names = {"z": ("lower", "upper"), "x": ("left", "right")}[parting]
@@ -231,6 +205,50 @@ def _build(bladder: BladderSpec, spec: MoldSpec, kernel: str, parting: str) -> M
     voids = K.union([feed] + bolts + gaps) if (feed is not None or bolts or gaps) else None
     return Mold(bladder, spec, kernel, parting, tuple(origin), tuple(pieces), part, void, block,
                 voids, tuple(keys), channels)
+
+
+def _pins(K, bladder: BladderSpec, k: float, blo) -> list:
+    """The flange holes' pins of a mold parted in x: a shaft through each hole (built at nominal
+    size and scaled, like the holes) with a head below the block."""
+    f = bladder.flange
+    pins = []
+    z0 = blo[2] - 3.0
+    for x, y in flange_hole_centres(bladder):
+        shaft = K.scale(K.cylinder(f.hole_diameter / 2, (1.0 - z0) / k, [x, y, z0 / k],
+                                   [0.0, 0.0, 1.0]), k)
+        head = K.cylinder(f.hole_diameter / 2 * k + 2.0, 3.0 - 1e-3, [x * k, y * k, z0],
+                          [0.0, 0.0, 1.0])
+        pins.append(K.union([shaft, head]))
+    return pins
+
+
+def _keys(K, spec: MoldSpec, spots, R, origin) -> tuple[list, list]:
+    """Drafted keys on the first half and their sockets (with the clearance) in the second, at
+    the ``spots`` (u, v) of the parting plane. Each cone starts 0.5 mm inside the first half,
+    so key and half share no face."""
+    n = R[:, 2]
+    tan = math.tan(math.radians(spec.key_draft_deg))
+    r_top = spec.key_radius - spec.key_height * tan
+    r_base, h = spec.key_radius + 0.5 * tan, spec.key_height + 0.5
+    keys, sockets = [], []
+    for u, v in spots:
+        at = origin + R[:, 0] * u + R[:, 1] * v - n * 0.5
+        keys.append(K.cylinder(r_base, h, at, n, r_top=r_top))
+        sockets.append(K.cylinder(r_base + spec.clearance, h + spec.clearance, at, n,
+                                  r_top=r_top + spec.clearance))
+    return keys, sockets
+
+
+def _bolts(K, spec: MoldSpec, spots, R, origin, blo, bhi) -> list:
+    """Bolt holes through both halves at the ``spots`` (u, v), 1 mm beyond the block."""
+    n = R[:, 2]
+    depth = float(n @ (bhi - blo))
+    bolts = []
+    for u, v in spots:
+        at = origin + R[:, 0] * u + R[:, 1] * v
+        at = at - n * (n @ (at - blo)) - n * 1.0
+        bolts.append(K.cylinder(spec.bolt_diameter / 2, depth + 2.0, at, n))
+    return bolts
 
 
 def _spots(R, u_lo, u_hi, side, lo, hi, print_box) -> dict:

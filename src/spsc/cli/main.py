@@ -35,6 +35,7 @@ COMMANDS = {
     "sweep": "sweep",
     "design": "design",
     "mold": "mold",
+    "haptic": "haptic",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

@@ -1,22 +1,22 @@
-"""The haptic chamber's cost (issue 15, figure 3): what the motor and its support film cost the
-plain Type D in force and pressure sensitivity.
+"""The haptic chamber's cost: what the motor and its support film cost the plain Type D in
+force and pressure sensitivity.
 
-    make haptic-fem   (= python -m spsc.studies.haptic [--mesh-size 1.2]
-                       [--out build/haptic-fem] [--parts build])
+    make haptic-fem   (= spsc haptic [--mesh-size 1.2] [--out build/haptic-fem] [--parts build])
 
 Three part-FEM curves, Table 1's Type D in TPU 60A, high mode (no reservoir), 40 kPa, the plate
 pressed 4 mm at the apex in 0.5 mm steps: the plain Type D (``spsc bladder --type D``), the
 haptic chamber without its motor (``spsc bladder --type D --haptic``: the film and pocket only)
 and with it (``spsc fem --part … --motor``: the FIT0774 as a rigid insert, met by the dome once
-the press closes the printed gap over it). Each curve is the ``spsc fem --part`` JSON, reused
-when it exists (delete the folder to measure again); the figure and ``summary.json`` are
-written beside them, where ``spsc report`` finds them (:mod:`.report_haptic`). Times are the
-curves' own (meshing + solve, 2-core machine).
+the press closes the printed gap over it). Each curve is the ``spsc fem --part`` JSON, kept
+with a key of what computed it (the command, the part file's bytes and the code version of the
+part FEM): it is reused only while all three are the same. The figure and ``summary.json`` are
+written beside them, where ``spsc report`` finds them (:mod:`spsc.report.haptic`). Times are
+the curves' own (meshing + solve, 2-core machine).
 """
 
 from __future__ import annotations
 
-import argparse
+import hashlib
 import json
 import subprocess
 import sys
@@ -26,8 +26,7 @@ import numpy as np
 
 from spsc.core.curve import Curve
 
-
-__all__ = ["CASES", "LABELS", "summary", "figure", "main"]
+__all__ = ["CASES", "LABELS", "changes", "summary", "figure", "run_study"]
 
 LABELS = {"plain": "Type D", "film": "haptic chamber, no motor",
           "motor": "haptic chamber with its motor"}
@@ -45,18 +44,35 @@ def _part(parts: Path, stem: str) -> Path:
     if not stl.exists():
         extra = ("--haptic",) if "haptic" in stem else ()
         if _spsc("bladder", "--type", "D", *extra, "--out", str(stl.parent)) != 0:
-            raise SystemExit(f"spsc bladder {stem} failed")
+            raise RuntimeError(f"spsc bladder {stem} failed")
     return stl
 
 
+def _key(argv, stl: Path) -> str:
+    """What a curve depends on: the command, the part's bytes and the part FEM's code."""
+    from spsc.study.runs import source_closure
+
+    h = hashlib.sha256(json.dumps([a for a in argv if not a.endswith(".json")]).encode())
+    h.update(stl.read_bytes())
+    for path in source_closure("spsc.cli.fem"):
+        h.update(path.name.encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()
+
+
 def _case(out: Path, parts: Path, name: str, stem: str, extra, mesh: float) -> Curve:
-    path = out / f"{name}.json"
-    if not path.exists():
-        code = _spsc("fem", "--part", str(_part(parts, stem)), "--pressure", "40", "--stroke",
-                     "4", "--points", "9", "--plate-at", "apex", "--mesh-size", f"{mesh:g}",
-                     "--material", "tpu60a", "--force", "--json", str(path), *extra)
+    path, key_path = out / f"{name}.json", out / f"{name}.key"
+    stl = _part(parts, stem)
+    argv = ["fem", "--part", str(stl), "--pressure", "40", "--stroke", "4", "--points", "9",
+            "--plate-at", "apex", "--mesh-size", f"{mesh:g}", "--material", "tpu60a", "--force",
+            "--json", str(path), *extra]
+    key = _key(argv, stl)
+    kept = path.exists() and key_path.exists() and key_path.read_text().strip() == key
+    if not kept:
+        code = _spsc(*argv)
         if code not in (0, 1):
-            raise SystemExit(f"spsc fem --part {stem} {' '.join(extra)} failed ({code})")
+            raise RuntimeError(f"spsc fem --part {stem} {' '.join(extra)} failed ({code})")
+        key_path.write_text(key + "\n")
     return Curve.from_json(path)
 
 
@@ -112,51 +128,31 @@ def figure(curves: dict, path: Path) -> None:
     plt.close(fig)
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--mesh-size", type=float, default=1.2)
-    ap.add_argument("--out", default="build/haptic-fem")
-    ap.add_argument("--parts", default="build", help="where the parts are (make bladder's "
-                    "build/bladder-D and build/bladder-D-haptic; made when missing)")
-    args = ap.parse_args(argv)
-    out = Path(args.out)
+_KEYS = ("stiffness_N_per_mm", "sensitivity_kPa_per_mm", "kPa_per_N",
+         "start_stiffness_N_per_mm", "start_sensitivity_kPa_per_mm")
+
+
+def run_study(out, parts, mesh_size: float = 1.2) -> tuple[dict, dict]:
+    """The three curves (``{case: Curve}``) and the summary rows (``{case: row}`` plus the
+    changes against the plain chamber and of the motor alone, %), written to
+    ``out/summary.json`` with the figure ``out/haptic-cost.png``. ``parts``: where the
+    bladders are (made when missing); ``mesh_size`` in mm."""
+    out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    curves = {name: _case(out, Path(args.parts), name, stem, extra, args.mesh_size)
+    curves = {name: _case(out, Path(parts), name, stem, extra, mesh_size)
               for name, stem, extra in CASES}
     rows = {name: summary(c) for name, c in curves.items()}
     base = rows["plain"]
-    keys = ("stiffness_N_per_mm", "sensitivity_kPa_per_mm", "kPa_per_N",
-            "start_stiffness_N_per_mm", "start_sensitivity_kPa_per_mm")
     for name, row in rows.items():
-        row["vs_plain_pct"] = {k: 100 * (row[k] / base[k] - 1) for k in keys}
+        row["vs_plain_pct"] = {k: 100 * (row[k] / base[k] - 1) for k in _KEYS}
     m, f = rows["motor"], rows["film"]
-    rows["motor_alone_pct"] = {k: 100 * (m[k] / f[k] - 1) for k in keys}
-    rows["mesh_size_mm"] = args.mesh_size
+    rows["motor_alone_pct"] = {k: 100 * (m[k] / f[k] - 1) for k in _KEYS}
+    rows["mesh_size_mm"] = mesh_size
     (out / "summary.json").write_text(json.dumps(rows, indent=2))
     figure(curves, out / "haptic-cost.png")
-    print(f"{'case':30s} {'F(4) N':>7s} {'ΔP kPa':>7s} {'N/mm':>6s} {'kPa/mm':>6s} "
-          f"{'kPa/N':>6s} {'0-1 mm: N/mm':>12s} {'kPa/mm':>6s} {'3-4 mm: N/mm':>12s} "
-          f"{'kPa/mm':>6s} {'motor N':>7s} {'s':>5s}")
-    for name in curves:
-        r = rows[name]
-        print(f"{LABELS[name]:30s} {r['force_N']:7.2f} {r['dp_kPa']:7.2f} "
-              f"{r['stiffness_N_per_mm']:6.2f} {r['sensitivity_kPa_per_mm']:6.2f} "
-              f"{r['kPa_per_N']:6.3f} {r['start_stiffness_N_per_mm']:12.2f} "
-              f"{r['start_sensitivity_kPa_per_mm']:6.2f} {r['end_stiffness_N_per_mm']:12.2f} "
-              f"{r['end_sensitivity_kPa_per_mm']:6.2f} {r.get('motor_force_N', float('nan')):7.2f} "
-              f"{r['seconds']:5.0f}")
-    for name, ref in (("film", "plain"), ("motor", "plain"), ("motor", "film")):
-        v = {k: 100 * (rows[name][k] / rows[ref][k] - 1) for k in keys}
-        print(f"{LABELS[name]} vs {LABELS[ref]}: stiffness {v['stiffness_N_per_mm']:+.1f} % "
-              f"(first mm {v['start_stiffness_N_per_mm']:+.1f} %), sensitivity "
-              f"{v['sensitivity_kPa_per_mm']:+.1f} % (first mm "
-              f"{v['start_sensitivity_kPa_per_mm']:+.1f} %), kPa per N {v['kPa_per_N']:+.1f} %")
-    print(f"the motor is met at y = {m.get('motor_met_at_mm')} mm and carries "
-          f"{m.get('motor_force_N', float('nan')):.2f} N of the plate's {m['force_N']:.2f} N at "
-          f"the end (peak {m.get('motor_peak_N', float('nan')):.2f} N)")
-    print(f"written: {out / 'summary.json'}, {out / 'haptic-cost.png'}")
-    return 0 if all(rows[name]["converged"] for name in curves) else 1
+    return curves, rows
 
 
-if __name__ == "__main__":
-    raise SystemExit(main())
+def changes(rows: dict, name: str, ref: str) -> dict:
+    """Relative change (%) of case ``name`` against ``ref`` in the slopes of the summary."""
+    return {k: 100 * (rows[name][k] / rows[ref][k] - 1) for k in _KEYS}

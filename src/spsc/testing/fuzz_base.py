@@ -1,0 +1,90 @@
+"""The building blocks of the table of invalid invocations (:mod:`.fuzz_cases`): a
+:class:`Case`, the values no number option accepts and each option's out-of-range values, and the
+ways an output path can be wrong."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["Case", "NOT_A_NUMBER", "OUT_OF_RANGE", "GEOMETRY", "SETUP", "numbers", "outputs",
+           "out_dirs"]
+
+
+@dataclass(frozen=True)
+class Case:
+    """One invalid invocation: ``argv`` (without ``spsc``), what is wrong (``why``) and the
+    name the one-line error must contain (None: any)."""
+
+    argv: tuple[str, ...]
+    why: str
+    names: str | None = None
+
+    @property
+    def verb(self) -> str:
+        return self.argv[0] if self.argv else ""
+
+
+#: Values no number option accepts: text, empty, blank, non-finite, a decimal comma.
+NOT_A_NUMBER = ("abc", "", " ", "nan", "inf", "-inf", "1,5", "0x")
+
+#: Out-of-range values per number option (every one must be refused with the option named).
+#: Geometry ranges: w, h, l, t0 in mm, with the Type B preset (w = 11, h = 13, l = 3, t0 = 1).
+OUT_OF_RANGE = {
+    "w": ("0", "-1", "-1e5", "1e9", "1e-9"),
+    "h": ("0", "-1", "1e9", "1e-9"),
+    "l": ("-1", "1e9"),
+    "t0": ("0", "-1", "11", "1e3"),
+    "n1": ("0.5", "0", "1e9"),
+    "n2": ("0.5", "-2", "1e9"),
+    "cy": ("-1", "1", "1.5", "1e9"),
+    "pressure": ("-1", "-1e5", "1e5"),
+    "reservoir": ("-1", "-1e-3"),
+    "stroke": ("-1", "13", "100", "1e9"),
+    "points": ("0", "1", "-3", "2.5", "1e9"),
+    "polytropic-n": ("0.5", "0", "3"),
+    "mesh-size": ("0", "-1", "1e9", "1e-4"),
+    "layers": ("0", "-1", "2.5", "1000"),
+    "flange-holes": ("3", "2.5", "-2", "1"),
+    "tube-id": ("0", "-1", "1e9"),
+    "angle": ("10", "100", "-45"),
+    "shrinkage": ("-1", "6"),
+    "clearance": ("0", "2"),
+    "wall": ("1", "100"),
+    "pocket-diameter": ("0", "-1", "1e9"),
+    "pocket-depth": ("0", "-1", "100"),
+    "min-wall": ("0", "-1"),
+    "bladder-volume": ("0", "-1"),
+    "workers": ("0", "-1", "2.5", "1e3", "257", "1e9"),
+}
+
+GEOMETRY = ("w", "h", "l", "t0", "n1", "n2", "cy")
+SETUP = ("pressure", "reservoir", "stroke", "points", "polytropic-n")
+
+
+def numbers(base, options, extra=()) -> list[Case]:
+    cases = []
+    for opt in options:
+        for v in NOT_A_NUMBER + OUT_OF_RANGE.get(opt, ()) + tuple(extra):
+            cases.append(Case(base + (f"--{opt}", v), f"--{opt} {v!r}", opt))
+    return cases
+
+
+def outputs(base, option, f, tmp, suffix=".json") -> list[Case]:
+    """``option`` given a path that cannot be written as a file."""
+    bad = [(str(f["dir"]), "an existing folder"),
+           (str(f["dir.json"]) if suffix == ".json" else str(f["dir"]), "a folder with the suffix"),
+           (str(f["file"] / f"x{suffix}"), "a path under a file"),
+           (str(tmp / "no" / "such" / f"x{suffix}"), "a missing folder"),
+           ("/proc/spsc-fuzz" + suffix, "an unwritable place"),
+           ("", "empty")]
+    if Path("/dev/full").is_char_device():  # a full disk (not every sandbox has the device)
+        bad.append(("/dev/full", "a full device"))
+    return [Case(base + (option, p), f"{option} {why}", option.lstrip("-")) for p, why in bad]
+
+
+def out_dirs(base, option, f) -> list[Case]:
+    """``option`` given a folder that cannot be written or created."""
+    bad = [(str(f["file"]), "an existing file"), (str(f["file"] / "sub"), "a folder under a file"),
+           ("/proc/spsc-fuzz", "an unwritable place"), ("", "empty")]
+    return [Case(base + (option, p), f"{option} {why}", option.lstrip("-")) for p, why in bad]
