@@ -15,8 +15,9 @@ from spsc.core.gaslaw import GasLaw
 from spsc.fem.insert import RigidInsert, insert_constraints
 from spsc.fem.mesh import spsc_wall
 from spsc.fem.model import FEMModel, Load
-from spsc.fem.solver import (CloseValve, Inflate, Press, _Constraints, _linear_step, _Reduction,
-                             Settings, solve)
+from spsc.fem.engine import CloseValve, Inflate, Press, Settings, solve
+from spsc.fem.engine.constraints import Constraints, Reduction
+from spsc.fem.engine.linear import linear_step
 from spsc.materials import material
 
 G = preset("B")
@@ -86,9 +87,9 @@ def test_aliased_step_equals_the_kkt_step(wall, gas):
     assert np.abs(sjump).max() > 1e-3  # the random state violates them: the jumps are tested
     free = free0.copy()
     free[slaves] = False
-    con = _Constraints(model.disc.n, np.zeros(0, int), np.zeros(0), slaves, sjump, ins.master)
-    red = _Reduction(ev.K, free, slaves, ins.master)
-    step, _ = _linear_step(model, ev, red, free, con, Settings())
+    con = Constraints(model.disc.n, np.zeros(0, int), np.zeros(0), slaves, sjump, ins.master)
+    red = Reduction(ev.K, free, slaves, ins.master)
+    step = linear_step(model, ev, red, free, con, Settings()).dx
     ref = _kkt_step(model, ev, free, slaves, ins.master, sjump)
     assert (ev.c > 0) == gas
     # two direct solves of one well-conditioned system: agreement to ~1e-9 of the step

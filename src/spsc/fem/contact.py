@@ -1,11 +1,6 @@
-"""Frictionless contact with a rigid plate z = z_plate moving down onto the chamber.
-
-Primal–dual active set on the outer-surface nodes: an active node's height is prescribed at the
-plate (its vertical displacement is eliminated like a support), and its contact force is the
-reaction λ_a = −r_z,a ≥ 0 (N). A node is released when its reaction pulls (λ_a < −tol) and
-activated when it penetrates the plate. With exact enforcement there is no penalty parameter to
-tune, which is what makes the thin walls robust; the plate force is Σ λ_a over the active nodes
-(× symmetry), the integral of the discrete contact pressure.
+"""What the 3D solid measures of its contact with the rigid plate: the nodal contact forces of
+the active nodes (N), the force through each named contact surface and the contact area on the outer surface. The active set itself is the
+engine's (:mod:`spsc.fem.engine.active_set`); here ``active`` are node indices.
 """
 
 from __future__ import annotations
@@ -14,17 +9,12 @@ import numpy as np
 
 from .element import tri_p2, tri_rule
 
-__all__ = ["plate_force", "group_forces", "contact_forces", "contact_area", "update_active_set"]
+__all__ = ["group_forces", "contact_forces", "contact_area"]
 
 
 def contact_forces(r, active) -> np.ndarray:
     """Nodal contact forces λ_a (N, part) of the active nodes from the residual."""
     return -r[3 * np.asarray(active) + 2]
-
-
-def plate_force(model, r, active) -> float:
-    """Plate force (N) on the full part: the sum of the nodal contact forces × symmetry."""
-    return float(contact_forces(r, active).sum()) * model.symmetry
 
 
 def group_forces(model, r, active) -> dict:
@@ -34,18 +24,6 @@ def group_forces(model, r, active) -> dict:
     lam = contact_forces(r, active)
     return {name: float(lam[np.isin(active, nodes)].sum()) * model.symmetry
             for name, nodes in model.groups.items()}
-
-
-def update_active_set(model, x, r, plate, active, force_tol, gap_tol):
-    """The new active set, or None if it is unchanged (the PDAS fixed point)."""
-    X = model.disc.X
-    keep = contact_forces(r, active) >= -force_tol
-    inactive = np.setdiff1d(model.contact_nodes, active)
-    z = X[inactive, 2] + x[3 * inactive + 2] + model.gap[inactive]
-    new = inactive[z > plate + gap_tol]
-    if new.size == 0 and np.all(keep):
-        return None
-    return np.union1d(np.asarray(active)[keep], new)
 
 
 def contact_area(model, x, plate: float, tol: float | None = None) -> float:

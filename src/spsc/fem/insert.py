@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["RigidInsert", "insert_constraints", "update_engaged", "insert_force"]
+__all__ = ["RigidInsert", "InsertTie", "insert_constraints", "update_engaged", "insert_force"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -88,3 +88,25 @@ def update_engaged(insert: RigidInsert, X, x, r, engaged, force_tol, gap_tol):
     if new.size == 0 and np.all(keep):
         return None
     return np.union1d(engaged[keep], new)
+
+
+@dataclass(frozen=True, eq=False)
+class InsertTie:
+    """The insert as the engine's tie (:class:`spsc.fem.engine.protocol.Tie`): its functions
+    bound to the model's reference coordinates ``X`` (mm)."""
+
+    insert: RigidInsert
+    X: np.ndarray = field(repr=False)
+
+    @property
+    def master(self) -> int:
+        return self.insert.master
+
+    def constraints(self, x, engaged):
+        return insert_constraints(self.insert, self.X, x, engaged)
+
+    def update(self, x, r, engaged, force_tol, gap_tol):
+        return update_engaged(self.insert, self.X, x, r, engaged, force_tol, gap_tol)
+
+    def force(self, r, engaged) -> float:
+        return insert_force(self.insert, r, engaged)

@@ -7,19 +7,27 @@ cavity volume) plus an optional rigid plate; the residual is
 
 with g = ∂V_part/∂u (:mod:`spsc.fem.pressure`). The rank-one gas term is returned separately
 (coefficient c ≥ 0 and vector g) so the linear solve can use Sherman–Morrison.
+
+The model is a :class:`~spsc.fem.engine.protocol.Discretisation` of the engine: the Newton
+system is the whole mixed u–p system (m = n), its inertia has one negative pivot per pressure
+unknown when the displacement problem is stable.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from spsc.materials import Material
 
-from .assembly import Discretisation, assemble, discretise
+from .assembly import Discretisation, InvertedElement, assemble, deformation_gradient, discretise
+from .contact import contact_area, group_forces
+from .engine.result import NewtonFailure
+from .engine.settings import Settings
 from .engine.steps import Load
-from .insert import RigidInsert
+from .insert import InsertTie, RigidInsert
 from .material import NearlyIncompressible
 from .mesh import TetMesh
 from .pressure import CavitySurface
@@ -101,6 +109,81 @@ class FEMModel:
     @property
     def symmetry(self) -> int:
         return self.mesh.symmetry
+
+    # -- the engine's Discretisation ----------------------------------------------------
+    #: a load fails (its increment is cut) on these; a line-search trial on the second
+    recoverable = (NewtonFailure, np.linalg.LinAlgError, ValueError)
+    inadmissible = (InvertedElement,)
+
+    @property
+    def n(self) -> int:
+        return self.disc.n
+
+    @property
+    def n_u(self) -> int:
+        return self.disc.n_u
+
+    @property
+    def force_floor(self) -> float:
+        """Smallest force scale of the convergence test (N): 1e-6 × μ0 (× 1 mm²)."""
+        return 1e-6 * self.law.mu
+
+    @cached_property
+    def contact_dofs(self) -> np.ndarray:
+        """The vertical displacement unknowns of the contact nodes."""
+        return 3 * np.asarray(self.contact_nodes) + 2
+
+    @cached_property
+    def contact_height(self) -> np.ndarray:
+        h = np.zeros(self.disc.n)
+        h[2:self.disc.n_u:3] = self.disc.X[:, 2]
+        return h
+
+    @cached_property
+    def contact_gap(self) -> np.ndarray:
+        g = np.zeros(self.disc.n)
+        g[2:self.disc.n_u:3] = self.gap
+        return g
+
+    @cached_property
+    def tie(self) -> InsertTie | None:
+        return InsertTie(self.insert, self.disc.X) if self.insert is not None else None
+
+    def default_settings(self) -> Settings:
+        return Settings()
+
+    def system_residual(self, ev: "Evaluation") -> np.ndarray:
+        return ev.r
+
+    def expand(self, ev: "Evaluation", dx) -> np.ndarray:
+        return dx
+
+    def pressure_error(self, ev: "Evaluation") -> float:
+        """0: the pressure equations are in the Newton system (solved with the displacements;
+        the convergence test reads the displacements' residual)."""
+        return 0.0
+
+    def admissible(self, x) -> bool:
+        """No element inverted at x (det F > 0 at every quadrature point)."""
+        J = np.linalg.det(deformation_gradient(self.disc, self.displacement(x)))
+        return bool(np.all(J > 0))
+
+    def unstable_modes(self, factor, c: float, gc) -> int | None:
+        """Negative eigenvalues of the displacement problem: the LDLᵀ inertia minus the
+        pressure unknowns (the mixed form's pressure block is negative definite). With a
+        closed gas volume the factorised matrix lacks the positive rank-one gas term, which can
+        remove one: one is taken off (at least zero)."""
+        if factor.negative is None:
+            return None
+        return max(factor.negative - self.disc.n_p - (1 if c > 0.0 else 0), 0)
+
+    def contact_area(self, x, plate: float) -> float:
+        return contact_area(self, x, plate)
+
+    def group_forces(self, r, active) -> dict:
+        """Force (N, full part) through each named contact surface (``active``: contact
+        unknowns)."""
+        return group_forces(self, r, (np.asarray(active) - 2) // 3)
 
     def zero_state(self) -> np.ndarray:
         return np.zeros(self.disc.n)

@@ -35,7 +35,7 @@ from .mesh import MESH_VERSION, TetMesh
 from .model import FEMModel
 from .part import PartSurface, load_part, part_mesh
 from .selector import parse_selector
-from .solver import CloseValve, Inflate, Press, Result, Settings, solve
+from .engine import CloseValve, Inflate, Press, Result, Settings, solve
 
 __all__ = ["ContactPatch", "PartRun", "run_part", "part_model", "check_part_run",
            "press_rotation", "part_curve", "write_part_vtu"]

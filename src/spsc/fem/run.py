@@ -22,7 +22,7 @@ from spsc.materials import Material
 from .element import TET_EDGES
 from .mesh import cached_mesh, check_mesh_size, spsc_wall
 from .model import FEMModel
-from .solver import CloseValve, Inflate, Press, Result, Settings, solve
+from .engine import CloseValve, Inflate, Press, Result, Settings, solve
 
 __all__ = ["ChamberRun", "run_chamber", "to_curve", "curve_points", "solve_info", "write_vtu"]
 

@@ -1,8 +1,19 @@
-"""The one nonlinear engine of the wall model and the 3D FEM: load steps as data, Newton's
-method with one active set for the plate, one line search and one stability check, and one
-result type."""
+"""The one nonlinear engine of the wall model and the 3D FEM.
 
-from .result import NewtonFailure, Record, Result
+A discretisation (:class:`~.protocol.Discretisation`: residual, tangent, the gas's rank-one
+term, contact geometry, its inertia count) is driven by one :func:`~.walk.solve` over load
+steps given as data (:mod:`.steps`), with one Newton loop (:mod:`.newton`), one active set for
+the plate (:mod:`.active_set`), one line search (:mod:`.search`), one stability check and one
+result (:mod:`.result`). Where the two discretisations' Newton methods differ in a way that
+changes numbers, :class:`~.settings.Settings` names the choice and each discretisation's
+``default_settings()`` keeps its own.
+"""
+
+from .newton import Converged, newton
+from .result import NewtonFailure, Record, Result, Stop
+from .settings import Settings
 from .steps import CloseValve, Inflate, Load, Press
+from .walk import solve
 
-__all__ = ["CloseValve", "Inflate", "Load", "NewtonFailure", "Press", "Record", "Result"]
+__all__ = ["CloseValve", "Converged", "Inflate", "Load", "NewtonFailure", "Press", "Record",
+           "Result", "Settings", "Stop", "newton", "solve"]

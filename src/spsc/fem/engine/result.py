@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["Record", "Result", "NewtonFailure"]
+__all__ = ["Record", "Result", "Stop", "NewtonFailure"]
 
 
 class NewtonFailure(RuntimeError):
@@ -36,16 +36,64 @@ class Record:
 
 
 @dataclass(frozen=True, eq=False)
+class Stop:
+    """Where and why a walk stopped early: the ``index`` and ``kind`` ("inflate", "press") of
+    its step (``step``, the data), the load parameter ``t`` of the trial load ``load``, and
+    either the Newton failure's ``reason`` (after every step cut) or the unstable equilibrium
+    ``record`` it reached (negative eigenvalues of its tangent). The properties phrase it."""
+
+    index: int
+    kind: str
+    t: float
+    step: object
+    load: object
+    reason: str
+    record: Record | None = None
+
+    def _where(self, digits: str) -> str:
+        if self.kind == "press":
+            return f"y = {self.step.travel_at(self.t):{digits}} mm"
+        pressure = self.record.pressure if self.record is not None else self.load.pressure
+        return f"p = {pressure * 1e3:{digits}} kPa"
+
+    @property
+    def failure(self) -> str:
+        """The message of a failed increment."""
+        where = f"{self.kind} at {self._where('.4g')}"
+        return f"step {self.index} ({self.kind}) failed at {where}: {self.reason}"
+
+    @property
+    def stall(self) -> str:
+        """A press that stalls under step cuts may be a snap-through or buckling."""
+        if self.kind != "press" or self.record is not None:
+            return ""
+        return ("Newton stalls under step cuts: possible snap-through or buckling at "
+                f"y ≈ {self.step.travel_at(self.t):.3g} mm")
+
+    @property
+    def unstable(self) -> str:
+        """The instability of the unstable equilibrium ('' after a failure)."""
+        if self.record is None:
+            return ""
+        return (f"the tangent has {self.record.unstable_modes} negative eigenvalue(s) at "
+                f"{self._where('.3g')}: unstable equilibrium (buckling or snap-through)")
+
+
+@dataclass(frozen=True, eq=False)
 class Result:
     """All converged records, whether every step converged (``converged``), why and where
-    the run stopped (``message``, "converged" if it did not), a detected instability, and
-    the wall-clock time of the solve (s)."""
+    the run stopped (``message``, "converged" if it did not; ``stop`` says it as data), a
+    detected instability, the wall-clock time of the solve (s), and the Newton iterations of
+    every accepted increment (``newton_iterations``: also those of cut increments between
+    recorded points and of an unstable point it stopped at)."""
 
     records: list
     converged: bool
     message: str
     instability: str = ""
     seconds: float = float("nan")
+    stop: Stop | None = None
+    newton_iterations: int = 0
 
     def of(self, kind: str) -> list:
         return [r for r in self.records if r.kind == kind]

@@ -23,6 +23,11 @@ class Inflate:
     pressure: float
     increments: int = 4
 
+    def targets(self) -> list:
+        """The recorded load parameters t ∈ (0, 1] (fractions of the ramp)."""
+        nominal = 1.0 / self.increments
+        return [(i + 1) * nominal for i in range(self.increments)]
+
 
 @dataclass(frozen=True)
 class CloseValve:
@@ -34,10 +39,31 @@ class CloseValve:
 
 @dataclass(frozen=True)
 class Press:
-    """Lower the plate from first contact by ``stroke`` (mm) in ``increments`` recorded points."""
+    """Lower the plate from first contact by ``stroke`` (mm) in ``increments`` recorded points
+    (the load parameter t is the fraction of the stroke); or, when ``travel`` is given (see
+    :meth:`through`), through those plate travels (mm from first contact, increasing; t is the
+    travel itself)."""
 
     stroke: float
     increments: int = 10
+    travel: tuple | None = None
+
+    @classmethod
+    def through(cls, travel) -> "Press":
+        """Press through the plate travels ``travel`` (mm from first contact, increasing)."""
+        travel = tuple(float(v) for v in travel)
+        return cls(travel[-1], len(travel), travel)
+
+    def targets(self) -> list:
+        """The recorded load parameters t: fractions of the stroke, or the travels (mm)."""
+        if self.travel is not None:
+            return list(self.travel)
+        nominal = 1.0 / self.increments
+        return [(i + 1) * nominal for i in range(self.increments)]
+
+    def travel_at(self, t: float) -> float:
+        """The plate travel (mm from first contact) at the load parameter t."""
+        return t if self.travel is not None else t * self.stroke
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,127 @@
+"""The constraints of one Newton iteration and the reduced tangent they leave.
+
+The plate prescribes its active unknowns (each moved by its jump onto the plate); a rigid tie
+(the 3D solid's insert, :class:`~spsc.fem.engine.protocol.Tie`) aliases its slave unknowns onto
+one master, u_s = u_m + jump_s. Both are eliminated from the linear system: the tangent is
+restricted to the free unknowns (:class:`Reduction`: its upper triangle read straight from the
+fixed-pattern CSR, the slaves summed into the master's row and column, PᵀKP; or
+:class:`Submatrix`, the free block as assembled, for solvers that take the whole matrix).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+__all__ = ["Constraints", "Reduction", "Submatrix", "constraint_key", "restriction"]
+
+
+def constraint_key(free, slaves) -> bytes:
+    """The identity of a constraint set: the free mask and the aliased unknowns."""
+    return free.tobytes() + (b"" if slaves is None else np.asarray(slaves).tobytes())
+
+
+@dataclass(frozen=True, eq=False)
+class Constraints:
+    """The constraints of one Newton iteration over the ``n`` unknowns of the Newton system:
+    the plate's prescribed unknowns ``presc`` moving by ``jump`` (mm), and the tie's
+    ``slaves`` following ``master`` plus ``sjump`` (mm)."""
+
+    n: int
+    presc: np.ndarray
+    jump: np.ndarray
+    slaves: np.ndarray
+    sjump: np.ndarray
+    master: int
+
+    def shift(self) -> np.ndarray:
+        """The part of the step the constraints fix (full vector)."""
+        s = np.zeros(self.n)
+        s[self.presc] = self.jump
+        s[self.slaves] = self.sjump
+        return s
+
+    def condense(self, v) -> np.ndarray:
+        """Pᵀv in full numbering: the slaves' entries added to the master's, theirs zeroed."""
+        if not self.slaves.size:
+            return v
+        w = v.copy()
+        w[self.master] += v[self.slaves].sum()
+        w[self.slaves] = 0.0
+        return w
+
+    def free(self, fixed) -> np.ndarray:
+        """The free unknowns: neither supported (``fixed``), prescribed nor aliased."""
+        free = ~fixed
+        free[self.presc] = False
+        free[self.slaves] = False
+        return free
+
+    @property
+    def settled(self) -> bool:
+        """Every constraint holds (jumps ≤ 1e-12 mm)."""
+        return max(np.max(np.abs(self.jump), initial=0.0),
+                   np.max(np.abs(self.sjump), initial=0.0)) <= 1e-12
+
+
+class Reduction:
+    """Upper triangle of K restricted to the free unknowns, read straight from the data array
+    of the full fixed-pattern CSR (no sparse slicing per iteration); rebuilt when the free set
+    changes (supports, contact active set). Aliased unknowns (``slaves``, each u_s = u_master
+    + a known jump: a rigid insert's constraints) are summed into the master's row and column,
+    PᵀKP, by a precomputed gather."""
+
+    upper = True
+
+    def __init__(self, K, free, slaves=None, master=None):
+        rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
+        cols = K.indices
+        new = np.cumsum(free) - 1
+        live = free
+        aliased = slaves is not None and len(slaves) > 0
+        if aliased:
+            new, live = new.copy(), free.copy()
+            new[slaves], live[slaves] = new[master], True
+        r_all, c_all = new[rows], new[cols]
+        keep = live[rows] & live[cols] & (r_all <= c_all)
+        self.sel = np.nonzero(keep)[0]
+        r, c = r_all[keep], c_all[keep]
+        n = int(free.sum())
+        self.gather = None
+        if aliased:
+            key, self.gather = np.unique(r.astype(np.int64) * n + c, return_inverse=True)
+            r, c = key // n, key % n
+        self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n))])
+        self.indices = c.astype(np.int32)
+        self.n = n
+        self.key = constraint_key(free, slaves)
+
+    def matrix(self, K):
+        data = K.data[self.sel]
+        if self.gather is not None:
+            data = np.bincount(self.gather, weights=data, minlength=len(self.indices))
+        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n,) * 2)
+
+
+class Submatrix:
+    """K restricted to the free unknowns as assembled (both triangles), K[free][:, free]: for
+    solvers that factorise the whole matrix. No aliasing."""
+
+    upper = False
+
+    def __init__(self, free):
+        self.free = free
+        self.key = constraint_key(free, None)
+
+    def matrix(self, K):
+        return K[self.free][:, self.free]
+
+
+def restriction(K, free, con: Constraints, full_input: bool):
+    """The tangent's restriction for the constraint set: the free block as assembled when the
+    solver takes the whole matrix and nothing is aliased, else :class:`Reduction`."""
+    if full_input and not con.slaves.size:
+        return Submatrix(free)
+    return Reduction(K, free, con.slaves, con.master)

@@ -1,0 +1,85 @@
+"""The constrained Newton step: the free unknowns' system factorised by the discretisation's
+solver, the prescribed unknowns moved by their jumps, the tie's slaves aliased onto their
+master, and the gas's rank-one term by Sherman–Morrison:
+
+    PᵀKP Δy = −Pᵀ(r + K s) − c Pᵀg (gᵀs),   (K + c g gᵀ)⁻¹ by one factorisation of K,
+
+with s the constrained part of the step and P the aliasing. The factor's inertia gives the
+displacement problem's negative eigenvalues (the discretisation counts them).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .constraints import Constraints
+from .linsolve import factorize, solve_rank_one
+
+__all__ = ["Step", "linear_step", "inertia"]
+
+
+@dataclass(frozen=True, eq=False)
+class Step:
+    """A Newton step: ``dx`` of all n unknowns, the negative eigenvalues of the displacement
+    problem on the factorised constraint set (None: unknown), the linearised reactions of the
+    active contact unknowns (N, None unless asked for) and that set's key."""
+
+    dx: np.ndarray
+    unstable_modes: int | None
+    multipliers: np.ndarray | None
+    key: bytes
+
+
+def _gas_vector(model, ev, m) -> np.ndarray:
+    """g over the Newton system's m unknowns (zero beyond the displacements)."""
+    gs = np.zeros(m)
+    gs[: model.n_u] = ev.g
+    return gs
+
+
+def _gas_shift(gs, s, con: Constraints, how: str) -> float:
+    """gᵀs: over every unknown, or over the constrained ones only (settings.gas_shift)."""
+    if how == "full":
+        return gs @ s
+    out = gs[con.presc] @ con.jump
+    return out + gs[con.slaves] @ con.sjump if con.slaves.size else out
+
+
+def inertia(model, restriction, ev, gc, settings) -> int | None:
+    """The displacement problem's negative eigenvalues on a restriction of ev's tangent."""
+    factor = factorize(restriction.matrix(ev.K), settings.solver, upper=restriction.upper)
+    return model.unstable_modes(factor, ev.c, gc)
+
+
+def linear_step(model, ev, restriction, free, con: Constraints, settings, *,
+                multipliers: bool = False) -> Step:
+    """The Newton step of ev's system on the ``free`` unknowns under ``con``; with
+    ``multipliers`` also the active contact unknowns' linearised reactions
+    λ = −(r + K Δx + c g gᵀΔx)_active."""
+    K, c, m = ev.K, ev.c, con.n
+    factor = factorize(restriction.matrix(K), settings.solver, upper=restriction.upper)
+    rs = model.system_residual(ev)
+    s = con.shift()
+    moved = bool(np.any(s))
+    rhs = -rs - K @ s if moved else -rs
+    rhs = con.condense(rhs)[free]
+    gs = _gas_vector(model, ev, m)
+    gc = con.condense(gs)[free]
+    if c > 0.0:
+        if moved:
+            rhs -= c * gc * _gas_shift(gs, s, con, settings.gas_shift)
+        dx = solve_rank_one(factor, c, gc, rhs)
+    else:
+        dx = factor(rhs)
+    modes = model.unstable_modes(factor, c, gc)
+    step = s
+    step[free] += dx
+    if con.slaves.size:
+        step[con.slaves] += step[con.master]
+    lam = None
+    if multipliers and con.presc.size:
+        r_lin = rs + K @ step + (c * gs * (gs @ step) if c > 0.0 else 0.0)
+        lam = -r_lin[con.presc]
+    return Step(model.expand(ev, step), modes, lam, restriction.key)

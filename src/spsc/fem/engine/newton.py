@@ -1,0 +1,167 @@
+"""One load solved by Newton's method: r(x) = 0 with the plate's active set and the tie's
+engaged set, one line search and the stability check of the converged state.
+
+Each iteration: the constraints of the current sets (the plate's jumps, the tie's aliasing),
+the residual and its force scale, the active-set update (``settings.active_set``), the
+convergence test — the free displacements' residual below rtol × scale with every constraint
+holding (and the discretisation's other equations, :meth:`pressure_error`) — and otherwise the
+constrained step (:mod:`.linear`) and its line search (:mod:`.search`). The converged state
+carries the number of negative eigenvalues of its tangent on its own constraint set (the last
+factorisation's, or a fresh one with ``settings.fresh_inertia``): > 0 is an unstable
+equilibrium.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import active_set
+from .constraints import Constraints, constraint_key, restriction
+from .linear import inertia, linear_step
+from .linsolve import FULL_INPUT
+from .result import NewtonFailure
+from .search import line_search
+from .settings import Settings
+from .steps import Load
+
+__all__ = ["Converged", "newton"]
+
+#: the semi-smooth strategy takes the linearised reactions until the set changed this often
+_MULTIPLIER_CHANGES = 10
+
+
+@dataclass(frozen=True, eq=False)
+class Converged:
+    """A converged load: the state x, the plate's active contact unknowns, the tie's engaged
+    nodes, Newton iterations, the evaluation at x (with tangent) and the negative eigenvalues
+    of the displacement problem there (None: unknown)."""
+
+    x: np.ndarray
+    active: np.ndarray
+    engaged: np.ndarray
+    iterations: int
+    evaluation: object
+    unstable_modes: int | None
+
+
+class _Newton:
+    """The state of one Newton solve between iterations."""
+
+    def __init__(self, model, load: Load, settings: Settings, x0, active, engaged):
+        self.model, self.load, self.s = model, load, settings
+        self.x = x0.copy()
+        self.active = active_set.start(model, self.x, load.plate, active, settings)
+        tie = model.tie
+        self.engaged = np.zeros(0, int) if engaged is None or tie is None \
+            else np.asarray(engaged)
+        self.scale, self.res, self.changes = 0.0, np.inf, 0
+        self.lam = self.carried = self.restriction = self.factored = self.modes = None
+
+    def constrain(self):
+        """(Constraints, free mask) of the current sets at x."""
+        m, x, tie = self.model, self.x, self.model.tie
+        presc = np.asarray(self.active, int)
+        jump = active_set.jumps(m, x, self.load.plate, presc)
+        slaves, sjump = tie.constraints(x, self.engaged) if tie is not None \
+            else (np.zeros(0, int), np.zeros(0))
+        con = Constraints(len(m.fixed), presc, jump, slaves, sjump,
+                          tie.master if tie is not None else -1)
+        return con, con.free(m.fixed)
+
+    def measure(self, ev, rt, free) -> None:
+        """The force scale (``settings.scale``) and the free displacements' residual (N)."""
+        m, n_u = self.model, self.model.n_u
+        if self.s.scale == "running":
+            self.scale = max(self.scale, np.linalg.norm(ev.pressure * ev.g),
+                             np.linalg.norm(ev.r[:n_u][m.fixed[:n_u]]),
+                             np.linalg.norm(ev.r[self.active]), m.force_floor)
+        elif not self.scale:
+            self.scale = max(np.linalg.norm(ev.pressure * ev.g), m.force_floor,
+                             np.linalg.norm(ev.r[:n_u][m.fixed[:n_u]]),
+                             np.linalg.norm(rt[:n_u][free[:n_u]]))
+        self.res = float(np.linalg.norm(rt[:n_u][free[:n_u]]))
+
+    def near(self, it, con, converged) -> bool:
+        """Whether the active sets are updated in this iteration."""
+        if not (con.settled and it > 1):
+            return False
+        if self.s.semismooth:
+            return (self.load.plate is not None or self.model.tie is not None) and (
+                self.lam is not None or self.res <= self.s.active_set_update * self.scale)
+        return converged or self.res <= self.s.active_set_update * self.scale
+
+    def update(self, ev) -> bool:
+        """Update the plate's active set and the tie's engaged set; whether either changed."""
+        s, m, changed = self.s, self.model, False
+        tol = s.rtol * self.scale
+        if self.load.plate is not None:
+            reaction = self.lam if s.semismooth and self.lam is not None \
+                else -ev.r[self.active]
+            new = active_set.update(m, self.x, reaction, self.load.plate, self.active, tol,
+                                    s.contact_tolerance)
+            if new is not None:
+                self.active, changed = new, True
+        if m.tie is not None:
+            new = m.tie.update(self.x, ev.r, self.engaged, tol, s.contact_tolerance)
+            if new is not None:
+                self.engaged, changed = new, True
+        if changed:
+            self.changes += 1
+            if self.changes > s.max_active_changes:
+                raise NewtonFailure("the contact active set does not settle")
+        return changed
+
+    def step(self, ev, con, free, rt) -> None:
+        """The constrained Newton step and its line search; x moves."""
+        key = constraint_key(free, con.slaves)
+        if self.restriction is None or self.restriction.key != key:
+            self.restriction = restriction(ev.K, free, con, self.s.solver in FULL_INPUT)
+        wanted = self.s.semismooth and self.changes < _MULTIPLIER_CHANGES
+        st = linear_step(self.model, ev, self.restriction, free, con, self.s,
+                         multipliers=wanted)
+        self.factored, self.modes, self.lam = st.key, st.unstable_modes, st.multipliers
+        alpha, self.carried = line_search(self.model, self.x, st.dx, free, self.load, con, rt,
+                                          self.s)
+        self.x += alpha * st.dx
+
+    def converged(self, it, ev, con, free) -> Converged:
+        """The converged state with the inertia of its tangent on its own constraint set."""
+        key = constraint_key(free, con.slaves)
+        modes = self.modes if self.factored == key else None
+        if self.factored != key and self.s.fresh_inertia:
+            red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT)
+            gs = np.zeros(len(free))
+            gs[: self.model.n_u] = ev.g
+            modes = inertia(self.model, red, ev, con.condense(gs)[free], self.s)
+        return Converged(self.x, self.active, self.engaged, it, ev, modes)
+
+
+def newton(model, x0, load: Load, settings: Settings, active=None, engaged=None) -> Converged:
+    """Solve r(x) = 0 from ``x0`` for one ``load``, starting from the plate's ``active``
+    contact unknowns and the tie's ``engaged`` nodes. Raises :class:`NewtonFailure` with the
+    reason when it does not converge."""
+    nw = _Newton(model, load, settings, x0, active, engaged)
+    for it in range(1, settings.max_iterations + 1):
+        con, free = nw.constrain()
+        ev = nw.carried if nw.carried is not None else model.evaluate(nw.x, load)
+        nw.carried = None
+        if not np.all(np.isfinite(ev.r)):
+            raise NewtonFailure("non-finite residual")
+        rt = con.condense(ev.r)
+        nw.measure(ev, rt, free)
+        converged = con.settled and it > 1 and nw.res <= settings.rtol * nw.scale \
+            and model.pressure_error(ev) <= 1e-3 * settings.rtol
+        if nw.near(it, con, converged) and nw.update(ev):
+            if not settings.semismooth:
+                nw.carried = ev  # x is unchanged: its evaluation stands
+                continue
+            con, free = nw.constrain()  # step on the new set at once
+            nw.res = float(np.linalg.norm(con.condense(ev.r)[:model.n_u][free[:model.n_u]]))
+            rt = con.condense(ev.r)
+        elif converged:
+            return nw.converged(it, ev, con, free)
+        nw.step(ev, con, free, rt)
+    raise NewtonFailure(f"no convergence in {settings.max_iterations} iterations (residual "
+                        f"{nw.res:.3g} N against {settings.rtol * nw.scale:.3g} N)")

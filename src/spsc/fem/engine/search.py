@@ -1,0 +1,58 @@
+"""The line search of a Newton step, α ∈ {1, ½, ¼, …} (``settings.search``).
+
+* ``residual`` — backtracking on the residual norm of the free unknowns: the first α that
+  reduces it (Armijo-like), else the α with the smallest residual among admissible trials (1 if
+  none is). The full step is evaluated with its tangent: it is accepted nearly always, and then
+  that evaluation is the next iteration's. With a pending jump of the constraints the residual
+  of the unconstrained state is no merit to descend on: the first admissible α is taken.
+* ``admissible`` — the largest α that inverts no element (full Newton steps otherwise: the
+  condensed mixed form's residual is no merit function to descend on).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .result import NewtonFailure
+
+__all__ = ["line_search"]
+
+#: trial step lengths of each search
+TRIALS = {"residual": 5, "admissible": 8}
+
+
+def _residual(model, x, step, free, load, base, con):
+    best, best_alpha, alpha = np.inf, 1.0, 1.0
+    for _ in range(TRIALS["residual"]):
+        xt = x + alpha * step
+        try:
+            ev = model.evaluate(xt, load, tangent=alpha == 1.0)
+            rt = np.linalg.norm(con.condense(ev.r)[free])
+        except (np.linalg.LinAlgError, *model.inadmissible):
+            ev, rt = None, np.inf
+        if rt <= base * (1 - 1e-4 * alpha) or (np.isinf(base) and np.isfinite(rt)):
+            return alpha, ev if alpha == 1.0 else None
+        if rt < best:
+            best, best_alpha = rt, alpha
+        alpha *= 0.5
+    return best_alpha, None
+
+
+def _admissible(model, x, step):
+    alpha = 1.0
+    for _ in range(TRIALS["admissible"]):
+        if model.admissible(x + alpha * step):
+            return alpha, None
+        alpha *= 0.5
+    raise NewtonFailure("every trial step inverts an element")
+
+
+def line_search(model, x, step, free, load, con, rt, settings):
+    """(α, the evaluation at x + α step if it was made with its tangent, else None) for the
+    step from x; ``rt`` is the (tie-condensed) residual at x."""
+    if not settings.line_search:
+        return 1.0, None
+    if settings.search == "admissible":
+        return _admissible(model, x, step)
+    base = np.linalg.norm(rt[free]) if con.settled else np.inf
+    return _residual(model, x, step, free, load, base, con)

@@ -1,0 +1,79 @@
+"""Newton and step control of the engine (:func:`~spsc.fem.engine.walk.solve`).
+
+The defaults are the 3D solid's; a discretisation states its own through
+``default_settings()``.
+The fields below the first block are the choices where the two discretisations' Newton methods
+differ: each keeps its own so that no curve changes (:mod:`spsc.fem.engine`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Settings"]
+
+_CHOICES = {"search": ("residual", "admissible"), "active_set": ("equilibrium", "semismooth"),
+            "scale": ("initial", "running"), "gas_shift": ("full", "constrained")}
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Newton and step control.
+
+    rtol : residual against the load's force scale; max_iterations : Newton iterations per
+    load; min_fraction : smallest increment as a fraction of the nominal one; line_search :
+    damp the Newton step (else full steps); solver : sparse solver
+    (:func:`spsc.fem.engine.linsolve.factorize`); contact_tolerance : penetration that
+    activates a contact node (mm); active_set_update : the active set is updated once the
+    residual is below this fraction of the force scale (1e-1 took fewer iterations than 1e-3
+    on the 3D Type B; earlier updates chatter); softening : a plate-force drop between recorded
+    points larger than this fraction is reported as negative stiffness (smaller dips are
+    contact discretisation wiggles).
+
+    The per-discretisation choices (3D solid / wall model):
+
+    search : ``"residual"`` backtracks on the residual norm (α = 1, ½, … 5 trials, the full
+    step's evaluation reused) / ``"admissible"`` takes the largest α = 1, ½, … (8 trials)
+    that inverts no element (the condensed mixed form's residual is no merit function);
+    active_set : ``"equilibrium"`` updates the plate's primal–dual active set near
+    equilibrium from the residual's reactions and iterates again on the new set /
+    ``"semismooth"`` starts from the nodes past the plate, updates from the last step's
+    linearised reactions (its multipliers) at every iteration — from the residual's once it
+    has changed ten times — and steps on the new set at once;
+    max_active_changes : active-set changes before the load fails (30 / 40);
+    scale : the force scale of the convergence test, ``"initial"`` the first iterate's load,
+    support reactions and out-of-balance force / ``"running"`` the largest over the
+    iterations of the load, support and plate reactions;
+    fresh_inertia : when the last factorised tangent was on another constraint set than the
+    converged state's, factorise that one for the stability check (the wall) instead of
+    reporting the inertia unknown (the 3D solid: a factorisation costs an iteration);
+    predictor : the secant predictor from the last two accepted states of a ramp (retried
+    from the last state if it fails); gas_shift : gᵀs, the gas's share of a step's
+    prescribed jumps s, summed over every unknown (``"full"``) or over the constrained ones
+    (``"constrained"``): one number, rounded differently.
+    """
+
+    rtol: float = 1e-8
+    max_iterations: int = 25
+    min_fraction: float = 1.0 / 64
+    line_search: bool = True
+    solver: str = "auto"
+    contact_tolerance: float = 1e-6
+    active_set_update: float = 1e-1
+    softening: float = 1e-2
+    search: str = "residual"
+    active_set: str = "equilibrium"
+    max_active_changes: int = 30
+    scale: str = "initial"
+    fresh_inertia: bool = False
+    predictor: bool = False
+    gas_shift: str = "full"
+
+    def __post_init__(self):
+        for name, allowed in _CHOICES.items():
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"{name} = {getattr(self, name)!r}: one of {allowed}")
+
+    @property
+    def semismooth(self) -> bool:
+        return self.active_set == "semismooth"

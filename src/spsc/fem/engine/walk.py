@@ -1,0 +1,172 @@
+"""One solver entry point, :func:`solve`, walking a load path given as data.
+
+Steps (:mod:`.steps`): :class:`Inflate` (prescribed cavity pressure ramp), :class:`CloseValve`
+(from here on the cavity is a closed gas volume with a reservoir, P·(V + V_r)ⁿ = const) and
+:class:`Press` (a rigid frictionless plate, displacement controlled, from first contact down by
+the stroke). Each increment is solved by Newton's method (:func:`.newton.newton`); a failed
+increment is cut in half until ``min_fraction`` of the nominal one, and a recorded equilibrium
+whose tangent has a negative eigenvalue stops the walk (it is unstable: no point past it is a
+result). A failure returns everything converged so far with the reason.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+
+import numpy as np
+
+from spsc.core.gaslaw import GasLaw
+
+from . import active_set
+from .newton import newton
+from .result import Record, Result, Stop
+from .steps import CloseValve, Inflate, Load, Press
+
+__all__ = ["solve", "record"]
+
+_log = logging.getLogger(__name__)
+
+
+def record(model, step, kind, load, sol) -> Record:
+    """The record of a converged load ``sol`` (:class:`~.newton.Converged`) of step
+    ``step``: pressure, gas volume, plate force, contact area and force per named surface,
+    the tie's force."""
+    ev, active, x = sol.evaluation, sol.active, sol.x
+    force, area = 0.0, 0.0
+    groups = model.group_forces(ev.r, active[:0])
+    if load.plate is not None and active.size:
+        force = active_set.plate_force(model, ev.r, active)
+        area = model.contact_area(x, load.plate)
+        groups = model.group_forces(ev.r, active)
+    held = model.tie.force(ev.r, sol.engaged) * model.symmetry if model.tie is not None \
+        else None
+    return Record(step, kind, x.copy(), ev.pressure, ev.volume, load.plate, force, area,
+                  sol.iterations, sol.unstable_modes, groups, held)
+
+
+class _Walk:
+    """The walk so far: the state, the load, the contact sets and the records."""
+
+    def __init__(self, model, steps, settings, progress):
+        self.model, self.s, self.progress = model, settings, progress
+        self.t_start = time.perf_counter()
+        self.x = model.zero_state()
+        ev = model.evaluate(self.x, Load(), tangent=False)
+        self.records = [Record(-1, "start", self.x.copy(), 0.0, ev.volume, None, 0.0, 0.0, 0,
+                               insert_force=0.0 if model.tie is not None else None)]
+        self.load = Load()
+        self.active, self.engaged = np.zeros(0, int), np.zeros(0, int)
+        self.total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
+        self.done, self.last_force, self.instability, self.iterations = 0, 0.0, "", 0
+
+    def close_valve(self, step: CloseValve) -> None:
+        gas = GasLaw(self.load.pressure, self.model.volume(self.x), step.reservoir,
+                     step.polytropic_index)
+        self.load = Load(gas=gas, plate=self.load.plate)
+
+    def path(self, step):
+        """(t -> Load, kind, targets t) of an Inflate or Press step from the current state:
+        the pressure ramp, or the plate lowered from first contact by the step's travel."""
+        load = self.load
+        if isinstance(step, Inflate):
+            start, end = load.pressure, float(step.pressure)
+            return (lambda t: Load(pressure=start + t * (end - start), plate=load.plate),
+                    "inflate", step.targets())
+        if isinstance(step, Press):
+            z0 = active_set.first_contact(self.model, self.x) if load.plate is None \
+                else load.plate
+            return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t)), "press",
+                    step.targets())
+        raise TypeError(f"unknown step {step!r}")
+
+    def solve_one(self, trial, t_new, history):
+        """Newton for the trial load from the secant prediction (``settings.predictor``,
+        retried from the last state if it fails) or from the last state."""
+        model, x = self.model, self.x
+        guess = x
+        if self.s.predictor and len(history) >= 2:
+            (t0, x0), (t1, x1) = history[-2], history[-1]
+            guess = x1 + (x1 - x0) * (t_new - t1) / (t1 - t0)
+        try:
+            return newton(model, guess, trial, self.s, self.active, self.engaged)
+        except model.recoverable:
+            if guess is x:
+                raise
+            return newton(model, x, trial, self.s, self.active, self.engaged)
+
+    def ramp(self, k, step) -> Stop | None:
+        """Walk one Inflate or Press step through its targets with step halving; the
+        :class:`Stop` where it failed or met an unstable equilibrium, else None."""
+        load_at, kind, targets = self.path(step)
+        nominal = targets[0]
+        t, dt, ti, history = 0.0, nominal, 0, []
+        while ti < len(targets):
+            t_new = min(t + dt, targets[ti])
+            trial = load_at(t_new)
+            try:
+                sol = self.solve_one(trial, t_new, history)
+            except self.model.recoverable as exc:
+                _log.debug("cut %s t=%.4g dt=%.3g: %s", kind, t_new, dt, exc)
+                dt *= 0.5
+                if dt < self.s.min_fraction * nominal:
+                    return Stop(k, kind, t_new, step, trial, str(exc))
+                continue
+            self.x, self.active, self.engaged, t, self.load = (sol.x, sol.active, sol.engaged,
+                                                               t_new, trial)
+            self.iterations += sol.iterations
+            history.append((t, sol.x))
+            dt = min(nominal, 2 * dt)
+            if math.isclose(t, targets[ti], rel_tol=1e-12, abs_tol=1e-14):
+                rec = record(self.model, k, kind, self.load, sol)
+                if rec.unstable_modes:
+                    return Stop(k, kind, t, step, trial, "", rec)
+                self.keep(rec, kind, t, step)
+                ti += 1
+        return None
+
+    def keep(self, rec, kind, t, step) -> None:
+        """Record a stable point; a plate force falling between points is reported."""
+        if kind == "press" and rec.force < (1 - self.s.softening) * self.last_force:
+            self.instability = self.instability or (
+                f"plate force falls from {self.last_force:.4g} N to {rec.force:.4g} N near "
+                f"y = {step.travel_at(t):.3g} mm: negative stiffness (the wall buckles "
+                "or snaps; the points stay valid under displacement control)")
+        self.last_force = rec.force if kind == "press" else self.last_force
+        self.records.append(rec)
+        self.done += 1
+        if self.progress is not None:
+            self.progress(self.done, self.total)
+
+    def result(self, stop: Stop | None) -> Result:
+        seconds = time.perf_counter() - self.t_start
+        if stop is None:
+            return Result(self.records, True, "converged", self.instability, seconds,
+                          None, self.iterations)
+        if stop.record is not None:
+            # an unstable equilibrium is not a result: stop before it (DESIGN.md)
+            message, instability = f"step {stop.index} ({stop.kind}) stopped: {stop.unstable}", \
+                stop.unstable
+        else:
+            message, instability = stop.failure, self.instability or stop.stall
+        return Result(self.records, False, message, instability, seconds, stop,
+                      self.iterations)
+
+
+def solve(model, steps, *, settings=None, progress=None) -> Result:
+    """Walk ``steps`` (Inflate / CloseValve / Press) from the undeformed state of ``model``
+    (a :class:`~.protocol.Discretisation`) with ``settings`` (default: the model's).
+
+    ``progress(done, total)`` is called after each recorded point. Returns a :class:`Result`
+    whose ``records`` hold every converged point (the undeformed state first).
+    """
+    walk = _Walk(model, steps, settings or model.default_settings(), progress)
+    for k, step in enumerate(steps):
+        if isinstance(step, CloseValve):
+            walk.close_valve(step)
+            continue
+        stop = walk.ramp(k, step)
+        if stop is not None:
+            return walk.result(stop)
+    return walk.result(None)
