@@ -26,6 +26,10 @@ Accuracy against the converged 3D FEM (docs/theory/wall.md, ``bench/bench_wall.p
 force and 1.7 % in pressure rise, in about a second per curve; stadium chambers (Table 1, l = 3
 and l = 10) within the table of docs/theory/wall.md, in tens of seconds.
 
+The load path — inflate, close the valve, press — is walked by the engine
+(:func:`spsc.fem.engine.solve`, one Newton loop with the 3D FEM) with the wall's own Newton
+choices (:meth:`~spsc.fem.wall_model.WallSettings.newton_settings`).
+
 Stability: every recorded point's tangent (with the active constraints and the gas) is
 factorised with its inertia; a negative eigenvalue is an unstable equilibrium (limit point,
 snap-through or buckling of the wall). It is reported, and the solve stops there: no point past
@@ -34,7 +38,6 @@ it is reported as converged (docs/design.md).
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass, field
 
@@ -47,21 +50,26 @@ from spsc.core.gaslaw import GasLaw
 from spsc.core.loadcase import check_load
 from spsc.materials import Material
 
-from .section_solid import InvertedSection
+from .engine import CloseValve, Inflate, Load, NewtonFailure, Press, Record, solve
+from .engine import newton as _engine_newton
+from .engine.walk import record
 from .wall_model import WallModel, WallSettings
-from .wall_newton import WallFailure, WallState, newton
 
-__all__ = ["WallSettings", "WallModel", "WallState", "WallFailure", "newton", "wall_curve",
-           "inflate"]
+__all__ = ["WallSettings", "WallModel", "WallFailure", "newton", "wall_curve", "inflate"]
 
 #: a plate-force drop between recorded points larger than this fraction is reported as negative
-#: stiffness (the 3D solver's threshold, :class:`spsc.fem.solver.Settings`)
+#: stiffness (the 3D solver's threshold, :class:`spsc.fem.engine.settings.Settings`)
 SOFTENING = 1e-2
+
+#: Newton did not converge for one increment: the engine's one failure
+WallFailure = NewtonFailure
 
 
 @dataclass
-class _Path:
-    """The load path walked so far (converged states) and what stopped it."""
+class _Walked:
+    """The load path as the wall reports it: the converged states after the start (the
+    unstable one it stopped at last), what stopped it, Newton iterations of every accepted
+    increment."""
 
     states: list = field(default_factory=list)
     message: str = "converged"
@@ -70,66 +78,46 @@ class _Path:
     converged: bool = True
 
 
-def _ramp(model, path, x, settings, load_at, targets, label, progress=None):
-    """Walk a load parameter t through ``targets`` with step halving; ``load_at(t)`` gives the
-    keyword load. Appends one state per target; returns the last x or None on failure."""
-    state = path.states[-1] if path.states else None
-    t, dt = 0.0, targets[0]
-    nominal = targets[0]
-    hist = []  # (t, x) for the secant predictor
-    k = 0
-    while k < len(targets):
-        t_new = min(t + dt, targets[k])
-        guess = x
-        if len(hist) >= 2:
-            (t0, x0), (t1, x1) = hist[-2], hist[-1]
-            guess = x1 + (x1 - x0) * (t_new - t1) / (t1 - t0)
-        try:
-            try:
-                st = newton(model, guess, active=state.active if state else None,
-                             settings=settings, **load_at(t_new))
-            except (WallFailure, InvertedSection, RuntimeError, np.linalg.LinAlgError):
-                if guess is x:
-                    raise
-                st = newton(model, x, active=state.active if state else None,
-                             settings=settings, **load_at(t_new))
-        except (WallFailure, InvertedSection, RuntimeError, np.linalg.LinAlgError) as exc:
-            dt *= 0.5
-            if dt < settings.min_fraction * nominal:
-                path.converged = False
-                path.message = f"{label(t_new)}: {exc}"
-                return None
-            continue
-        path.iterations += st.iterations
-        x, t, state = st.x, t_new, st
-        hist.append((t, x))
-        dt = min(nominal, 2.0 * dt)
-        if math.isclose(t, targets[k], rel_tol=1e-12, abs_tol=1e-15):
-            path.states.append(st)
-            k += 1
-            if progress is not None:
-                progress()
-            if st.negative:
-                path.instability = (f"the tangent has {st.negative} negative eigenvalue(s) at "
-                                    f"{label(t)}: unstable equilibrium (limit point, buckling "
-                                    "or snap-through of the wall)")
-                path.converged = False
-                path.message = f"stopped: {path.instability}"
-                return None
-    return x
+def _walked(result, pressure_kPa: float) -> _Walked:
+    """The engine's result in the wall's words: "inflation at p = … kPa" or "press at y = …
+    mm", the reason; at an unstable equilibrium "stopped: the tangent has …"."""
+    out = _Walked(list(result.records[1:]), iterations=result.newton_iterations,
+                  converged=result.converged)
+    stop = result.stop
+    if stop is None:
+        return out
+    label = (f"press at y = {stop.t:.4g} mm" if stop.kind == "press"
+             else f"inflation at p = {pressure_kPa * stop.t:.4g} kPa")
+    if stop.record is None:
+        out.message = f"{label}: {stop.reason}"
+        return out
+    out.states.append(stop.record)
+    out.instability = (f"the tangent has {stop.record.unstable_modes} negative eigenvalue(s) at "
+                       f"{label}: unstable equilibrium (limit point, buckling or "
+                       "snap-through of the wall)")
+    out.message = f"stopped: {out.instability}"
+    return out
 
 
-def inflate(model: WallModel, pressure_kPa: float, increments: int = 4) -> WallState:
+def newton(model: WallModel, x0, *, pressure=0.0, gas: GasLaw | None = None, plate=None,
+           active=None, settings: WallSettings | None = None) -> Record:
+    """Solve one load (prescribed gauge ``pressure`` MPa, or the closed ``gas``; plate height
+    ``plate`` mm or None) from ``x0`` with the engine; the converged :class:`Record`. Raises
+    :class:`WallFailure` with the reason if it does not converge."""
+    load = Load(pressure, gas, plate)
+    sol = _engine_newton(model, x0, load, (settings or model.settings).newton_settings(),
+                         active)
+    return record(model, -1, "load", load, sol)
+
+
+def inflate(model: WallModel, pressure_kPa: float, increments: int = 4) -> Record:
     """Inflate ``model`` to gauge ``pressure_kPa`` (kPa) in ``increments``; the last state.
     Raises :class:`WallFailure` with the reason if it does not converge."""
-    path = _Path()
-    p = pressure_kPa / KPA_PER_MPA
-    x = _ramp(model, path, model.zero_state(), model.settings, lambda t: {"pressure": p * t},
-              [(k + 1) / increments for k in range(increments)],
-              lambda t: f"inflation at p = {pressure_kPa * t:.4g} kPa")
-    if x is None:
-        raise WallFailure(path.message)
-    return path.states[-1]
+    result = solve(model, [Inflate(pressure_kPa / KPA_PER_MPA, increments)],
+                   settings=model.settings.newton_settings())
+    if result.stop is not None:
+        raise WallFailure(_walked(result, pressure_kPa).message)
+    return result.records[-1]
 
 
 def wall_curve(geometry: SPSCGeometry, material: Material, **kwargs) -> Curve:
@@ -161,32 +149,20 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
     settings = settings or (model.settings if model is not None else WallSettings())
     model = model or WallModel(geometry, material, settings)
     p_i = pressure_kPa / KPA_PER_MPA
-    path = _Path()
-    x = model.zero_state()
-    v_nominal = model.volume(x)
-    tick = (lambda: progress()) if progress is not None else None
-    if p_i > 0:
-        n_inf = settings.inflate_increments
-        x = _ramp(model, path, x, settings, lambda t: {"pressure": p_i * t},
-                  [(k + 1) / n_inf for k in range(n_inf)],
-                  lambda t: f"inflation at p = {pressure_kPa * t:.4g} kPa", tick)
-    inflated = path.states[-1] if path.states else None
-    gas = None
-    if x is not None and p_i > 0:
-        gas = GasLaw(p_i, inflated.volume, reservoir_mm3, polytropic_n)
     y = np.linspace(0.0, stroke_mm, points)
-    if x is not None:
-        z0 = model.top(x)
-        n_press = len(path.states)
-        load = (lambda t: {"gas": gas, "plate": z0 - t}) if gas is not None else \
-            (lambda t: {"pressure": 0.0, "plate": z0 - t})
-        _ramp(model, path, x, settings, load, list(y[1:]),
-              lambda t: f"press at y = {t:.4g} mm", tick)
-        pressed = path.states[n_press:]
-    else:
-        pressed = []
-    return _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa,
-                     reservoir_mm3, polytropic_n, time.perf_counter() - t_start)
+    steps = [Inflate(p_i, settings.inflate_increments), CloseValve(reservoir_mm3, polytropic_n)] \
+        if p_i > 0 else []
+    tick = (lambda done, total: progress()) if progress is not None else None
+    result = solve(model, steps + [Press.through(y[1:])], settings=settings.newton_settings(),
+                   progress=tick)
+    walked = _walked(result, pressure_kPa)
+    if progress is not None and result.stop is not None and result.stop.record is not None:
+        progress()  # the unstable point it stopped at is a point reached
+    inflates = [st for st in walked.states if st.kind == "inflate"]
+    pressed = [st for st in walked.states if st.kind == "press"]
+    return _to_curve(model, walked, inflates[-1] if inflates else None, pressed, y,
+                     result.records[0].volume, pressure_kPa, reservoir_mm3, polytropic_n,
+                     time.perf_counter() - t_start)
 
 
 def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reservoir,
@@ -201,10 +177,10 @@ def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reserv
     if ok_start:
         F[0], P[0], A[0], dV[0], conv[0] = 0.0, pressure_kPa, 0.0, 0.0, True
     for k, st in enumerate(pressed, start=1):
-        F[k], P[k], A[k] = st.force, st.pressure * KPA_PER_MPA, st.area
+        F[k], P[k], A[k] = st.force, st.pressure * KPA_PER_MPA, st.contact_area
         # an unstable equilibrium is kept but not converged: the wall leaves it (docs/design.md)
-        dV[k], conv[k] = v_inf - st.volume, not st.negative
-        if st.negative:
+        dV[k], conv[k] = v_inf - st.volume, not st.unstable_modes
+        if st.unstable_modes:
             msg[k] = path.instability
     for k in range(len(pressed) + 1 if ok_start else 0, n):
         msg[k] = path.message

@@ -1,6 +1,12 @@
 """The wall model's discretisation: its settings and its parts — the axisymmetric dome
 (l = 0) or the stadium's swept wall (l > 0, :mod:`spsc.fem.swept`) — with the cavity volume,
-follower pressure and contact surface (:mod:`spsc.fem.wall` solves it).
+follower pressure and contact surface, as a :class:`~spsc.fem.engine.protocol.Discretisation`
+of the engine (:mod:`spsc.fem.wall` walks the load path with it).
+
+The Newton system is on the displacements (m = n_u): each element's pressure coefficients are
+condensed out of the element tangent (:mod:`spsc.fem.section_solid`) and recovered from the
+displacement step, so the factorised tangent is the displacement problem's own and its inertia
+counts the unstable modes directly.
 """
 
 from __future__ import annotations
@@ -14,9 +20,11 @@ from spsc.cad.geometry import SPSCGeometry
 from spsc.core.errors import require
 from spsc.materials import Material
 
+from .engine.settings import Settings
+from .engine.steps import Load
 from .material import NearlyIncompressible
 from .section import section_mesh
-from .section_solid import section_solid
+from .section_solid import InvertedSection, section_solid
 from .swept import SweptWall, sweep_stations
 
 __all__ = ["WallSettings", "WallModel"]
@@ -60,6 +68,18 @@ class WallSettings:
         require("max_iterations", self.max_iterations, ge=2)
         require("min_fraction", self.min_fraction, gt=0, le=1)
         require("inflate_increments", self.inflate_increments, ge=1)
+
+    def newton_settings(self) -> Settings:
+        """The engine's settings for the wall: these tolerances with the wall's own choices —
+        SuperLU in symmetric mode on the condensed tangent (its inertia), the admissible line
+        search, the semi-smooth active set (updated from the step's multipliers; 1e-2 of the
+        scale before the first; 40 changes), the running force scale, a fresh inertia at
+        convergence, the secant predictor and gᵀs over the constrained unknowns."""
+        return Settings(rtol=self.rtol, max_iterations=self.max_iterations,
+                        min_fraction=self.min_fraction, contact_tolerance=self.contact_tolerance,
+                        solver="superlu-sym", active_set_update=1e-2, search="admissible",
+                        active_set="semismooth", max_active_changes=40, scale="running",
+                        fresh_inertia=True, predictor=True, gas_shift="constrained")
 
     def profile_size(self, stadium: bool) -> float:
         """The element length along the profile (mm) for a dome or a stadium."""
@@ -123,6 +143,12 @@ class WallModel:
 
     Unknowns x: the displacements (n_u) then the solid's pressure coefficients."""
 
+    symmetry = 1  # forces and areas are the whole chamber's
+    tie = None
+    #: a load fails (its increment is cut) on these; a line-search trial on the second
+    recoverable = (RuntimeError, np.linalg.LinAlgError, InvertedSection)
+    inadmissible = (InvertedSection,)
+
     def __init__(self, geometry: SPSCGeometry, material: Material,
                  settings: WallSettings | None = None, *, base: str = "clamped",
                  stadium: bool | None = None):
@@ -145,7 +171,11 @@ class WallModel:
         self.reference = np.asarray(self.part.reference, float)
         zdofs = np.unique(self.part.zdofs)
         self.contact_dofs = zdofs[~self.fixed[zdofs]]
+        self.contact_height = self.reference
+        self.contact_gap = np.zeros(self.n_u)
         self.mu = law.mu
+        #: smallest force scale of the convergence test (N): 1e-9 μ0 t0²
+        self.force_floor = 1e-9 * self.mu * self.geometry.t0 ** 2
         _, _, cavity = self.part.volume_gradient(np.zeros(self.n_u))
         self._pattern = _Pattern(self.n_u, self.solid.element_dofs, cavity)
 
@@ -183,10 +213,19 @@ class WallModel:
         """Highest point of the outer surface (mm): where the plate first touches."""
         return float(np.max(self.reference[self.contact_dofs] + x[self.contact_dofs]))
 
-    def evaluate(self, x, pressure: float, *, tangent: bool = True) -> "_Evaluation":
-        """Residuals at gauge cavity ``pressure`` (MPa): r_u = r_int − p g (N), the pressure
-        residuals, and with ``tangent`` the condensed K_int − p H (N/mm) and the blocks G;
-        g = ∂V/∂u (mm²)."""
+    def evaluate(self, x, load, *, tangent: bool = True) -> "_Evaluation":
+        """Residuals under ``load`` (a :class:`~spsc.fem.engine.steps.Load`, or a gauge
+        pressure in MPa): r_u = r_int − p g (N) with p the prescribed pressure or the gas's at
+        the cavity volume, the pressure residuals, and with ``tangent`` the condensed
+        K_int − p H (N/mm) and the blocks G; g = ∂V/∂u (mm²), c = −dp/dV (MPa/mm³)."""
+        if not isinstance(load, Load):
+            load = Load(pressure=load)
+        volume = self.volume(x)
+        if load.gas is None:
+            pressure, c = float(load.pressure), 0.0
+        else:
+            pressure = float(load.gas.pressure(volume))
+            c = -float(load.gas.dpressure(volume))
         u, pc = self.displacements(x), self.pressures(x)
         K = G = None
         if tangent:
@@ -196,7 +235,7 @@ class WallModel:
         else:
             r, rp = self.solid.residual(u, pc)
             g = self.part.volume_gradient(u, hessian=False)
-        return _Evaluation(r - pressure * g, rp, K, G, g)
+        return _Evaluation(r - pressure * g, rp, K, G, g, c, pressure, volume)
 
     def pressure_error(self, ev: "_Evaluation") -> float:
         return self.solid.pressure_error(ev.rp)
@@ -209,12 +248,38 @@ class WallModel:
         """Δp of the solid (flattened, MPa) from the displacement step ``du``."""
         return self.solid.recover(ev.G, ev.rp, du).ravel()
 
+    # -- the rest of the engine's Discretisation ------------------------------------------
+    def default_settings(self) -> Settings:
+        return self.settings.newton_settings()
+
+    def system_residual(self, ev: "_Evaluation") -> np.ndarray:
+        return self.condensed(ev)
+
+    def expand(self, ev: "_Evaluation", du) -> np.ndarray:
+        """The step of all unknowns: ``du`` and the pressures' Δp recovered from it."""
+        return np.concatenate([du, self.recover(ev, du)])
+
+    def unstable_modes(self, factor, c: float, gc) -> int | None:
+        """Negative eigenvalues of K + c g gᵀ on the free displacements from the inertia of
+        the factorised K: the gas term removes one iff 1 + c gᵀK⁻¹g < 0."""
+        negative = factor.negative
+        if negative is not None and c > 0.0:
+            negative -= int(1.0 + c * float(gc @ factor(gc)) < 0.0)
+        return negative
+
+    def group_forces(self, r, active) -> dict:
+        """No named contact surfaces on the wall."""
+        return {}
+
 
 @dataclass(frozen=True, eq=False)
 class _Evaluation:
-    r: np.ndarray
-    rp: list
-    K: object
-    G: list
-    g: np.ndarray
+    r: np.ndarray  # displacement residual (N)
+    rp: list  # the elements' pressure residuals
+    K: object  # condensed tangent (N/mm)
+    G: list  # the elements' coupling blocks
+    g: np.ndarray  # ∂V/∂u (mm²)
+    c: float = 0.0  # the gas's −dp/dV (MPa/mm³), 0 without gas
+    pressure: float = 0.0  # gauge pressure (MPa)
+    volume: float = float("nan")  # cavity volume (mm³)
 

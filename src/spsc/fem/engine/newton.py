@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import active_set
+from .active_set import jumps, start as start_active, update as update_active
 from .constraints import Constraints, constraint_key, restriction
 from .linear import inertia, linear_step
 from .linsolve import FULL_INPUT
@@ -52,7 +52,7 @@ class _Newton:
     def __init__(self, model, load: Load, settings: Settings, x0, active, engaged):
         self.model, self.load, self.s = model, load, settings
         self.x = x0.copy()
-        self.active = active_set.start(model, self.x, load.plate, active, settings)
+        self.active = start_active(model, self.x, load.plate, active, settings)
         tie = model.tie
         self.engaged = np.zeros(0, int) if engaged is None or tie is None \
             else np.asarray(engaged)
@@ -63,7 +63,7 @@ class _Newton:
         """(Constraints, free mask) of the current sets at x."""
         m, x, tie = self.model, self.x, self.model.tie
         presc = np.asarray(self.active, int)
-        jump = active_set.jumps(m, x, self.load.plate, presc)
+        jump = jumps(m, x, self.load.plate, presc)
         slaves, sjump = tie.constraints(x, self.engaged) if tie is not None \
             else (np.zeros(0, int), np.zeros(0))
         con = Constraints(len(m.fixed), presc, jump, slaves, sjump,
@@ -99,7 +99,7 @@ class _Newton:
         if self.load.plate is not None:
             reaction = self.lam if s.semismooth and self.lam is not None \
                 else -ev.r[self.active]
-            new = active_set.update(m, self.x, reaction, self.load.plate, self.active, tol,
+            new = update_active(m, self.x, reaction, self.load.plate, self.active, tol,
                                     s.contact_tolerance)
             if new is not None:
                 self.active, changed = new, True

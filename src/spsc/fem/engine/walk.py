@@ -19,7 +19,7 @@ import numpy as np
 
 from spsc.core.gaslaw import GasLaw
 
-from . import active_set
+from .active_set import first_contact, plate_force
 from .newton import newton
 from .result import Record, Result, Stop
 from .steps import CloseValve, Inflate, Load, Press
@@ -37,7 +37,7 @@ def record(model, step, kind, load, sol) -> Record:
     force, area = 0.0, 0.0
     groups = model.group_forces(ev.r, active[:0])
     if load.plate is not None and active.size:
-        force = active_set.plate_force(model, ev.r, active)
+        force = plate_force(model, ev.r, active)
         area = model.contact_area(x, load.plate)
         groups = model.group_forces(ev.r, active)
     held = model.tie.force(ev.r, sol.engaged) * model.symmetry if model.tie is not None \
@@ -75,7 +75,7 @@ class _Walk:
             return (lambda t: Load(pressure=start + t * (end - start), plate=load.plate),
                     "inflate", step.targets())
         if isinstance(step, Press):
-            z0 = active_set.first_contact(self.model, self.x) if load.plate is None \
+            z0 = first_contact(self.model, self.x) if load.plate is None \
                 else load.plate
             return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t)), "press",
                     step.targets())
@@ -145,7 +145,7 @@ class _Walk:
             return Result(self.records, True, "converged", self.instability, seconds,
                           None, self.iterations)
         if stop.record is not None:
-            # an unstable equilibrium is not a result: stop before it (DESIGN.md)
+            # an unstable equilibrium is not a result: stop before it (docs/design.md)
             message, instability = f"step {stop.index} ({stop.kind}) stopped: {stop.unstable}", \
                 stop.unstable
         else:
