@@ -81,6 +81,7 @@ KEY_OPTIONS = {
     "mold": ["--type", "--process", "--material", "--shrinkage", "--clearance", "--wall",
              "--parting", "--out", "--no-step", "--no-render"],
     "check": ["--min-wall", "--process", "--design", "--json"],
+    "haptic": ["--mesh-size", "--out", "--parts"],
     "curve": ["--model", "--pressure", "--reservoir", "--stroke", "--points", "--mesh-size",
               "--layers", "--vtu", "--meridians", "--json", "--csv", "--png", "--quiet"],
     "membrane": ["--model", "--pressure", "--meridians", "--json", "--csv", "--png"],
