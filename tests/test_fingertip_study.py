@@ -48,6 +48,7 @@ def study_dir(tmp_path, monkeypatch):
     monkeypatch.setattr(ff, "_single_case", single_case)
     spec = FingertipSpec()
     design = {"cavity_volume_mm3": spec.pulp.cavity_volume() + spec.distal.cavity_volume() + 200}
+    (tmp_path / "x.stl").write_bytes(b"solid stand-in\nendsolid stand-in\n")
     return tmp_path, spec, design, calls
 
 
@@ -68,6 +69,10 @@ def test_the_study_runs_each_case_once_and_compares(study_dir):
                          log=lambda m: None)
     assert calls == [("pulp", "high", 40.0), ("distal", "low", 10.0)]  # reused, not re-run
     assert again["cases"] == s["cases"]
+    # a curve is kept with the key of its inputs: another part file computes every case again
+    (out / "x.stl").write_bytes(b"solid another\nendsolid another\n")
+    ff.run_study(study, out, stl=out / "x.stl", design=design, spec=spec, log=lambda m: None)
+    assert calls[2:] == [("pulp", "high", 40.0), ("distal", "low", 10.0)]
 
 
 def test_the_figures_are_drawn(study_dir):

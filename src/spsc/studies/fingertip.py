@@ -3,8 +3,9 @@ the 3D FEM, pressed by a plate on the pulp and on the distal edge, in both modes
 pressures; the five FSR pocket forces; the same presses on a single Type A chamber of the same
 size; and the fast estimate (:mod:`.fused_estimate`) against the FEM.
 
-Every curve is a JSON file under ``OUT/curves/`` reused when present (delete it to run again);
-``OUT/summary.json`` holds the figures the report shows. The part is the one ``spsc
+Every curve is a JSON file under ``OUT/curves/``, kept with the key of its inputs and of the
+code that computed it (:mod:`spsc.study.keyed`): reused while both are the same, computed again
+when either changed. ``OUT/summary.json`` holds the figures the report shows. The part is the one ``spsc
 fingertip`` builds (default :class:`~spsc.cad.specs.FingertipSpec`), in Silicone 40A (the
 paper's fingertip material); the mount is the underside and the slot for the gripper finger
 (the design file's ``fem.mount``); the plate sites are the design file's ``pulp`` (straight
@@ -14,6 +15,7 @@ down) and ``distal`` (along the distal chamber's axis); the low mode opens a 40 
 
 from __future__ import annotations
 
+import hashlib
 import json
 import time
 from dataclasses import dataclass
@@ -110,8 +112,13 @@ def _single_case(study, geometry, mode, pressure, path: Path) -> Curve:
     return curve
 
 
-def _load(path: Path):
-    return Curve.from_json(path) if path.exists() else None
+def _kept(path: Path, inputs: dict, modules) -> tuple:
+    """(the kept curve or None, its KeyedFile): the curve at ``path`` if it was computed from
+    ``inputs`` by the present code of ``modules``."""
+    from spsc.study.keyed import KeyedFile, input_key
+
+    keyed = KeyedFile(path, input_key(inputs, modules))
+    return (Curve.from_json(path) if keyed.valid else None), keyed
 
 
 def run_study(study: FingertipStudy, out, *, stl=None, design=None, spec=None,
@@ -120,9 +127,6 @@ def run_study(study: FingertipStudy, out, *, stl=None, design=None, spec=None,
     ``design`` dict and ``spec`` (default: the default fingertip, built under ``out/part``);
     returns and writes the summary."""
     from spsc.cad.specs import FingertipSpec
-    from spsc.materials import material
-
-    from spsc.studies.fused import fused_estimate
 
     out = Path(out)
     (out / "curves").mkdir(parents=True, exist_ok=True)
@@ -135,43 +139,66 @@ def run_study(study: FingertipStudy, out, *, stl=None, design=None, spec=None,
                "stroke_mm": study.stroke_mm, "low_reservoir_mm3": LOW_RESERVOIR_MM3,
                "cavity_volume_mm3": design["cavity_volume_mm3"], "channel_mm3": channel,
                "cases": {}}
+    setup = {"mesh_size_mm": study.mesh_size_mm, "stroke_mm": study.stroke_mm,
+             "points": study.points, "material": study.material}
+    part = hashlib.sha256(Path(stl).read_bytes()).hexdigest()
     for site, mode, p in study.cases:
         name = case_name(site, mode, p)
         row = {"site": site, "mode": mode, "pressure_kPa": p}
+        case = {**setup, "site": site, "mode": mode, "pressure_kPa": p}
         path = out / "curves" / f"fem-{name}.json"
         t0 = time.perf_counter()
-        fem = _load(path)
+        fem, keyed = _kept(path, {**case, "part": part, "design": design},
+                           ("spsc.fem.part_run", "spsc.fem.solver"))
         if fem is None:
             log(f"fingertip FEM {name}")
             vtu = out / "vtu" / name if (site, mode, p) in RENDERED else None
             fem = _fem_case(study, stl, design, site, mode, p, path, vtu, log)
+            keyed.mark()
             log(f"  done in {time.perf_counter() - t0:.0f} s: {fem.solver.message}")
         row["fem"] = _metrics(fem)
         if study.single:
             spath = out / "curves" / f"single-{name}.json"
-            single = _load(spath) or _single_case(study, chambers[site], mode, p, spath)
+            single, keyed = _kept(spath, {**case, "chamber": chambers[site].as_dict()},
+                                  ("spsc.fem.run",))
+            if single is None:
+                single = _single_case(study, chambers[site], mode, p, spath)
+                keyed.mark()
             row["single"] = _metrics(single)
             row["sensitivity_ratio_fused_to_single"] = _ratio(fem, single)
         if study.fast:
-            fpath = out / "curves" / f"fast-{name}.json"
-            fast = _load(fpath)
-            if fast is None:
-                t1 = time.perf_counter()
-                others = [g for k, g in chambers.items() if k != site]
-                fast = fused_estimate(chambers[site], others, material(study.material),
-                                      pressure_kPa=p, channel_mm3=channel,
-                                      reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
-                                      stroke_mm=study.stroke_mm, points=study.points,
-                                      model=study.fast_model)
-                fast = fast.replace(solver=fast.solver.__class__(
-                    **{**fast.solver.to_dict(), "seconds": time.perf_counter() - t1}))
-                fast.to_json(fpath)
+            fast = _fast_case(study, out / "curves" / f"fast-{name}.json", case, chambers,
+                              channel)
             row["fast"] = _metrics(fast)
             row["fast_error"] = _errors(fast, fem)
         summary["cases"][name] = row
     (out / "summary.json").write_text(json.dumps(summary, indent=1, allow_nan=False,
                                                  default=_nan_to_none), encoding="utf-8")
     return summary
+
+
+def _fast_case(study, path: Path, case: dict, chambers: dict, channel: float) -> Curve:
+    """The fast estimate of one case (kept while its inputs and code are the same)."""
+    from spsc.materials import material
+    from spsc.studies.fused import fused_estimate
+
+    site, mode, p = case["site"], case["mode"], case["pressure_kPa"]
+    fast, keyed = _kept(path, {**case, "chambers": {k: g.as_dict() for k, g in chambers.items()},
+                               "channel_mm3": channel, "model": study.fast_model},
+                        ("spsc.studies.fused",))
+    if fast is None:
+        t1 = time.perf_counter()
+        others = [g for k, g in chambers.items() if k != site]
+        fast = fused_estimate(chambers[site], others, material(study.material),
+                              pressure_kPa=p, channel_mm3=channel,
+                              reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
+                              stroke_mm=study.stroke_mm, points=study.points,
+                              model=study.fast_model)
+        fast = fast.replace(solver=fast.solver.__class__(
+            **{**fast.solver.to_dict(), "seconds": time.perf_counter() - t1}))
+        fast.to_json(path)
+        keyed.mark()
+    return fast
 
 
 def _nan_to_none(x):

@@ -48,31 +48,22 @@ def _part(parts: Path, stem: str) -> Path:
     return stl
 
 
-def _key(argv, stl: Path) -> str:
-    """What a curve depends on: the command, the part's bytes and the part FEM's code."""
-    from spsc.study.runs import source_closure
-
-    h = hashlib.sha256(json.dumps([a for a in argv if not a.endswith(".json")]).encode())
-    h.update(stl.read_bytes())
-    for path in source_closure("spsc.cli.fem"):
-        h.update(path.name.encode())
-        h.update(path.read_bytes())
-    return h.hexdigest()
-
-
 def _case(out: Path, parts: Path, name: str, stem: str, extra, mesh: float) -> Curve:
-    path, key_path = out / f"{name}.json", out / f"{name}.key"
+    from spsc.study.keyed import KeyedFile, input_key
+
+    path = out / f"{name}.json"
     stl = _part(parts, stem)
     argv = ["fem", "--part", str(stl), "--pressure", "40", "--stroke", "4", "--points", "9",
             "--plate-at", "apex", "--mesh-size", f"{mesh:g}", "--material", "tpu60a", "--force",
             "--json", str(path), *extra]
-    key = _key(argv, stl)
-    kept = path.exists() and key_path.exists() and key_path.read_text().strip() == key
-    if not kept:
+    kept = KeyedFile(path, input_key({"argv": argv[:-1 - len(extra)] + list(extra),
+                                      "part": hashlib.sha256(stl.read_bytes()).hexdigest()},
+                                     ("spsc.cli.fem",)))
+    if not kept.valid:
         code = _spsc(*argv)
         if code not in (0, 1):
             raise RuntimeError(f"spsc fem --part {stem} {' '.join(extra)} failed ({code})")
-        key_path.write_text(key + "\n")
+        kept.mark()
     return Curve.from_json(path)
 
 
