@@ -8,7 +8,7 @@ import pytest
 
 from spsc.cad.geometry import preset
 from spsc.core.errors import ParameterError
-from spsc.fem.calibrate import calibrate, scaled
+from spsc.fem.wall.calibrate import calibrate, scaled
 from spsc.fem.wall import WallSettings, wall_curve
 from spsc.core.bench import BenchData
 from spsc.materials import material

@@ -4,11 +4,11 @@ import numpy as np
 import pytest
 
 from spsc.cad.geometry import preset
-from spsc.fem.assembly import assemble, discretise
-from spsc.fem.element import TET_EDGES
-from spsc.fem.mesh import block, spsc_wall
-from spsc.fem.model import FEMModel, Load
-from spsc.fem.solver import Settings, newton
+from spsc.fem.solid.assembly import assemble, discretise
+from spsc.fem.solid.element import TET_EDGES
+from spsc.fem.solid.mesh import block, spsc_wall
+from spsc.fem.solid.model import FEMModel, Load
+from spsc.fem.engine import Settings, newton
 from spsc.materials import material, yeoh
 
 

@@ -143,7 +143,7 @@ def test_3d_fem_agrees_with_the_axisymmetric_model(tmp_path):
     4 mm: the 3D quarter model at its converged mesh (1 mm, 2 layers) against the converged
     axisymmetric model (40 × 4 biquadratic quads): inflated volume change within 1 %, plate
     force and cavity pressure within 2 % at y = 1, 2, 3 (and 4) mm."""
-    from spsc.fem.run import ChamberRun, run_chamber
+    from spsc.fem.solid.chamber import ChamberRun, run_chamber
 
     g = preset("B", l=0.0)
     m = AxisymmetricDome(g, MAT, n_profile=40, layers=4)

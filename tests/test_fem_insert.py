@@ -12,9 +12,9 @@ import scipy.sparse.linalg as spla
 from spsc.cad.geometry import preset
 from spsc.core.constants import KPA_PER_MPA, P_AMB
 from spsc.core.gaslaw import GasLaw
-from spsc.fem.insert import RigidInsert, insert_constraints
-from spsc.fem.mesh import spsc_wall
-from spsc.fem.model import FEMModel, Load
+from spsc.fem.solid.insert import RigidInsert, insert_constraints
+from spsc.fem.solid.mesh import spsc_wall
+from spsc.fem.solid.model import FEMModel, Load
 from spsc.fem.engine import CloseValve, Inflate, Press, Settings, solve
 from spsc.fem.engine.constraints import Constraints, Reduction
 from spsc.fem.engine.linear import linear_step

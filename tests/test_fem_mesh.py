@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from spsc.cad.geometry import preset
-from spsc.fem.assembly import discretise
-from spsc.fem.mesh import TetMesh, block, cached_mesh, sphere_shell, spsc_wall
-from spsc.fem.pressure import CavitySurface
+from spsc.fem.solid.assembly import discretise
+from spsc.fem.solid.mesh import TetMesh, block, cached_mesh, sphere_shell, spsc_wall
+from spsc.fem.solid.pressure import CavitySurface
 
 
 def test_sphere_volume_converges_at_isoparametric_rate():

@@ -4,9 +4,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from spsc.cad.geometry import preset
-from spsc.fem.linsolve import solve_rank_one
-from spsc.fem.mesh import spsc_wall
-from spsc.fem.pressure import CavitySurface
+from spsc.fem.engine.linsolve import solve_rank_one
+from spsc.fem.solid.mesh import spsc_wall
+from spsc.fem.solid.pressure import CavitySurface
 
 
 def _admissible(m, v):

@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 
 from spsc.cad.geometry import preset
-from spsc.fem.mesh import spsc_wall
-from spsc.fem.tetwild import spsc_wall_tetwild
-from spsc.fem.model import FEMModel
-from spsc.fem.run import ChamberRun, run_chamber
-from spsc.fem.solver import Inflate, solve
+from spsc.fem.solid.mesh import spsc_wall
+from spsc.fem.solid.tetwild import spsc_wall_tetwild
+from spsc.fem.solid.model import FEMModel
+from spsc.fem.solid.chamber import ChamberRun, run_chamber
+from spsc.fem.engine import Inflate, solve
 from spsc.materials import material
 
 pytestmark = pytest.mark.slow

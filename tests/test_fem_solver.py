@@ -9,10 +9,10 @@ import pytest
 from spsc.cad.geometry import preset
 from spsc.core.constants import KPA_PER_MPA, P_AMB
 from spsc.core.gaslaw import GasLaw
-from spsc.fem.mesh import spsc_wall
-from spsc.fem.model import FEMModel, Load
-from spsc.fem.run import ChamberRun, run_chamber, write_vtu
-from spsc.fem.solver import Inflate, Press, Settings, solve
+from spsc.fem.solid.mesh import spsc_wall
+from spsc.fem.solid.model import FEMModel, Load
+from spsc.fem.solid.chamber import ChamberRun, run_chamber, write_vtu
+from spsc.fem.engine import Inflate, Press, Settings, solve
 from spsc.core.curve import Curve
 from spsc.materials import material
 
@@ -169,7 +169,7 @@ def test_unstable_equilibrium_stops_the_run():
     (top guided: free to slide, not to rotate). Newton follows the straight branch; past
     Euler's strain ε = π² a² / (12 L²) = 0.82 % it is unstable, the LDLᵀ inertia shows the two
     bending modes of the square section, and the run stops there instead of reporting it."""
-    from spsc.fem.mesh import TetMesh, block
+    from spsc.fem.solid.mesh import TetMesh, block
 
     a, length = 1.0, 10.0
     b = block((a, a, length), (1, 1, 10))

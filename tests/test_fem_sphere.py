@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from spsc.fem.mesh import sphere_shell
-from spsc.fem.model import FEMModel, Load
-from spsc.fem.solver import Inflate, Settings, newton, solve
+from spsc.fem.solid.mesh import sphere_shell
+from spsc.fem.solid.model import FEMModel, Load
+from spsc.fem.engine import Inflate, Settings, newton, solve
 from spsc.materials import material
 
 A, B = 1.0, 1.5  # inner and outer radius (mm)

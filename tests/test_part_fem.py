@@ -13,13 +13,13 @@ from numpy.testing import assert_allclose
 from spsc.testing.part_shapes import dome, dome_port
 from spsc.cad.export import TriMesh, write_stl
 from spsc.core.errors import ParameterError
-from spsc.fem.mesh import TetMesh
-from spsc.fem.model import Load
-from spsc.fem.part import part_mesh, part_surface
-from spsc.fem.part_run import ContactPatch, PartRun, part_curve, part_model, press_rotation
-from spsc.fem.pressure import CavitySurface
-from spsc.fem.selector import parse_selector
-from spsc.fem.solver import Settings, solve
+from spsc.fem.solid.mesh import TetMesh
+from spsc.fem.solid.model import Load
+from spsc.fem.part.surface import part_mesh, part_surface
+from spsc.fem.part.run import ContactPatch, PartRun, part_curve, part_model, press_rotation
+from spsc.fem.solid.pressure import CavitySurface
+from spsc.fem.part.selector import parse_selector
+from spsc.fem.engine import Settings, solve
 from spsc.materials import material
 from spsc.cli.main import main
 
@@ -100,7 +100,7 @@ def dome_part():
 
 def test_the_mesh_tags_every_boundary_facet_and_curves_the_cavity(dome_part):
     s, mesh = dome_part
-    from spsc.fem.mesh import boundary_facets
+    from spsc.fem.solid.mesh import boundary_facets
 
     assert sum(len(x) for x in mesh.facets.values()) == len(boundary_facets(mesh.tets))
     cav = CavitySurface(mesh.facets["cavity"])
@@ -109,7 +109,7 @@ def test_the_mesh_tags_every_boundary_facet_and_curves_the_cavity(dome_part):
     # with straight edges lose the chords' sag, several times more
     assert_allclose(volume, s.cavity_volume, rtol=1e-3)
     straight = mesh.nodes.copy()
-    from spsc.fem.element import TET_EDGES
+    from spsc.fem.solid.element import TET_EDGES
     for e, (a, b) in enumerate(TET_EDGES):
         straight[mesh.tets[:, 4 + e]] = 0.5 * (mesh.nodes[mesh.tets[:, a]] + mesh.nodes[mesh.tets[:, b]])
     v_straight = cav.volume(straight, np.zeros_like(straight))
@@ -117,7 +117,7 @@ def test_the_mesh_tags_every_boundary_facet_and_curves_the_cavity(dome_part):
 
 
 def _run(model, pressure=0.01, stroke=0.6):
-    from spsc.fem.solver import CloseValve, Inflate, Press
+    from spsc.fem.engine import CloseValve, Inflate, Press
 
     steps = [Inflate(pressure, 2), CloseValve(0.0, 1.0), Press(stroke, 2)]
     return solve(model, steps, settings=Settings())
@@ -311,8 +311,8 @@ def test_dropping_the_mount_bulk_changes_nothing(dome_part):
     z <= -0.5): the same plate force and volume as the model that keeps them, to the Newton
     tolerance (1e-8 of a force scale that includes the mount's reactions, which differ between
     the two, so the iterates stop at different points: 1e-6 measured)."""
-    from spsc.fem.model import FEMModel
-    from spsc.fem.part_run import drop_clamped
+    from spsc.fem.solid.model import FEMModel
+    from spsc.fem.part.run import drop_clamped
 
     s, mesh = dome_part
     mask = parse_selector("z<=-0.5")(mesh.nodes, 0.02)
@@ -336,8 +336,8 @@ def test_a_dome_part_agrees_with_the_structured_chamber_mesh(tmp_path):
     mesh is about one element through the 1 mm wall), volume gain of the inflation within 5 %
     of itself (measured 0.1 %)."""
     from spsc.testing.part_shapes import dome_geometry
-    from spsc.fem.part_run import run_part
-    from spsc.fem.run import ChamberRun, run_chamber
+    from spsc.fem.part.run import run_part
+    from spsc.fem.solid.chamber import ChamberRun, run_chamber
 
     v, f = dome(seg=96, arc=24)
     stl = write_stl(TriMesh(v, f), tmp_path / "dome.stl")
@@ -358,7 +358,7 @@ def test_vtus_are_in_part_coordinates_and_render(dome_part, tmp_path):
     part's own coordinates with the patch marked and its force, and render off screen."""
     import pyvista as pv
 
-    from spsc.fem.part_run import write_part_vtu
+    from spsc.fem.part.run import write_part_vtu
     from spsc.studies.fingertip_figures import render_part
 
     s, mesh = dome_part
@@ -391,7 +391,7 @@ def test_a_step_part_is_tessellated_and_its_cavity_found(tmp_path):
     volume is exact)."""
     import cadquery as cq
 
-    from spsc.fem.part import load_part
+    from spsc.fem.part.surface import load_part
 
     solid = cq.Workplane().box(10, 8, 6).cut(cq.Workplane().box(6, 4, 2)).val()
     path = tmp_path / "box.step"

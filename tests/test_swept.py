@@ -7,8 +7,8 @@ import pytest
 
 from spsc.cad.geometry import preset
 from spsc.fem.material import NearlyIncompressible
-from spsc.fem.section import section_mesh
-from spsc.fem.swept import SweptWall, sweep_stations
+from spsc.fem.wall.section import section_mesh
+from spsc.fem.wall.swept import SweptWall, sweep_stations
 from spsc.fem.wall import WallModel, WallSettings, wall_curve
 from spsc.materials import material
 

@@ -9,9 +9,10 @@ from scipy.integrate import quad
 
 from spsc.cad.geometry import SPSCGeometry, preset
 from spsc.core.errors import ParameterError
+from spsc.core.gaslaw import GasLaw
 from spsc.fem.material import NearlyIncompressible
-from spsc.fem.section import section_mesh
-from spsc.fem.section_solid import section_solid
+from spsc.fem.wall.section import section_mesh
+from spsc.fem.wall.section_solid import section_solid
 from spsc.fem.wall import WallModel, WallSettings, inflate, wall_curve
 from spsc.materials import material, neo_hookean
 
@@ -105,7 +106,7 @@ def test_plate_force_balances_pressure_and_base_reactions():
     from spsc.fem import wall as W
 
     st = W.inflate(m, 40.0)
-    gas = W.GasLaw(0.04, st.volume)
+    gas = GasLaw(0.04, st.volume)
     z0 = m.top(st.x)
     s = W.newton(m, st.x, gas=gas, plate=z0 - 1.0, settings=m.settings)
     ev = m.evaluate(s.x, s.pressure, tangent=False)

@@ -1,5 +1,6 @@
-"""Moved to :mod:`spsc.fem.engine.linsolve` (this path is kept for code outside ``spsc.fem``)."""
+"""Moved to :mod:`spsc.fem.engine.linsolve`: this path re-exports it for code outside ``spsc.fem``
+until that code imports the new path."""
 
 from .engine.linsolve import Factor, available_solvers, factorize, solve_rank_one
 
-__all__ = ["solve_rank_one", "Factor", "factorize", "available_solvers"]
+__all__ = ["Factor", "available_solvers", "factorize", "solve_rank_one"]

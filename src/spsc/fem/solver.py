@@ -1,7 +1,8 @@
-"""Moved to :mod:`spsc.fem.engine` (this path is kept for code outside ``spsc.fem``)."""
+"""Moved to :mod:`spsc.fem.engine`: this path re-exports it for code outside ``spsc.fem``
+until that code imports the new path."""
 
 from .engine import (CloseValve, Inflate, NewtonFailure, Press, Record, Result, Settings, newton,
                      solve)
 
-__all__ = ["Inflate", "CloseValve", "Press", "Settings", "Record", "Result", "NewtonFailure",
-           "solve", "newton"]
+__all__ = ["CloseValve", "Inflate", "NewtonFailure", "Press", "Record", "Result", "Settings",
+           "newton", "solve"]

@@ -56,8 +56,8 @@ class Tie(Protocol):
 
 
 class Discretisation(Protocol):
-    """A model the engine solves (:class:`spsc.fem.model.FEMModel`,
-    :class:`spsc.fem.wall_model.WallModel`)."""
+    """A model the engine solves (:class:`spsc.fem.solid.model.FEMModel`,
+    :class:`spsc.fem.wall.model.WallModel`)."""
 
     n: int  #: unknowns of the state x
     n_u: int  #: displacement unknowns (the first n_u of x and of the Newton system)

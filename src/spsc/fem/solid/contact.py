@@ -1,6 +1,7 @@
 """What the 3D solid measures of its contact with the rigid plate: the nodal contact forces of
-the active nodes (N), the force through each named contact surface and the contact area on the outer surface. The active set itself is the
-engine's (:mod:`spsc.fem.engine.active_set`); here ``active`` are node indices.
+the active nodes (N), the force through each named contact surface and the contact area on the
+outer surface. The active set itself is the engine's (:mod:`spsc.fem.engine.active_set`); here
+``active`` are node indices.
 """
 
 from __future__ import annotations

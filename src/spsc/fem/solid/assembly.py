@@ -18,8 +18,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
+from ..material import NearlyIncompressible
 from .element import tet_p1, tet_p2, tet_rule
-from .material import NearlyIncompressible
 
 __all__ = ["Pattern", "Discretisation", "discretise", "assemble", "InvertedElement"]
 

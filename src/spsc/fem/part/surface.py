@@ -31,9 +31,9 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 
-from .element import tet_p2
-from .mesh import TetMesh, boundary_facets, orient_tets
-from .tetwild import p1_to_p2
+from ..solid.element import tet_p2
+from ..solid.mesh import TetMesh, boundary_facets, orient_tets
+from ..solid.tetwild import p1_to_p2
 
 __all__ = ["PART_SUFFIXES", "PartSurface", "read_surface", "part_surface", "load_part",
            "part_mesh"]

@@ -1,9 +1,9 @@
 """The ``wall`` model: the chamber wall as a thick, nearly incompressible hyperelastic solid,
 coupled in one Newton solve to the cavity pressure, the trapped gas and a rigid plate.
 
-The chamber (:mod:`spsc.fem.wall_model`) is the axisymmetric **dome** when l = 0 (the body of
-revolution of the wall section, :mod:`spsc.fem.section`); when l > 0 it is the **swept wall**
-(:mod:`spsc.fem.swept`): the same section extruded along the middle and revolved about the
+The chamber (:mod:`spsc.fem.wall.model`) is the axisymmetric **dome** when l = 0 (the body of
+revolution of the wall section, :mod:`spsc.fem.wall.section`); when l > 0 it is the **swept wall**
+(:mod:`spsc.fem.wall.swept`): the same section extruded along the middle and revolved about the
 half-domes' axes, in 27-node hexahedra on the quarter model. The wall carries
 
 * the follower cavity pressure p ∂V/∂u with its consistent stiffness p ∂²V/∂u² (V the cavity
@@ -28,7 +28,7 @@ and l = 10) within the table of docs/theory/wall.md, in tens of seconds.
 
 The load path — inflate, close the valve, press — is walked by the engine
 (:func:`spsc.fem.engine.solve`, one Newton loop with the 3D FEM) with the wall's own Newton
-choices (:meth:`~spsc.fem.wall_model.WallSettings.newton_settings`).
+choices (:meth:`~spsc.fem.wall.model.WallSettings.newton_settings`).
 
 Stability: every recorded point's tangent (with the active constraints and the gas) is
 factorised with its inertia; a negative eigenvalue is an unstable equilibrium (limit point,
@@ -50,10 +50,10 @@ from spsc.core.gaslaw import GasLaw
 from spsc.core.loadcase import check_load
 from spsc.materials import Material
 
-from .engine import CloseValve, Inflate, Load, NewtonFailure, Press, Record, solve
-from .engine import newton as _engine_newton
-from .engine.walk import record
-from .wall_model import WallModel, WallSettings
+from ..engine import CloseValve, Inflate, Load, NewtonFailure, Press, Record, solve
+from ..engine import newton as _engine_newton
+from ..engine.walk import record
+from .model import WallModel, WallSettings
 
 __all__ = ["WallSettings", "WallModel", "WallFailure", "newton", "wall_curve", "inflate"]
 

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .material import NearlyIncompressible
+from ..material import NearlyIncompressible
 from .section import Section
 
 __all__ = ["MixedSolid", "section_solid", "InvertedSection"]

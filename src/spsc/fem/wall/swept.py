@@ -1,7 +1,7 @@
 """The stadium chamber's wall (l > 0) as a swept solid: the wall section extruded along the
 straight middle and revolved about each half-dome's axis, meshed with 27-node hexahedra
 (the section's 9-node quadrilateral × a quadratic element along the sweep) on the quarter
-x ≥ 0, y ≥ 0 — the 3D model's own sweep (:func:`spsc.fem.mesh.spsc_wall`), with the exact
+x ≥ 0, y ≥ 0 — the 3D model's own sweep (:func:`spsc.fem.solid.mesh.spsc_wall`), with the exact
 geometry of the sweep and Cartesian displacements.
 
 Sweep coordinate s: the middle y ∈ [0, a] (a = l/2), then the half-dome θ ∈ [0, π/2] about the
@@ -10,7 +10,7 @@ axis x = 0, y = a (θ = 0: the junction plane with the middle, π/2: the tip mer
     middle:     X = (R, y, Z),                      dV = dA dy
     half-dome:  X = (R cos θ, a + R sin θ, Z),      dV = R dA dθ
 
-with (R, Z) the section's coordinates (:mod:`spsc.fem.section`). The displacement is Cartesian,
+with (R, Z) the section's coordinates (:mod:`spsc.fem.wall.section`). The displacement is Cartesian,
 u = Σ N_a(R, Z) φ_k(s) u_ak, so the half-dome's axis (R = 0) is one node per section node, shared
 by every θ-station: ∂u/∂θ vanishes there identically and the 1/R of the gradient
 
@@ -20,7 +20,7 @@ stays bounded (the quadrature points are off the axis). Unlike harmonics in θ, 
 half-dome to be symmetric about the junction plane or the middle to be uniform along y: the
 middle bends along y and moves along it, and lifts the half-domes' crown, as the 3D model shows.
 
-The solid is the package's mixed u–p :class:`~spsc.fem.section_solid.MixedSolid` (pressure
+The solid is the package's mixed u–p :class:`~spsc.fem.wall.section_solid.MixedSolid` (pressure
 discontinuous and linear in each hexahedron, (1, R, Z, s): the Q2/P1ᵈ hexahedron, inf–sup
 stable). Integrals are taken over the whole chamber (the quarter × 4): residuals are forces
 in N, as in the dome. The cavity volume is the surface integral V = ∮ z n_z dS over the cavity
@@ -37,7 +37,7 @@ import numpy as np
 
 from spsc.cad.geometry import SPSCGeometry
 
-from .material import NearlyIncompressible
+from ..material import NearlyIncompressible
 from .section import Section, _GAUSS_T, _GAUSS_W, _edge_shape
 from .section_solid import MixedSolid, _pressure_basis
 
@@ -105,7 +105,7 @@ def _frame(kind, a, R, s):
 
 @dataclass(frozen=True, eq=False)
 class CartesianSolid(MixedSolid):
-    """A :class:`~spsc.fem.section_solid.MixedSolid` whose displacement is Cartesian,
+    """A :class:`~spsc.fem.wall.section_solid.MixedSolid` whose displacement is Cartesian,
     F = I + Σ_b u_b ⊗ ∇N_b, given by the shape gradients ``grad`` (ne, nq, nb, 3) instead of
     the full ∂F/∂u (9× smaller, and its tangent 3× cheaper):
 

@@ -3,8 +3,9 @@ boundary sets.
 
 The wall model (:mod:`spsc.fem.wall`) solves a dome (l = 0) as the axisymmetric body of
 revolution of this section about the z axis, and sweeps the same section along a stadium
-(l > 0, :mod:`spsc.fem.swept`). It is the section of :func:`spsc.fem.mesh.wall_section` (the 3D
-model's structured section: cavity profile to outer profile, clamped on z = 0; docs/design.md),
+(l > 0, :mod:`spsc.fem.wall.swept`). It is the section of
+:func:`spsc.fem.solid.mesh.wall_section` (the 3D model's structured section: cavity profile to
+outer profile, clamped on z = 0; docs/design.md),
 meshed with 9-node biquadratic quadrilaterals (isoparametric, scikit-fem's
 ``MeshQuad2``/``ElementQuad2``). Reference gradients, quadrature points and weights come from
 scikit-fem's ``CellBasis``; the weights carry the measure 2πR, so nodal forces are whole-ring
@@ -24,7 +25,7 @@ import numpy as np
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.errors import require
 
-from .mesh import wall_section
+from ..solid.mesh import wall_section
 
 __all__ = ["Section", "section_mesh"]
 
@@ -132,7 +133,8 @@ class Section:
     def contact_area(self, u, plate: float, tol: float = 1e-3) -> float:
         """Area (mm²) of the outer surface within ``tol`` (mm) of the plate at height
         ``plate``: the outer edges' quadrature points on the plate, weighted by their deformed
-        length × measure (the 3D model's definition, :func:`spsc.fem.contact.contact_area`)."""
+        length × measure (the 3D model's definition,
+        :func:`spsc.fem.solid.contact.contact_area`)."""
         x = self.positions(u)[self.outer]
         e = np.stack([x[0:-2:2], x[1:-1:2], x[2::2]], axis=1)
         N, dN = _edge_shape(np.linspace(0.125, 0.875, 4))  # midpoints of 4 sub-intervals

@@ -1,0 +1,176 @@
+"""A chamber run as the user asks for it: inflate, close the valve, press — as a :class:`Curve`.
+
+``run_chamber`` builds the quarter (or full) wall mesh of a parametric chamber, walks the steps
+and returns the same :class:`~spsc.core.curve.Curve` (and JSON) as the membrane model, plus
+the raw :class:`~spsc.fem.engine.Result`. ``pressure = 0`` is the open chamber (no gas, valve
+open), whose force is the structural F_el(y).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from spsc.core.loadcase import check_load
+from spsc.cad.geometry import SPSCGeometry
+from spsc.core.curve import Curve, SolveInfo
+from spsc.materials import Material
+
+from ..engine import CloseValve, Inflate, Press, Result, Settings, solve
+from .element import TET_EDGES
+from .mesh import cached_mesh, check_mesh_size, spsc_wall
+from .model import FEMModel
+
+__all__ = ["ChamberRun", "run_chamber", "to_curve", "curve_points", "solve_info", "write_vtu"]
+
+
+@dataclass(frozen=True)
+class ChamberRun:
+    """Inputs of a chamber run (mm, kPa, mm³). ``points``: plate positions of the curve,
+    y = 0 (first contact) to the stroke, as in ``spsc membrane``; points − 1 increments.
+    ``mesh_size_mm``: element edge along the wall surfaces (``spsc fem --mesh-size``; not the
+    preset footprint, which is ``--footprint`` and part of the geometry)."""
+
+    geometry: SPSCGeometry
+    material: Material
+    pressure_kPa: float = 40.0
+    reservoir_mm3: float = 0.0
+    stroke_mm: float = 4.0
+    points: int = 11
+    mesh_size_mm: float = 1.0
+    layers: int = 2
+    polytropic_index: float = 1.0
+    inflate_increments: int = 4
+    full: bool = False
+    bulk_ratio: float = 2000.0
+
+    def __post_init__(self):
+        check_load(self.geometry, pressure_kPa=self.pressure_kPa,
+                   reservoir_mm3=self.reservoir_mm3, stroke_mm=self.stroke_mm,
+                   points=self.points, polytropic_n=self.polytropic_index)
+        check_mesh_size(self.geometry, self.mesh_size_mm, self.layers)
+
+    def steps(self) -> list:
+        out = []
+        if self.pressure_kPa > 0:
+            out += [Inflate(self.pressure_kPa * 1e-3, self.inflate_increments),
+                    CloseValve(self.reservoir_mm3, self.polytropic_index)]
+        return out + [Press(self.stroke_mm, int(self.points) - 1)]
+
+
+def build_model(run: ChamberRun, *, cache_dir=None) -> FEMModel:
+    mesh = cached_mesh(spsc_wall, cache_dir=cache_dir, g=run.geometry, size=run.mesh_size_mm,
+                       layers=run.layers, full=run.full)
+    return FEMModel.build(mesh, run.material, bulk_ratio=run.bulk_ratio)
+
+
+def run_chamber(run: ChamberRun, *, settings: Settings | None = None, progress=None,
+                cache_dir=None):
+    """Solve ``run``; returns (Curve, Result, FEMModel). ``progress(done, total)`` is called per
+    converged load point. The curve's ``solver`` is the run's
+    :class:`~spsc.core.curve.SolveInfo`; its ``seconds`` include building (or loading) the
+    mesh, the one timing field of the result."""
+    t_start = time.perf_counter()
+    model = build_model(run, cache_dir=cache_dir)
+    mesh_seconds = time.perf_counter() - t_start
+    result = solve(model, run.steps(), settings=settings, progress=progress)
+    return to_curve(run, model, result, mesh_seconds=mesh_seconds), result, model
+
+
+def _apex_height(model: FEMModel, x) -> float:
+    X = model.disc.X
+    cav = model.mesh.nodes_on("cavity")
+    on_axis = cav[(np.abs(X[cav, 0]) < 1e-9) & (np.abs(X[cav, 1]) < 1e-9)]
+    return float(np.max(X[on_axis, 2] + model.displacement(x)[on_axis, 2]))
+
+
+def curve_points(run, result: Result) -> dict:
+    """The curve's arrays from a result (a chamber's or a part's run: ``points``, ``stroke_mm``,
+    ``pressure_kPa``, ``inflate_increments``): y = 0 at first contact with the inflated part,
+    then one point per press increment; points not reached hold NaN with the reason. Also the
+    start, inflated and press records."""
+    start = result.records[0]
+    inflated = result.of("inflate")[-1] if result.of("inflate") else start
+    presses = result.of("press")
+    n = int(run.points)
+    y = np.linspace(0.0, run.stroke_mm, n)
+    F, P, A, dV = (np.full(n, np.nan) for _ in range(4))
+    conv = np.zeros(n, bool)
+    msg = [""] * n
+    if run.pressure_kPa == 0 or len(result.of("inflate")) == run.inflate_increments:
+        F[0], P[0], A[0], dV[0], conv[0] = 0.0, inflated.pressure * 1e3, 0.0, 0.0, True
+    for k, rec in enumerate(presses, start=1):
+        F[k], P[k], A[k] = rec.force, rec.pressure * 1e3, rec.contact_area
+        dV[k] = inflated.volume - rec.volume
+        conv[k] = True
+    for k in range(len(presses) + 1, n):
+        msg[k] = result.message
+    if not conv[0]:
+        msg[0] = result.message
+    return {"y": y, "F": F, "P": P, "A": A, "dV": dV, "conv": conv, "msg": tuple(msg),
+            "start": start, "inflated": inflated, "presses": presses}
+
+
+def solve_info(result: Result, model: FEMModel, pts: dict, mesh_seconds: float,
+               details: dict) -> SolveInfo:
+    """The curve's ``solver`` block: converged, message, instability, where it got to, seconds
+    with ``mesh_seconds`` added, Newton iterations; ``details`` with the unknowns and
+    tetrahedra first."""
+    conv, y = pts["conv"], pts["y"]
+    return SolveInfo(converged=result.converged, message=result.message,
+                     y_reached_mm=y[conv][-1] if conv.any() else float("nan"),
+                     instability=result.instability,
+                     seconds=result.seconds + np.nan_to_num(mesh_seconds),
+                     iterations=result.iterations,
+                     details={"dofs": model.disc.n, "tetrahedra": model.mesh.n_tets, **details})
+
+
+def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
+             mesh_seconds: float = float("nan")) -> Curve:
+    """The Curve of a run (:func:`curve_points`); ``solver`` is filled from ``result``
+    (:func:`solve_info`) with the model's size in ``details`` (unknowns, tetrahedra, mesh
+    size, layers, part)."""
+    pts = curve_points(run, result)
+    part = "full" if run.full else "quarter"
+    setup = {"p_i_kPa": run.pressure_kPa, "reservoir_mm3": run.reservoir_mm3,
+             "polytropic_n": run.polytropic_index, "mesh_size_mm": run.mesh_size_mm,
+             "layers": run.layers, "dofs": model.disc.n, "model_part": part}
+    if result.instability:
+        setup["instability"] = result.instability
+    info = solve_info(result, model, pts, mesh_seconds,
+                      {"mesh_size_mm": run.mesh_size_mm, "layers": run.layers,
+                       "model_part": part, "bulk_ratio": run.bulk_ratio})
+    inflated = pts["inflated"]
+    return Curve(pts["y"], pts["F"], pts["P"], pts["A"], pts["dV"], model="fem",
+                 geometry=run.geometry.as_dict(), material=run.material.name, setup=setup,
+                 nominal_volume_mm3=pts["start"].volume, inflated_volume_mm3=inflated.volume,
+                 inflated_height_mm=_apex_height(model, inflated.x), converged=pts["conv"],
+                 message=pts["msg"], solver=info)
+
+
+def write_vtu(model: FEMModel, result: Result, directory) -> list[Path]:
+    """One VTU per converged record (quadratic tetrahedra, displacement and pressure fields,
+    warp by ``displacement`` in ParaView); returns the paths."""
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    paths = []
+    pdof = model.disc.pressure_dof
+    for i, rec in enumerate(result.records):
+        grid = model.mesh.to_pyvista(model.displacement(rec.x))
+        p = np.full(model.disc.n_nodes, np.nan)
+        corner = pdof >= 0
+        p[corner] = rec.x[model.disc.n_u:][pdof[corner]]
+        # edge nodes: the mean of their two vertices (P1 field)
+        for e, (a, b) in enumerate(TET_EDGES):
+            mid = model.mesh.tets[:, 4 + e]
+            p[mid] = 0.5 * (p[model.mesh.tets[:, a]] + p[model.mesh.tets[:, b]])
+        grid.point_data["hydrostatic_pressure_MPa"] = p
+        grid.field_data["cavity_pressure_kPa"] = np.array([rec.pressure * 1e3])
+        grid.field_data["plate_force_N"] = np.array([rec.force])
+        path = directory / f"step-{i:03d}-{rec.kind}.vtu"
+        grid.save(path)
+        paths.append(path)
+    return paths

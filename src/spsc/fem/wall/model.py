@@ -1,0 +1,285 @@
+"""The wall model's discretisation: its settings and its parts — the axisymmetric dome
+(l = 0) or the stadium's swept wall (l > 0, :mod:`spsc.fem.wall.swept`) — with the cavity volume,
+follower pressure and contact surface, as a :class:`~spsc.fem.engine.protocol.Discretisation`
+of the engine (:mod:`spsc.fem.wall` walks the load path with it).
+
+The Newton system is on the displacements (m = n_u): each element's pressure coefficients are
+condensed out of the element tangent (:mod:`spsc.fem.wall.section_solid`) and recovered from the
+displacement step, so the factorised tangent is the displacement problem's own and its inertia
+counts the unstable modes directly.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from spsc.cad.geometry import SPSCGeometry
+from spsc.core.errors import require
+from spsc.materials import Material
+
+from ..engine.settings import Settings
+from ..engine.steps import Load
+from ..material import NearlyIncompressible
+from .section import section_mesh
+from .section_solid import InvertedSection, section_solid
+from .swept import SweptWall, sweep_stations
+
+__all__ = ["WallSettings", "WallModel"]
+
+#: default element length along the profile (mm): the dome's 2D section is cheap, the
+#: stadium's swept hexahedra are not (both within 0.5 % of their converged answer, docs/theory/wall.md)
+DOME_MESH_MM, STADIUM_MESH_MM = 0.5, 1.0
+
+
+@dataclass(frozen=True)
+class WallSettings:
+    """Discretisation and solver controls of the wall model.
+
+    mesh_size_mm : element length along the profile (mm; None: 0.5 on a dome, 1.0 on a
+    stadium); layers : quadratic elements through the wall; sweep_size_mm : quadratic
+    element length along the stadium's sweep (mm; the middle's half-length and the half-dome's
+    outer quarter arc, at least two elements on the arc); bulk_ratio : κ/μ0; rtol : residual
+    against the load's force scale; max_iterations : Newton iterations per increment;
+    min_fraction : smallest increment as a fraction of the nominal one; contact_tolerance :
+    penetration that activates a node (mm); inflate_increments : pressure increments of the
+    inflation.
+    """
+
+    mesh_size_mm: float | None = None
+    layers: int = 2
+    sweep_size_mm: float = 10.0
+    bulk_ratio: float = 2000.0
+    rtol: float = 1e-9
+    max_iterations: int = 25
+    min_fraction: float = 1.0 / 64
+    contact_tolerance: float = 1e-7
+    inflate_increments: int = 2
+
+    def __post_init__(self):
+        if self.mesh_size_mm is not None:
+            require("mesh_size", self.mesh_size_mm, gt=0, le=5, unit="mm")
+        require("layers", self.layers, ge=1, le=16)
+        require("sweep_size", self.sweep_size_mm, gt=0, le=50, unit="mm")
+        require("bulk_ratio", self.bulk_ratio, ge=10)
+        require("rtol", self.rtol, gt=0, lt=1)
+        require("max_iterations", self.max_iterations, ge=2)
+        require("min_fraction", self.min_fraction, gt=0, le=1)
+        require("inflate_increments", self.inflate_increments, ge=1)
+
+    def newton_settings(self) -> Settings:
+        """The engine's settings for the wall: these tolerances with the wall's own choices —
+        SuperLU in symmetric mode on the condensed tangent (its inertia), the admissible line
+        search, the semi-smooth active set (updated from the step's multipliers; 1e-2 of the
+        scale before the first; 40 changes), the running force scale, a fresh inertia at
+        convergence, the secant predictor and gᵀs over the constrained unknowns."""
+        return Settings(rtol=self.rtol, max_iterations=self.max_iterations,
+                        min_fraction=self.min_fraction, contact_tolerance=self.contact_tolerance,
+                        solver="superlu-sym", active_set_update=1e-2, search="admissible",
+                        active_set="semismooth", max_active_changes=40, scale="running",
+                        fresh_inertia=True, predictor=True, gas_shift="constrained")
+
+    def profile_size(self, stadium: bool) -> float:
+        """The element length along the profile (mm) for a dome or a stadium."""
+        if self.mesh_size_mm is not None:
+            return self.mesh_size_mm
+        return STADIUM_MESH_MM if stadium else DOME_MESH_MM
+
+
+class _Dome:
+    """The axisymmetric dome of an l = 0 chamber: the body of revolution of the section."""
+
+    def __init__(self, section, law):
+        self.section, self.solid = section, section_solid(section, law)
+        self.dofs = np.arange(section.n_dofs)
+        self.fixed = section.fixed
+        self.reference = section.nodes.ravel()
+        self.zdofs = 2 * section.outer + 1
+
+    def volume(self, u) -> float:
+        return self.section.volume(u)
+
+    def volume_gradient(self, u, hessian=True):
+        if not hessian:
+            return self.section.volume_gradient(u, hessian=False)
+        g, H = self.section.volume_gradient(u)
+        return g, H, self.section.cavity_edge_dofs
+
+    def contact_area(self, u, plate) -> float:
+        return self.section.contact_area(u, plate)
+
+    def apex(self, u) -> float:
+        return float(self.section.positions(u)[self.section.cavity[0], 1])
+
+
+class _Pattern:
+    """The tangent's fixed sparsity: every element block (and the cavity's volume-Hessian
+    blocks, which lie inside them) scattered into one CSR pattern by a single bincount."""
+
+    def __init__(self, n: int, *blocks):
+        keys = [(np.repeat(d, d.shape[1], axis=1) * n + np.tile(d, (1, d.shape[1]))).ravel()
+                for d in blocks]
+        uniq, inv = np.unique(np.concatenate(keys), return_inverse=True)
+        self.n, self.nnz = n, len(uniq)
+        self.indices = (uniq % n).astype(np.int32)
+        self.indptr = np.searchsorted(uniq, np.arange(n + 1) * n).astype(np.int32)
+        self.positions = np.split(inv.ravel(), np.cumsum([k.size for k in keys])[:-1])
+
+    def matrix(self, *values) -> sp.csr_matrix:
+        """The CSR matrix of the blocks' ``values`` (each the size of its block array)."""
+        pos = np.concatenate([self.positions[i] for i, v in enumerate(values) if v is not None])
+        val = np.concatenate([v.ravel() for v in values if v is not None])
+        data = np.bincount(pos, weights=val, minlength=self.nnz)
+        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
+
+
+class WallModel:
+    """The wall of one chamber and its loads. l = 0: the axisymmetric dome. l > 0 (or
+    ``stadium=True``): the swept wall of the quarter (:class:`~spsc.fem.wall.swept.SweptWall`).
+    ``base``: ``"clamped"`` (the chamber) or ``"sliding"`` (u_z = 0 only, for the exact
+    thick-sphere check).
+
+    Unknowns x: the displacements (n_u) then the solid's pressure coefficients."""
+
+    symmetry = 1  # forces and areas are the whole chamber's
+    tie = None
+    #: a load fails (its increment is cut) on these; a line-search trial on the second
+    recoverable = (RuntimeError, np.linalg.LinAlgError, InvertedSection)
+    inadmissible = (InvertedSection,)
+
+    def __init__(self, geometry: SPSCGeometry, material: Material,
+                 settings: WallSettings | None = None, *, base: str = "clamped",
+                 stadium: bool | None = None):
+        self.geometry, self.material = geometry, material
+        self.settings = settings = settings or WallSettings()
+        law = NearlyIncompressible(material, settings.bulk_ratio)
+        self.stadium = stadium = geometry.l > 0 if stadium is None else bool(stadium)
+        self.mesh_size_mm = settings.profile_size(stadium)
+        section = section_mesh(geometry, size=self.mesh_size_mm, layers=settings.layers,
+                               base=base)
+        if stadium:
+            self.part = SweptWall(section, sweep_stations(geometry, settings.sweep_size_mm),
+                                  law, base=base)
+        else:
+            self.part = _Dome(section, law)
+        self.solid = self.part.solid
+        self.n_u = len(self.part.dofs)
+        self.n = self.n_u + self.solid.n_pressure
+        self.fixed = np.asarray(self.part.fixed, bool).copy()
+        self.reference = np.asarray(self.part.reference, float)
+        zdofs = np.unique(self.part.zdofs)
+        self.contact_dofs = zdofs[~self.fixed[zdofs]]
+        self.contact_height = self.reference
+        self.contact_gap = np.zeros(self.n_u)
+        self.mu = law.mu
+        #: smallest force scale of the convergence test (N): 1e-9 μ0 t0²
+        self.force_floor = 1e-9 * self.mu * self.geometry.t0 ** 2
+        _, _, cavity = self.part.volume_gradient(np.zeros(self.n_u))
+        self._pattern = _Pattern(self.n_u, self.solid.element_dofs, cavity)
+
+    @property
+    def kind(self) -> str:
+        return "swept" if self.stadium else "dome"
+
+    def displacements(self, x) -> np.ndarray:
+        return x[:self.n_u]
+
+    def pressures(self, x) -> np.ndarray:
+        """Hydrostatic pressure coefficients (ne, k) of the solid (MPa)."""
+        return x[self.n_u:].reshape(len(self.solid.element_dofs), -1)
+
+    def zero_state(self) -> np.ndarray:
+        return np.zeros(self.n)
+
+    def admissible(self, x) -> bool:
+        """No element inverted at ``x`` (det F > 0 at every quadrature point)."""
+        return bool(np.all(np.linalg.det(self.solid.deformation(self.displacements(x))) > 0))
+
+    def volume(self, x) -> float:
+        """Cavity volume (mm³)."""
+        return self.part.volume(self.displacements(x))
+
+    def contact_area(self, x, plate: float) -> float:
+        """Outer surface on the plate (mm²)."""
+        return self.part.contact_area(self.displacements(x), plate)
+
+    def apex(self, x) -> float:
+        """Height of the cavity apex (mm)."""
+        return self.part.apex(self.displacements(x))
+
+    def top(self, x) -> float:
+        """Highest point of the outer surface (mm): where the plate first touches."""
+        return float(np.max(self.reference[self.contact_dofs] + x[self.contact_dofs]))
+
+    def evaluate(self, x, load, *, tangent: bool = True) -> "_Evaluation":
+        """Residuals under ``load`` (a :class:`~spsc.fem.engine.steps.Load`, or a gauge
+        pressure in MPa): r_u = r_int − p g (N) with p the prescribed pressure or the gas's at
+        the cavity volume, the pressure residuals, and with ``tangent`` the condensed
+        K_int − p H (N/mm) and the blocks G; g = ∂V/∂u (mm²), c = −dp/dV (MPa/mm³)."""
+        if not isinstance(load, Load):
+            load = Load(pressure=load)
+        volume = self.volume(x)
+        if load.gas is None:
+            pressure, c = float(load.pressure), 0.0
+        else:
+            pressure = float(load.gas.pressure(volume))
+            c = -float(load.gas.dpressure(volume))
+        u, pc = self.displacements(x), self.pressures(x)
+        K = G = None
+        if tangent:
+            r, rp, Ke, G = self.solid.element_tangent(u, pc)
+            g, H, _ = self.part.volume_gradient(u)
+            K = self._pattern.matrix(Ke, -pressure * H if pressure != 0.0 else None)
+        else:
+            r, rp = self.solid.residual(u, pc)
+            g = self.part.volume_gradient(u, hessian=False)
+        return _Evaluation(r - pressure * g, rp, K, G, g, c, pressure, volume)
+
+    def pressure_error(self, ev: "_Evaluation") -> float:
+        return self.solid.pressure_error(ev.rp)
+
+    def condensed(self, ev: "_Evaluation") -> np.ndarray:
+        """r_u + κ Gᵀ M⁻¹ r_p: the right-hand side of the condensed Newton system (N)."""
+        return ev.r + self.solid.condensed_rhs(ev.G, ev.rp)
+
+    def recover(self, ev: "_Evaluation", du) -> np.ndarray:
+        """Δp of the solid (flattened, MPa) from the displacement step ``du``."""
+        return self.solid.recover(ev.G, ev.rp, du).ravel()
+
+    # -- the rest of the engine's Discretisation ------------------------------------------
+    def default_settings(self) -> Settings:
+        return self.settings.newton_settings()
+
+    def system_residual(self, ev: "_Evaluation") -> np.ndarray:
+        return self.condensed(ev)
+
+    def expand(self, ev: "_Evaluation", du) -> np.ndarray:
+        """The step of all unknowns: ``du`` and the pressures' Δp recovered from it."""
+        return np.concatenate([du, self.recover(ev, du)])
+
+    def unstable_modes(self, factor, c: float, gc) -> int | None:
+        """Negative eigenvalues of K + c g gᵀ on the free displacements from the inertia of
+        the factorised K: the gas term removes one iff 1 + c gᵀK⁻¹g < 0."""
+        negative = factor.negative
+        if negative is not None and c > 0.0:
+            negative -= int(1.0 + c * float(gc @ factor(gc)) < 0.0)
+        return negative
+
+    def group_forces(self, r, active) -> dict:
+        """No named contact surfaces on the wall."""
+        return {}
+
+
+@dataclass(frozen=True, eq=False)
+class _Evaluation:
+    r: np.ndarray  # displacement residual (N)
+    rp: list  # the elements' pressure residuals
+    K: object  # condensed tangent (N/mm)
+    G: list  # the elements' coupling blocks
+    g: np.ndarray  # ∂V/∂u (mm²)
+    c: float = 0.0  # the gas's −dp/dV (MPa/mm³), 0 without gas
+    pressure: float = 0.0  # gauge pressure (MPa)
+    volume: float = float("nan")  # cavity volume (mm³)
+
