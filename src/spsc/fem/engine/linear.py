@@ -17,7 +17,7 @@ import numpy as np
 from .constraints import Constraints
 from .linsolve import factorize, solve_rank_one
 
-__all__ = ["Step", "linear_step", "inertia"]
+__all__ = ["Step", "linear_step", "inertia", "gas_vector"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -32,7 +32,7 @@ class Step:
     key: bytes
 
 
-def _gas_vector(model, ev, m) -> np.ndarray:
+def gas_vector(model, ev, m) -> np.ndarray:
     """g over the Newton system's m unknowns (zero beyond the displacements)."""
     gs = np.zeros(m)
     gs[: model.n_u] = ev.g
@@ -65,7 +65,7 @@ def linear_step(model, ev, restriction, free, con: Constraints, settings, *,
     moved = bool(np.any(s))
     rhs = -rs - K @ s if moved else -rs
     rhs = con.condense(rhs)[free]
-    gs = _gas_vector(model, ev, m)
+    gs = gas_vector(model, ev, m)
     gc = con.condense(gs)[free]
     if c > 0.0:
         if moved:

@@ -19,7 +19,7 @@ import numpy as np
 
 from .active_set import jumps, start as start_active, update as update_active
 from .constraints import Constraints, constraint_key, restriction
-from .linear import inertia, linear_step
+from .linear import gas_vector, inertia, linear_step
 from .linsolve import FULL_INPUT
 from .result import NewtonFailure
 from .search import line_search
@@ -100,7 +100,7 @@ class _Newton:
             reaction = self.lam if s.semismooth and self.lam is not None \
                 else -ev.r[self.active]
             new = update_active(m, self.x, reaction, self.load.plate, self.active, tol,
-                                    s.contact_tolerance)
+                                s.contact_tolerance)
             if new is not None:
                 self.active, changed = new, True
         if m.tie is not None:
@@ -132,9 +132,8 @@ class _Newton:
         modes = self.modes if self.factored == key else None
         if self.factored != key and self.s.fresh_inertia:
             red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT)
-            gs = np.zeros(len(free))
-            gs[: self.model.n_u] = ev.g
-            modes = inertia(self.model, red, ev, con.condense(gs)[free], self.s)
+            gc = con.condense(gas_vector(self.model, ev, con.n))[free]
+            modes = inertia(self.model, red, ev, gc, self.s)
         return Converged(self.x, self.active, self.engaged, it, ev, modes)
 
 
@@ -158,8 +157,8 @@ def newton(model, x0, load: Load, settings: Settings, active=None, engaged=None)
                 nw.carried = ev  # x is unchanged: its evaluation stands
                 continue
             con, free = nw.constrain()  # step on the new set at once
-            nw.res = float(np.linalg.norm(con.condense(ev.r)[:model.n_u][free[:model.n_u]]))
             rt = con.condense(ev.r)
+            nw.res = float(np.linalg.norm(rt[:model.n_u][free[:model.n_u]]))
         elif converged:
             return nw.converged(it, ev, con, free)
         nw.step(ev, con, free, rt)
