@@ -132,7 +132,7 @@ def bad_input(args) -> dict:
     t0 = time.perf_counter()
     if args.fork:  # warm the heavy imports once, before any thread starts
         for mod in ("spsc.cad.bladder", "spsc.cad.check", "spsc.cad.fingertip",
-                    "spsc.membrane.solver", "spsc.fem.run", "spsc.report.build"):
+                    "spsc.membrane.solver", "spsc.fem.solid.chamber", "spsc.report.build"):
             __import__(mod)
         results = (run_forked(c, args.timeout, cwd) for c in cases)
     else:

@@ -19,10 +19,10 @@ import time
 import numpy as np
 
 from spsc.cad.geometry import preset
-from spsc.fem.linsolve import available_solvers, factorize
-from spsc.fem.model import FEMModel, Load
-from spsc.fem.mesh import spsc_wall
-from spsc.fem.run import ChamberRun, run_chamber
+from spsc.fem.engine.linsolve import available_solvers, factorize
+from spsc.fem.solid.model import FEMModel, Load
+from spsc.fem.solid.mesh import spsc_wall
+from spsc.fem.solid.chamber import ChamberRun, run_chamber
 from spsc.materials import material
 
 

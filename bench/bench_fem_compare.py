@@ -26,10 +26,10 @@ from pathlib import Path
 import numpy as np
 
 from spsc.cad.geometry import preset
-from spsc.fem.mesh import cached_mesh, spsc_wall
-from spsc.fem.model import FEMModel
-from spsc.fem.run import ChamberRun, run_chamber
-from spsc.fem.solver import Inflate, solve
+from spsc.fem.solid.mesh import cached_mesh, spsc_wall
+from spsc.fem.solid.model import FEMModel
+from spsc.fem.solid.chamber import ChamberRun, run_chamber
+from spsc.fem.engine import Inflate, solve
 from spsc.materials import material
 from spsc.membrane.solver import inflate as membrane_inflate
 from spsc.membrane.solver import solve as membrane_solve
@@ -167,8 +167,8 @@ def quarter_vs_full(*, mat, type_name="B", stroke=4.0, points=9, size=2.0, layer
     the same mesh. The mirrored full mesh alone keeps the symmetric path by construction (only
     its tangent's inertia can flag a bifurcation); the imperfect one is free to take an
     asymmetric buckling mode, so if it follows the quarter model the quarter answer holds."""
-    from spsc.fem.mesh import TetMesh
-    from spsc.fem.solver import solve as fem_solve
+    from spsc.fem.solid.mesh import TetMesh
+    from spsc.fem.engine import solve as fem_solve
 
     rows = []
     g = preset(type_name)

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.cad.geometry import preset
-from spsc.fem.calibrate import calibrate, scaled
+from spsc.fem.wall.calibrate import calibrate, scaled
 from spsc.fem.wall import wall_curve
 from spsc.materials.fit import fit_law, fit_laws
 from spsc.materials.fit_laws import TESTS, OgdenLaw, law

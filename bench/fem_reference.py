@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 
 from spsc.cad.geometry import preset
-from spsc.fem.run import ChamberRun, run_chamber
+from spsc.fem.solid.chamber import ChamberRun, run_chamber
 from spsc.materials import material
 
 LOW = 40_000.0

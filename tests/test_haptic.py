@@ -112,9 +112,9 @@ def test_the_motor_stiffens_the_first_millimetre(tmp_path):
     import numpy as np
 
     from spsc.cad.export import write_stl
-    from spsc.fem.model import Load
-    from spsc.fem.part_run import PartRun, part_curve, part_model
-    from spsc.fem.solver import Settings, solve
+    from spsc.fem.solid.model import Load
+    from spsc.fem.part.run import PartRun, part_curve, part_model
+    from spsc.fem.engine import Settings, solve
     from spsc.materials import material
 
     h = _haptic()

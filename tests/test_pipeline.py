@@ -54,17 +54,20 @@ def test_key_follows_inputs_and_the_code_the_model_imports():
     assert a.key() != SMALL.membrane("membrane", "B", "tpu60a", 30, "high").key()
     assert a.key() != SMALL.membrane("simplified", "B", "tpu60a", 40, "high").key()
     assert a.key() != SMALL.membrane("membrane", "D", "tpu60a", 40, "high").key()
-    names = {p.relative_to(p.parents[1]).as_posix() for p in source_closure("spsc.fem.run")}
-    assert {"fem/run.py", "fem/solver.py", "fem/mesh.py", "materials/law.py",
-            "cad/geometry.py"} <= names
-    assert not any(n.startswith(("pipeline/", "membrane/solver")) for n in names)
-    mem = {p.relative_to(p.parents[1]).as_posix() for p in source_closure("spsc.membrane.solver")}
+    def closure(module):
+        src = Path(source_closure("spsc.core.curve")[0]).parents[1]  # src/spsc
+        return {p.relative_to(src).as_posix() for p in source_closure(module)}
+
+    fem = closure("spsc.models.fem")
+    assert {"models/fem.py", "fem/solid/chamber.py", "fem/engine/newton.py", "fem/solid/mesh.py",
+            "materials/law.py", "cad/geometry.py"} <= fem
+    assert not any(n.startswith(("cli/", "study/", "membrane/solver")) for n in fem)
+    mem = closure("spsc.membrane.solver")
     assert {"membrane/solver.py", "membrane/bvp.py", "membrane/stroke.py"} <= mem
     assert not any(n.startswith("fem/") for n in mem)
     assert len({code_version(m) for m in MODELS}) == len(MODELS)
-    wall = {p.relative_to(p.parents[1]).as_posix() for p in source_closure("spsc.models.wall")}
-    assert {"models/wall.py", "fem/wall.py", "fem/wall_model.py"} <= wall
-
+    assert {"models/wall.py", "fem/wall/curve.py", "fem/wall/model.py",
+            "fem/engine/newton.py"} <= closure("spsc.models.wall")
 
 def test_every_model_of_the_registry_is_a_curve_model_with_a_code_version():
     from spsc.models import CurveModel

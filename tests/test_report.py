@@ -251,7 +251,7 @@ def test_a_bench_test_gets_its_own_section(tmp_path):
     # a vented Type B dome made by the wall model at 1.4 x tpu60a: the section calibrates it
     # back and predicts the study's setups (no identification: an open test has no pressure)
     from spsc.cad.geometry import preset
-    from spsc.fem.calibrate import scaled
+    from spsc.fem.wall.calibrate import scaled
     from spsc.fem.wall import wall_curve
     from spsc.materials import material
     from spsc.report.bench import BenchSpec

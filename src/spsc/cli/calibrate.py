@@ -72,7 +72,7 @@ def run(args) -> int:
     from tqdm import tqdm
 
     from spsc.core.loadcase import check_load
-    from spsc.fem.calibrate import calibrate
+    from spsc.fem.wall.calibrate import calibrate
     from spsc.fem.wall import WallSettings, wall_curve
     from spsc.core.bench import REQUIRED, read_bench
     from spsc.materials import material

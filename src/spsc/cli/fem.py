@@ -124,7 +124,7 @@ def _sites(design: dict | None) -> dict:
 
 def part_run_from_args(args):
     """The PartRun of an invocation: every check before any work (one-line ParameterError)."""
-    from spsc.fem.part_run import ContactPatch, PartRun
+    from spsc.fem.part.run import ContactPatch, PartRun
     from spsc.materials import material
 
     for dest in _CHAMBER_ONLY:
@@ -193,8 +193,8 @@ def run_part_cli(args) -> int:
     from tqdm import tqdm
 
     from spsc.fem.part import load_part
-    from spsc.fem.part_run import check_part_run, part_curve, part_model, write_part_vtu
-    from spsc.fem.solver import Settings, solve
+    from spsc.fem.part.run import check_part_run, part_curve, part_model, write_part_vtu
+    from spsc.fem.engine import Settings, solve
 
     from spsc.models.resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 

@@ -3,7 +3,7 @@
 A bench file is a CSV with columns ``y_mm``, ``force_N``, ``pressure_kPa`` (gauge) and optionally
 ``elastic_force_N`` (F_el, measured open to atmosphere); ``#`` lines are comments.
 Identification (eqs. 39–40, :mod:`spsc.membrane.identify`) and calibration
-(:mod:`spsc.fem.calibrate`) read it.
+(:mod:`spsc.fem.wall.calibrate`) read it.
 """
 
 from __future__ import annotations

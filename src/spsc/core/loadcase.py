@@ -3,7 +3,7 @@ polytropic index — validated in one place, with the same limits for every mode
 
 ``spsc curve`` checks it for every ``--model`` before any work, and the models' own entry points
 (:func:`spsc.membrane.solver.solve`, :func:`spsc.membrane.simplified.simplified_curve`,
-:class:`spsc.fem.run.ChamberRun`) call the same function, so the CLI and the Python API refuse
+:class:`spsc.fem.solid.chamber.ChamberRun`) call the same function, so the CLI and the Python API refuse
 the same inputs with the same one-line :class:`~spsc.core.errors.ParameterError`.
 """
 

@@ -36,7 +36,7 @@ class SolverSettings:
     inflation_intervals : int  intervals of the inflation grid (>= 8)
     contact_intervals, free_intervals : int  intervals on [0, s_Γ] and [s_Γ, L] (>= 4, >= 8)
     rtol : float  max scaled residual for convergence (> 0); the same name as the FEM's
-        :class:`spsc.fem.solver.Settings`
+        :class:`spsc.fem.engine.Settings`
     max_iterations : int  Newton iterations per solve (>= 2)
     max_halvings : int  step halvings allowed between two requested plate positions (>= 0)
     wrinkling : bool  True: tension-field membrane (no compression: it wrinkles, and a slack

@@ -49,13 +49,13 @@ class FEMCurveModel:
     zero_stroke: bool = False
 
     def load_steps(self, load, options) -> int:
-        from spsc.fem.run import ChamberRun
+        from spsc.fem.solid.chamber import ChamberRun
 
         inflate = ChamberRun.inflate_increments if load.pressure_kPa > 0 else 0
         return load.points - 1 + inflate
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        from spsc.fem.mesh import check_mesh_size, wall_mesh_counts
+        from spsc.fem.solid.mesh import check_mesh_size, wall_mesh_counts
 
         from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 
@@ -67,8 +67,8 @@ class FEMCurveModel:
                    quiet=quiet, mesh_size=size, points=load.points)
 
     def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
-        from spsc.fem.run import ChamberRun, run_chamber, write_vtu
-        from spsc.fem.solver import Settings
+        from spsc.fem.solid.chamber import ChamberRun, run_chamber, write_vtu
+        from spsc.fem.engine import Settings
 
         spec = ChamberRun(geometry, material, pressure_kPa=load.pressure_kPa,
                           reservoir_mm3=load.reservoir_mm3, stroke_mm=load.stroke_mm,

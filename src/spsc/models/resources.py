@@ -1,7 +1,7 @@
 """What a solid-model run will cost, known before it starts, and the limits beyond which the CLI
 refuses it unless ``--force``.
 
-The estimates come from the mesh's cell counts (:func:`spsc.fem.mesh.wall_mesh_counts`, an
+The estimates come from the mesh's cell counts (:func:`spsc.fem.solid.mesh.wall_mesh_counts`, an
 upper bound within a few per cent of the built mesh) and one measurement: ``spsc fem --type B``
 (quarter, 1 mm, 2 layers, 28 275 unknowns) peaked at 0.67 GB resident on this 2-core machine,
 0.45 GB of it the interpreter and libraries; the sparse factor of a 3D mesh grows as

@@ -27,8 +27,8 @@ def wall_size_check(verb: str, geometry, mesh_size, layers, steps: int, *, force
     """The wall model's discretisation checked and its size estimated before any work
     (ParameterError beyond the limits unless ``force``; the estimate on stderr unless
     ``quiet``). ``mesh_size`` None: the model's default for the chamber."""
-    from spsc.fem.mesh import check_mesh_size
-    from spsc.fem.wall_model import WallSettings
+    from spsc.fem.solid.mesh import check_mesh_size
+    from spsc.fem.wall.model import WallSettings
 
     from .resources import WALL_MAX_UNKNOWNS, check_size, wall_counts
 

@@ -1,5 +1,5 @@
 """The report's section on the user's own bench test: the material calibrated on it through the
-wall model (:mod:`spsc.fem.calibrate`) beside the paper's identification (eqs. 39–40) on the
+wall model (:mod:`spsc.fem.wall.calibrate`) beside the paper's identification (eqs. 39–40) on the
 same test, both predicting the study's setup pressures in both modes.
 
 ``spsc report --bench FILE --bench-type D --bench-pressure 40`` adds it; without bench data the
@@ -49,7 +49,7 @@ class BenchSpec:
 def bench_section(spec: BenchSpec, study, fig_dir: Path) -> dict:
     """Calibrate, predict the study's pressures × modes with both methods over the bench's
     stroke, draw the figure; the section's data (rows of mean slopes, residuals, the factor)."""
-    from spsc.fem.calibrate import calibrate
+    from spsc.fem.wall.calibrate import calibrate
     from spsc.fem.wall import wall_curve
 
     from spsc.studies.calibration import identification, mean_slope, plot_calibration

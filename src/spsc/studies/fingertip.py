@@ -70,8 +70,8 @@ def _part(out: Path) -> tuple[Path, dict]:
 
 
 def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | None, log):
-    from spsc.fem.part_run import ContactPatch, PartRun, part_curve, part_model, write_part_vtu
-    from spsc.fem.solver import solve
+    from spsc.fem.part.run import ContactPatch, PartRun, part_curve, part_model, write_part_vtu
+    from spsc.fem.engine import solve
     from spsc.materials import material
 
     fem = design["fem"]
@@ -101,7 +101,7 @@ def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | 
 
 
 def _single_case(study, geometry, mode, pressure, path: Path) -> Curve:
-    from spsc.fem.run import ChamberRun, run_chamber
+    from spsc.fem.solid.chamber import ChamberRun, run_chamber
     from spsc.materials import material
 
     run = ChamberRun(geometry, material(study.material), pressure_kPa=pressure,
@@ -149,7 +149,7 @@ def run_study(study: FingertipStudy, out, *, stl=None, design=None, spec=None,
         path = out / "curves" / f"fem-{name}.json"
         t0 = time.perf_counter()
         fem, keyed = _kept(path, {**case, "part": part, "design": design},
-                           ("spsc.fem.part_run", "spsc.fem.solver"))
+                           ("spsc.fem.part.run", "spsc.fem.engine"))
         if fem is None:
             log(f"fingertip FEM {name}")
             vtu = out / "vtu" / name if (site, mode, p) in RENDERED else None
@@ -160,7 +160,7 @@ def run_study(study: FingertipStudy, out, *, stl=None, design=None, spec=None,
         if study.single:
             spath = out / "curves" / f"single-{name}.json"
             single, keyed = _kept(spath, {**case, "chamber": chambers[site].as_dict()},
-                                  ("spsc.fem.run",))
+                                  ("spsc.fem.solid.chamber",))
             if single is None:
                 single = _single_case(study, chambers[site], mode, p, spath)
                 keyed.mark()

@@ -112,7 +112,7 @@ def _fem_files(run: Run, out, directory: Path) -> dict:
 
 
 def write_vtu(model, result, directory):
-    from spsc.fem.run import write_vtu as write
+    from spsc.fem.solid.chamber import write_vtu as write
 
     return write(model, result, directory)
 

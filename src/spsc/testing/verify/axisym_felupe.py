@@ -14,7 +14,7 @@ tangent, this module adds the two things FElupe does not have in this form:
 * a frictionless rigid plate, exactly enforced on the outer-surface nodes by an active set (an
   active node's z is prescribed at the plate; it is released when its reaction pulls).
 
-The mesh is the wall section of the 3D model (:func:`spsc.fem.mesh.wall_section`), so both
+The mesh is the wall section of the 3D model (:func:`spsc.fem.solid.mesh.wall_section`), so both
 discretise the same wall; the cavity volume is this module's own (Gauss quadrature on the P2
 cavity profile), independent of the 3D model's.
 
@@ -33,7 +33,7 @@ import scipy.sparse.linalg as spla
 
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core import GasLaw
-from spsc.fem.mesh import wall_section
+from spsc.fem.solid.mesh import wall_section
 from spsc.materials import Material
 
 __all__ = ["AxisymmetricDome", "AxiRecord"]
