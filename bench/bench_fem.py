@@ -22,7 +22,7 @@ from spsc.cad.geometry import preset
 from spsc.fem.engine.linsolve import available_solvers, factorize
 from spsc.fem.solid.model import FEMModel, Load
 from spsc.fem.solid.mesh import spsc_wall
-from spsc.fem.solid.chamber import ChamberRun, run_chamber
+from spsc.fem.solid.chamber import chamber_run, run_chamber
 from spsc.materials import material
 
 
@@ -34,7 +34,7 @@ def _pair(text):
 def bench_run(args):
     out, previous = [], None
     for size, layers in args.sizes:
-        run = ChamberRun(preset(args.type), material(args.material), pressure_kPa=args.pressure,
+        run = chamber_run(preset(args.type), material(args.material), pressure_kPa=args.pressure,
                          reservoir_mm3=args.reservoir, stroke_mm=args.stroke, points=args.points,
                          mesh_size_mm=size, layers=layers)
         t0 = time.perf_counter()

@@ -19,16 +19,14 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
 from spsc.cad.geometry import preset
 from spsc.fem.solid.mesh import cached_mesh, spsc_wall
 from spsc.fem.solid.model import FEMModel
-from spsc.fem.solid.chamber import ChamberRun, run_chamber
+from spsc.fem.solid.chamber import chamber_run, run_chamber
 from spsc.fem.engine import Inflate, solve
 from spsc.materials import material
 from spsc.membrane.solver import inflate as membrane_inflate
@@ -55,11 +53,11 @@ def compare_type(name, *, mat, pressure, stroke, points, size, layers, at, cache
     g = preset(name)
     common = dict(stroke_mm=stroke, points=points, mesh_size_mm=size, layers=layers)
     t0 = time.perf_counter()
-    fem, res, model = run_chamber(ChamberRun(g, mat, pressure_kPa=pressure, **common),
+    fem, res, model = run_chamber(chamber_run(g, mat, pressure_kPa=pressure, **common),
                                   cache_dir=cache)
     t_fem = time.perf_counter() - t0
     t0 = time.perf_counter()
-    fel, res_el, _ = run_chamber(ChamberRun(g, mat, pressure_kPa=0.0, **common), cache_dir=cache)
+    fel, res_el, _ = run_chamber(chamber_run(g, mat, pressure_kPa=0.0, **common), cache_dir=cache)
     t_el = time.perf_counter() - t0
     t0 = time.perf_counter()
     mem = membrane_solve(g, mat, pressure_kPa=pressure, stroke_mm=stroke, points=points)
@@ -174,7 +172,7 @@ def quarter_vs_full(*, mat, type_name="B", stroke=4.0, points=9, size=2.0, layer
     g = preset(type_name)
     for label, full, lean in (("quarter", False, 0.0), ("full", True, 0.0),
                               ("full+imperfection", True, imperfection)):
-        run = ChamberRun(g, mat, pressure_kPa=0.0, stroke_mm=stroke, points=points,
+        run = chamber_run(g, mat, pressure_kPa=0.0, stroke_mm=stroke, points=points,
                          mesh_size_mm=size, layers=layers, full=full)
         t0 = time.perf_counter()
         if lean:
@@ -235,7 +233,7 @@ def axisymmetric(*, mat, type_name="B", pressure=40.0, stroke=4.0, size=1.0, lay
                      "force_N": [r.force for r in out],
                      "pressure_kPa": [r.pressure * 1e3 for r in out]})
     t0 = time.perf_counter()
-    curve, res, model = run_chamber(ChamberRun(g, mat, pressure_kPa=pressure, stroke_mm=float(n),
+    curve, res, model = run_chamber(chamber_run(g, mat, pressure_kPa=pressure, stroke_mm=float(n),
                                                points=n + 1, mesh_size_mm=size, layers=layers),
                                     cache_dir=cache)
     rows.append({"model": f"3D quarter {size:g} mm/{layers}", "dofs": model.disc.n,

@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 
 from spsc.cad.geometry import preset
-from spsc.fem.solid.chamber import ChamberRun, run_chamber
+from spsc.fem.solid.chamber import chamber_run, run_chamber
 from spsc.materials import material
 
 LOW = 40_000.0
@@ -59,7 +59,7 @@ def main(argv=None) -> int:
         if path.exists():
             continue
         g = preset(geo["type"], **{k: v for k, v in geo.items() if k != "type"})
-        run = ChamberRun(g, material("tpu60a"), pressure_kPa=p, reservoir_mm3=vr,
+        run = chamber_run(g, material("tpu60a"), pressure_kPa=p, reservoir_mm3=vr,
                          stroke_mm=stroke, points=points, mesh_size_mm=args.mesh_size,
                          layers=args.layers)
         t0 = time.perf_counter()

@@ -143,13 +143,13 @@ def test_3d_fem_agrees_with_the_axisymmetric_model(tmp_path):
     4 mm: the 3D quarter model at its converged mesh (1 mm, 2 layers) against the converged
     axisymmetric model (40 × 4 biquadratic quads): inflated volume change within 1 %, plate
     force and cavity pressure within 2 % at y = 1, 2, 3 (and 4) mm."""
-    from spsc.fem.solid.chamber import ChamberRun, run_chamber
+    from spsc.fem.solid.chamber import chamber_run, run_chamber
 
     g = preset("B", l=0.0)
     m = AxisymmetricDome(g, MAT, n_profile=40, layers=4)
     x, recs = m.inflate(0.04, 4)
     out = m.press(x, 0.04, 4.0, 4)
-    curve, result, _ = run_chamber(ChamberRun(g, MAT, pressure_kPa=40.0, stroke_mm=4.0,
+    curve, result, _ = run_chamber(chamber_run(g, MAT, pressure_kPa=40.0, stroke_mm=4.0,
                                               points=5, mesh_size_mm=1.0, layers=2),
                                    cache_dir=tmp_path)
     assert result.converged, result.message

@@ -8,7 +8,7 @@ from spsc.cad.geometry import preset
 from spsc.fem.solid.mesh import spsc_wall
 from spsc.fem.solid.tetwild import spsc_wall_tetwild
 from spsc.fem.solid.model import FEMModel
-from spsc.fem.solid.chamber import ChamberRun, run_chamber
+from spsc.fem.solid.chamber import chamber_run, run_chamber
 from spsc.fem.engine import Inflate, solve
 from spsc.materials import material
 
@@ -33,7 +33,7 @@ def test_halving_the_mesh_changes_the_force_by_less_than_2_percent(tmp_path):
     the test minutes long; bench/bench_fem.py runs the full 4 mm). Measured 0.9 % at 4 mm."""
     forces = []
     for size, layers in ((2.0, 1), (1.0, 2)):
-        run = ChamberRun(preset("B"), MAT, pressure_kPa=40.0, stroke_mm=2.0, points=5,
+        run = chamber_run(preset("B"), MAT, pressure_kPa=40.0, stroke_mm=2.0, points=5,
                          mesh_size_mm=size, layers=layers)
         curve, result, _ = run_chamber(run, cache_dir=tmp_path)
         assert result.converged, result.message
@@ -44,7 +44,7 @@ def test_halving_the_mesh_changes_the_force_by_less_than_2_percent(tmp_path):
 def test_open_chamber_softening_is_reported(tmp_path):
     """Type B open to the atmosphere: the dome inverts under the plate (the paper's central
     nearly-zero-slope phase); the run says so instead of passing it off silently."""
-    run = ChamberRun(preset("B"), MAT, pressure_kPa=0.0, stroke_mm=6.0, points=13,
+    run = chamber_run(preset("B"), MAT, pressure_kPa=0.0, stroke_mm=6.0, points=13,
                      mesh_size_mm=2.0, layers=1)
     curve, result, _ = run_chamber(run, cache_dir=tmp_path)
     assert result.instability, result.message

@@ -11,7 +11,7 @@ from spsc.core.constants import KPA_PER_MPA, P_AMB
 from spsc.core.gaslaw import GasLaw
 from spsc.fem.solid.mesh import spsc_wall
 from spsc.fem.solid.model import FEMModel, Load
-from spsc.fem.solid.chamber import ChamberRun, run_chamber, write_vtu
+from spsc.fem.solid.chamber import chamber_run, run_chamber, write_vtu
 from spsc.fem.engine import Inflate, Press, Settings, solve
 from spsc.core.curve import Curve
 from spsc.materials import material
@@ -23,7 +23,7 @@ MAT = material("tpu60a")
 def _run(tmp_path, **kw):
     args = dict(pressure_kPa=40.0, stroke_mm=2.0, points=5, mesh_size_mm=3.0, layers=1)
     args.update(kw)
-    return run_chamber(ChamberRun(G, MAT, **args), cache_dir=tmp_path)
+    return run_chamber(chamber_run(G, MAT, **args), cache_dir=tmp_path)
 
 
 @pytest.mark.parametrize("reservoir, n", [(0.0, 1.0), (40000.0, 1.4)])
@@ -33,7 +33,7 @@ def test_gas_law_held_along_the_stroke(tmp_path, reservoir, n):
     the curve's volume change is that measured volume lost, and the inverse law
     (``GasLaw.volume``) gives the measured volume back from the reported pressure. All hold to
     round-off and the Newton tolerance (observed < 1e-14 relative on the invariant)."""
-    curve, result, model = _run(tmp_path, reservoir_mm3=reservoir, polytropic_index=n)
+    curve, result, model = _run(tmp_path, reservoir_mm3=reservoir, polytropic_n=n)
     assert result.converged, result.message
     assert curve.all_converged
     np.testing.assert_allclose(curve.pressure_kPa[0], 40.0, rtol=1e-12)

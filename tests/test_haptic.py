@@ -113,7 +113,7 @@ def test_the_motor_stiffens_the_first_millimetre(tmp_path):
 
     from spsc.cad.export import write_stl
     from spsc.fem.solid.model import Load
-    from spsc.fem.part.run import PartRun, part_curve, part_model
+    from spsc.fem.part.run import part_run, part_curve, part_model
     from spsc.fem.engine import Settings, solve
     from spsc.materials import material
 
@@ -122,7 +122,7 @@ def test_the_motor_stiffens_the_first_millimetre(tmp_path):
     design = json.loads(json.dumps(h.design))
     curves = {}
     for motor in (False, True):
-        run = PartRun(str(stl), material("tpu60a"), "z<=0", plate_at=(0.0, 0.0, 14.0),
+        run = part_run(str(stl), material("tpu60a"), "z<=0", plate_at=(0.0, 0.0, 14.0),
                       pressure_kPa=40.0, stroke_mm=2.0, points=5, mesh_size_mm=2.0,
                       design=design, motor=motor)
         model, _, surface = part_model(run, cache_dir=tmp_path)

@@ -16,7 +16,7 @@ from spsc.core.errors import ParameterError
 from spsc.fem.solid.mesh import TetMesh
 from spsc.fem.solid.model import Load
 from spsc.fem.part.surface import part_mesh, part_surface
-from spsc.fem.part.run import ContactPatch, PartRun, part_curve, part_model, press_rotation
+from spsc.fem.part.run import ContactPatch, part_run, part_curve, part_model, press_rotation
 from spsc.fem.solid.pressure import CavitySurface
 from spsc.fem.part.selector import parse_selector
 from spsc.fem.engine import Settings, solve
@@ -128,7 +128,7 @@ def test_plate_force_balances_the_mount_reactions(dome_part, tmp_path):
     must equal the clamped nodes' reaction along the press: an identity of the discrete
     equilibrium (to the Newton tolerance), whatever the mesh."""
     s, mesh = dome_part
-    run = PartRun(str(tmp_path / "dome.stl"), MAT, "z<=0", mesh_size_mm=SIZE)
+    run = part_run(str(tmp_path / "dome.stl"), MAT, "z<=0", mesh_size_mm=SIZE)
     model, R, _ = part_model(run, surface=s, mesh=mesh)
     res = _run(model)
     assert res.converged, res.message
@@ -153,7 +153,7 @@ def test_a_motor_in_the_dome_is_met_by_the_wall_and_balances(dome_part, tmp_path
     s, mesh = dome_part
     curves = {}
     for motor in (False, True):
-        run = PartRun(str(tmp_path / "dome.stl"), MAT, "z<=-0.5", mesh_size_mm=SIZE,
+        run = part_run(str(tmp_path / "dome.stl"), MAT, "z<=-0.5", mesh_size_mm=SIZE,
                       pressure_kPa=10.0, stroke_mm=2.0, points=5, design=MOTOR, motor=motor)
         model, R, _ = part_model(run, surface=s, mesh=mesh)
         res = solve(model, run.steps(), settings=Settings())
@@ -178,9 +178,9 @@ def test_a_motor_in_the_dome_is_met_by_the_wall_and_balances(dome_part, tmp_path
 def test_a_motor_needs_its_design_and_an_axial_press(tmp_path):
     with pytest.raises(ParameterError, match="motor = True is invalid: allowed a part whose "
                        "design file names a motor"):
-        PartRun(str(tmp_path / "dome.stl"), MAT, "z<=0", motor=True)
+        part_run(str(tmp_path / "dome.stl"), MAT, "z<=0", motor=True)
     with pytest.raises(ParameterError, match="plate-normal = .* allowed 0,0,-1 with --motor"):
-        PartRun(str(tmp_path / "dome.stl"), MAT, "z<=0", plate_normal=(1.0, 0.0, 0.0),
+        part_run(str(tmp_path / "dome.stl"), MAT, "z<=0", plate_normal=(1.0, 0.0, 0.0),
                 design=MOTOR, motor=True)
 
 
@@ -190,8 +190,8 @@ def test_a_turned_part_pressed_along_its_turned_axis_gives_the_same_curve(dome_p
     q = np.array([[1.0, 0, 0], [0, 0, -1.0], [0, 1.0, 0]])  # +90° about x: z -> y, base -> y >= 0
     turned_s = part_surface(s.vertices @ q.T, s.faces)
     turned = TetMesh(mesh.nodes @ q.T, mesh.tets, mesh.facets, 1)
-    a = PartRun(str(tmp_path / "a.stl"), MAT, "z<=0", mesh_size_mm=SIZE)
-    b = PartRun(str(tmp_path / "b.stl"), MAT, "y>=0", plate_normal=(0, 1, 0),
+    a = part_run(str(tmp_path / "a.stl"), MAT, "z<=0", mesh_size_mm=SIZE)
+    b = part_run(str(tmp_path / "b.stl"), MAT, "y>=0", plate_normal=(0, 1, 0),
                 plate_at=(0, -7, 0), mesh_size_mm=SIZE)
     ra = _run(part_model(a, surface=s, mesh=mesh)[0])
     rb = _run(part_model(b, surface=turned_s, mesh=turned)[0])
@@ -218,7 +218,7 @@ def test_contact_patches_report_the_force_through_them(dome_part, tmp_path):
     s, mesh = dome_part
     top = ContactPatch("top", (0, 0, 7.0), (0, 0, 1.0), 5.0)
     flange = ContactPatch("flange", (8.0, 0, 0.0), (0, 0, 1.0), 0.8)
-    run = PartRun(str(tmp_path / "d.stl"), MAT, "z<=-1", mesh_size_mm=SIZE,
+    run = part_run(str(tmp_path / "d.stl"), MAT, "z<=-1", mesh_size_mm=SIZE,
                   contacts=(top, flange))
     model, _, _ = part_model(run, surface=s, mesh=mesh)
     res = _run(model)
@@ -227,7 +227,7 @@ def test_contact_patches_report_the_force_through_them(dome_part, tmp_path):
     assert 0.0 < last.group_forces["top"] < last.force
     assert last.group_forces["flange"] == 0.0
     insert = ContactPatch("top", (0, 0, 7.0), (0, 0, 1.0), 1.0, thickness=0.3)
-    run = PartRun(str(tmp_path / "d.stl"), MAT, "z<=0", mesh_size_mm=SIZE, contacts=(insert,))
+    run = part_run(str(tmp_path / "d.stl"), MAT, "z<=0", mesh_size_mm=SIZE, contacts=(insert,))
     model, _, _ = part_model(run, surface=s, mesh=mesh)
     res = _run(model)
     assert res.converged, res.message
@@ -236,14 +236,14 @@ def test_contact_patches_report_the_force_through_them(dome_part, tmp_path):
     assert_allclose(first.group_forces["top"], first.force, rtol=1e-12)
     assert first.force > 0
     # and it starts one insert thickness higher than on the bare dome
-    bare = _run(part_model(PartRun(str(tmp_path / "d.stl"), MAT, "z<=0", mesh_size_mm=SIZE),
+    bare = _run(part_model(part_run(str(tmp_path / "d.stl"), MAT, "z<=0", mesh_size_mm=SIZE),
                            surface=s, mesh=mesh)[0])
     assert_allclose(first.plate - bare.of("press")[0].plate, 0.3, atol=1e-9)
 
 
 def test_a_patch_off_the_part_is_refused(dome_part, tmp_path):
     s, mesh = dome_part
-    run = PartRun(str(tmp_path / "d.stl"), MAT, "z<=0", mesh_size_mm=SIZE,
+    run = part_run(str(tmp_path / "d.stl"), MAT, "z<=0", mesh_size_mm=SIZE,
                   contacts=(ContactPatch("nowhere", (0, 0, 30.0), (0, 0, 1.0), 1.0),))
     with pytest.raises(ParameterError, match="^contact = 'nowhere' is invalid"):
         part_model(run, surface=s, mesh=mesh)
@@ -337,13 +337,13 @@ def test_a_dome_part_agrees_with_the_structured_chamber_mesh(tmp_path):
     of itself (measured 0.1 %)."""
     from spsc.testing.part_shapes import dome_geometry
     from spsc.fem.part.run import run_part
-    from spsc.fem.solid.chamber import ChamberRun, run_chamber
+    from spsc.fem.solid.chamber import chamber_run, run_chamber
 
     v, f = dome(seg=96, arc=24)
     stl = write_stl(TriMesh(v, f), tmp_path / "dome.stl")
-    part, _, _, _ = run_part(PartRun(str(stl), MAT, "z<=0", pressure_kPa=20, stroke_mm=1.0,
+    part, _, _, _ = run_part(part_run(str(stl), MAT, "z<=0", pressure_kPa=20, stroke_mm=1.0,
                                      points=3, mesh_size_mm=1.0), cache_dir=tmp_path)
-    ref, _, _ = run_chamber(ChamberRun(dome_geometry(), MAT, pressure_kPa=20, stroke_mm=1.0,
+    ref, _, _ = run_chamber(chamber_run(dome_geometry(), MAT, pressure_kPa=20, stroke_mm=1.0,
                                        points=3, mesh_size_mm=0.75, layers=2), cache_dir=tmp_path)
     assert part.all_converged and ref.all_converged
     assert_allclose(part.force_N[1:], ref.force_N[1:], rtol=0.025)
@@ -366,7 +366,7 @@ def test_vtus_are_in_part_coordinates_and_render(dome_part, tmp_path):
     turned_s = part_surface(s.vertices @ q.T, s.faces)
     turned = TetMesh(mesh.nodes @ q.T, mesh.tets, mesh.facets, 1)
     patch = ContactPatch("apex", (0, -7.0, 0), (0, -1.0, 0), 1.0, thickness=0.2)
-    run = PartRun(str(tmp_path / "b.stl"), MAT, "y>=0", plate_normal=(0, 1, 0),
+    run = part_run(str(tmp_path / "b.stl"), MAT, "y>=0", plate_normal=(0, 1, 0),
                   mesh_size_mm=SIZE, contacts=(patch,))
     model, R, _ = part_model(run, surface=turned_s, mesh=turned)
     res = _run(model, stroke=0.4)

@@ -124,7 +124,7 @@ def _sites(design: dict | None) -> dict:
 
 def part_run_from_args(args):
     """The PartRun of an invocation: every check before any work (one-line ParameterError)."""
-    from spsc.fem.part.run import ContactPatch, PartRun
+    from spsc.fem.part.run import ContactPatch, part_run
     from spsc.materials import material
 
     for dest in _CHAMBER_ONLY:
@@ -170,11 +170,11 @@ def part_run_from_args(args):
     mesh_size = args.mesh_size if args.mesh_size is not None else 1.0
     stroke = args.stroke if args.stroke is not None else 4.0
     points = args.points if args.points is not None else 11
-    return PartRun(str(part), material(args.material), fix,
+    return part_run(str(part), material(args.material), fix,
                    plate_normal=normal if normal is not None else (0.0, 0.0, -1.0),
                    plate_at=at, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
                    stroke_mm=stroke, points=points, mesh_size_mm=mesh_size,
-                   polytropic_index=args.polytropic_n, design=design, contacts=contacts,
+                   polytropic_n=args.polytropic_n, design=design, contacts=contacts,
                    motor=bool(args.motor))
 
 

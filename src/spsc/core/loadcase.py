@@ -38,10 +38,17 @@ class LoadCase:
     points: int
     polytropic_n: float
 
+    def as_dict(self) -> dict:
+        """The fields by name (the keywords of :func:`check_load`)."""
+        return {"pressure_kPa": self.pressure_kPa, "reservoir_mm3": self.reservoir_mm3,
+                "stroke_mm": self.stroke_mm, "points": self.points,
+                "polytropic_n": self.polytropic_n}
+
 
 def check_load(geometry, *, pressure_kPa, reservoir_mm3, stroke_mm, points, polytropic_n,
                allow_zero_stroke: bool = False) -> LoadCase:
-    """Validate a load case on ``geometry`` (an SPSCGeometry); ParameterError naming the first
+    """Validate a load case on ``geometry`` (an SPSCGeometry, or None for a part, whose own
+    room for the plate is checked where its plate is placed); ParameterError naming the first
     parameter out of range.
 
     The stroke must stay below the chamber height h: the plate starts at the inflated apex,
@@ -53,10 +60,14 @@ def check_load(geometry, *, pressure_kPa, reservoir_mm3, stroke_mm, points, poly
     lo, hi = POLYTROPIC_RANGE
     n = require("polytropic_n", polytropic_n, ge=lo, le=hi,
                 unit="1 isothermal to 1.4 adiabatic, eq. 2")
-    stroke = require("stroke", stroke_mm, ge=0 if allow_zero_stroke else None,
-                     gt=None if allow_zero_stroke else 0, lt=geometry.h,
-                     unit=f"mm, below the chamber height h = {geometry.h:g} mm: the plate "
-                     "would reach the base plane")
+    if geometry is None:
+        stroke = require("stroke", stroke_mm, ge=0 if allow_zero_stroke else None,
+                         gt=None if allow_zero_stroke else 0, unit="mm")
+    else:
+        stroke = require("stroke", stroke_mm, ge=0 if allow_zero_stroke else None,
+                         gt=None if allow_zero_stroke else 0, lt=geometry.h,
+                         unit=f"mm, below the chamber height h = {geometry.h:g} mm: the plate "
+                         "would reach the base plane")
     npts = _integer("points", points, 1 if allow_zero_stroke and stroke == 0 else 2, POINTS_MAX)
     if stroke == 0:
         npts = 1

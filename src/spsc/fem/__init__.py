@@ -19,7 +19,7 @@ from spsc.core.gaslaw import GasLaw
 
 from .engine import CloseValve, Inflate, Load, Press, Result, Settings, solve
 from .material import NearlyIncompressible
-from .solid.chamber import ChamberRun, run_chamber, to_curve, write_vtu
+from .solid.chamber import ChamberRun, chamber_run, run_chamber, to_curve, write_vtu
 from .solid.mesh import TetMesh, block, cached_mesh, sphere_shell, spsc_wall
 from .solid.model import FEMModel
 from .solid.pressure import CavitySurface
@@ -28,6 +28,7 @@ from .solid.tetwild import spsc_wall_tetwild, tetwild_mesh
 __all__ = [
     "CavitySurface",
     "ChamberRun",
+    "chamber_run",
     "CloseValve",
     "FEMModel",
     "GasLaw",

@@ -70,11 +70,8 @@ class FEMCurveModel:
         from spsc.fem.solid.chamber import ChamberRun, run_chamber, write_vtu
         from spsc.fem.engine import Settings
 
-        spec = ChamberRun(geometry, material, pressure_kPa=load.pressure_kPa,
-                          reservoir_mm3=load.reservoir_mm3, stroke_mm=load.stroke_mm,
-                          points=load.points, mesh_size_mm=options.mesh_size,
-                          layers=options.layers, polytropic_index=load.polytropic_n,
-                          full=bool(options.full))
+        spec = ChamberRun(geometry, material, load, mesh_size_mm=options.mesh_size,
+                          layers=options.layers, full=bool(options.full))
         curve, result, model = run_chamber(spec, settings=Settings(solver=options.solver),
                                            progress=progress, cache_dir=cache_dir)
         extra = {}

@@ -70,7 +70,7 @@ def _part(out: Path) -> tuple[Path, dict]:
 
 
 def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | None, log):
-    from spsc.fem.part.run import ContactPatch, PartRun, part_curve, part_model, write_part_vtu
+    from spsc.fem.part.run import ContactPatch, part_run, part_curve, part_model, write_part_vtu
     from spsc.fem.engine import solve
     from spsc.materials import material
 
@@ -78,7 +78,7 @@ def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | 
     s = fem["sites"][site]
     contacts = tuple(ContactPatch(c["name"], tuple(c["center"]), tuple(c["normal"]),
                                   c["radius"], c["insert_mm"]) for c in fem["contacts"])
-    run = PartRun(str(stl), material(study.material), fem["mount"],
+    run = part_run(str(stl), material(study.material), fem["mount"],
                   plate_normal=tuple(s["normal"]), plate_at=tuple(s["at"]),
                   pressure_kPa=pressure,
                   reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
@@ -101,10 +101,10 @@ def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | 
 
 
 def _single_case(study, geometry, mode, pressure, path: Path) -> Curve:
-    from spsc.fem.solid.chamber import ChamberRun, run_chamber
+    from spsc.fem.solid.chamber import chamber_run, run_chamber
     from spsc.materials import material
 
-    run = ChamberRun(geometry, material(study.material), pressure_kPa=pressure,
+    run = chamber_run(geometry, material(study.material), pressure_kPa=pressure,
                      reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
                      stroke_mm=study.stroke_mm, points=study.points, mesh_size_mm=1.0, layers=2)
     curve, _, _ = run_chamber(run)

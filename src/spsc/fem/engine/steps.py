@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from spsc.core.gaslaw import GasLaw
 
-__all__ = ["Inflate", "CloseValve", "Press", "Load"]
+__all__ = ["Inflate", "CloseValve", "Press", "Load", "load_steps"]
 
 
 @dataclass(frozen=True)
@@ -34,7 +34,7 @@ class CloseValve:
     """Close the valve: the cavity plus ``reservoir`` (mm³) holds its gas, P·Vⁿ = const."""
 
     reservoir: float = 0.0
-    polytropic_index: float = 1.0
+    polytropic_n: float = 1.0
 
 
 @dataclass(frozen=True)
@@ -74,3 +74,15 @@ class Load:
     pressure: float = 0.0
     gas: GasLaw | None = None
     plate: float | None = None
+
+
+def load_steps(load, inflate_increments: int = 4) -> list:
+    """The steps of a load case (:class:`~spsc.core.loadcase.LoadCase`: kPa gauge, mm³, mm):
+    inflate to the setup pressure in ``inflate_increments``, close the valve onto the
+    reservoir, press the stroke in ``points − 1`` increments; the open chamber (p = 0) is
+    pressed alone."""
+    out = []
+    if load.pressure_kPa > 0:
+        out += [Inflate(load.pressure_kPa * 1e-3, inflate_increments),
+                CloseValve(load.reservoir_mm3, load.polytropic_n)]
+    return out + [Press(load.stroke_mm, int(load.points) - 1)]

@@ -63,7 +63,7 @@ class _Walk:
 
     def close_valve(self, step: CloseValve) -> None:
         gas = GasLaw(self.load.pressure, self.model.volume(self.x), step.reservoir,
-                     step.polytropic_index)
+                     step.polytropic_n)
         self.load = Load(gas=gas, plate=self.load.plate)
 
     def path(self, step):

@@ -21,106 +21,23 @@ from __future__ import annotations
 import hashlib
 import math
 import time
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from spsc.core.curve import Curve
 from spsc.core.errors import ParameterError, require
-from spsc.materials import Material
 
-from ..engine import CloseValve, Inflate, Press, Result, Settings, solve
+from ..engine import Result, Settings, solve
 from ..solid.insert import RigidInsert
 from ..solid.mesh import MESH_VERSION, TetMesh
 from ..solid.model import FEMModel
 from .selector import parse_selector
+from .spec import ContactPatch, PartRun, part_run
 from .surface import PartSurface, load_part, part_mesh
 
-__all__ = ["ContactPatch", "PartRun", "run_part", "part_model", "check_part_run",
+__all__ = ["ContactPatch", "PartRun", "part_run", "run_part", "part_model", "check_part_run",
            "press_rotation", "part_curve", "write_part_vtu"]
-
-
-@dataclass(frozen=True)
-class ContactPatch:
-    """A named disc of the outer surface (mm): centre, outward unit normal, radius; the plate
-    meets it through a rigid insert ``thickness`` thick (an FSR05 is 0.325 mm)."""
-
-    name: str
-    center: tuple
-    normal: tuple
-    radius: float
-    thickness: float = 0.0
-
-    def select(self, nodes, tol: float) -> np.ndarray:
-        """Mask of the points on the disc (within ``tol`` of its plane)."""
-        c, n = np.asarray(self.center, float), np.asarray(self.normal, float)
-        n = n / np.linalg.norm(n)
-        d = np.asarray(nodes) - c
-        h = d @ n
-        rho = np.linalg.norm(d - h[:, None] * n, axis=1)
-        return (np.abs(h) <= tol) & (rho <= self.radius + tol)
-
-
-@dataclass(frozen=True)
-class PartRun:
-    """Inputs of a part run (mm, kPa, mm³): the part file, its design dict (plugs the port,
-    names sites), the support selector, the plate's direction of travel and the point it first
-    touches (None: wherever it first touches), the load as for a chamber, the mesh size."""
-
-    part: str
-    material: Material
-    fix: str
-    plate_normal: tuple = (0.0, 0.0, -1.0)
-    plate_at: tuple | None = None
-    pressure_kPa: float = 40.0
-    reservoir_mm3: float = 0.0
-    stroke_mm: float = 4.0
-    points: int = 11
-    mesh_size_mm: float = 1.0
-    polytropic_index: float = 1.0
-    inflate_increments: int = 4
-    bulk_ratio: float = 2000.0
-    design: dict | None = field(default=None, compare=False)
-    contacts: tuple = ()
-    motor: bool = False
-
-    def __post_init__(self):
-        require("pressure", self.pressure_kPa, ge=0, le=500, unit="kPa gauge")
-        require("reservoir", self.reservoir_mm3, ge=0, unit="mm³")
-        require("stroke", self.stroke_mm, gt=0, unit="mm")
-        pts = float(self.points) if isinstance(self.points, (int, float)) else math.nan
-        if not (pts == int(pts) and 2 <= pts <= 1001):
-            raise ParameterError("points", self.points, "an integer from 2 to 1001")
-        require("polytropic_n", self.polytropic_index, ge=1, le=1.4)
-        require("mesh size", self.mesh_size_mm, gt=0, unit="mm")
-        n = np.asarray(self.plate_normal, float)
-        if n.shape != (3,) or not np.all(np.isfinite(n)) or np.linalg.norm(n) < 1e-12:
-            raise ParameterError("plate-normal", self.plate_normal,
-                                 "three numbers nx,ny,nz, not all zero (the plate's direction "
-                                 "of travel)")
-        object.__setattr__(self, "plate_normal", tuple(float(v) for v in n / np.linalg.norm(n)))
-        if self.plate_at is not None:
-            a = np.asarray(self.plate_at, float)
-            if a.shape != (3,) or not np.all(np.isfinite(a)):
-                raise ParameterError("plate-at", self.plate_at, "three numbers x,y,z (mm)")
-            object.__setattr__(self, "plate_at", tuple(float(v) for v in a))
-        parse_selector(self.fix)
-        if self.motor:
-            if not (self.design or {}).get("motor"):
-                raise ParameterError("motor", True, "a part whose design file names a motor "
-                                     "(spsc bladder --haptic writes one)")
-            if not np.allclose(self.plate_normal, (0.0, 0.0, -1.0), atol=1e-9):
-                raise ParameterError("plate-normal", self.plate_normal,
-                                     "0,0,-1 with --motor (the motor translates along its own "
-                                     "axis, z: a press along it)")
-
-    def steps(self) -> list:
-        out = []
-        if self.pressure_kPa > 0:
-            out += [Inflate(self.pressure_kPa * 1e-3, self.inflate_increments),
-                    CloseValve(self.reservoir_mm3, self.polytropic_index)]
-        return out + [Press(self.stroke_mm, int(self.points) - 1)]
 
 
 def press_rotation(normal) -> np.ndarray:
@@ -346,7 +263,7 @@ def part_curve(run: PartRun, model: FEMModel, result: Result, surface: PartSurfa
                          "seat_nodes": int(ins.seat.size), "top_nodes": int(ins.top.size),
                          "z_bottom_mm": ins.z_bottom, "height_mm": ins.height}
     setup = {"p_i_kPa": run.pressure_kPa, "reservoir_mm3": run.reservoir_mm3,
-             "polytropic_n": run.polytropic_index, "mesh_size_mm": run.mesh_size_mm,
+             "polytropic_n": run.polytropic_n, "mesh_size_mm": run.mesh_size_mm,
              "dofs": model.disc.n, "model_part": "full", "part": part}
     if result.instability:
         setup["instability"] = result.instability

@@ -14,51 +14,63 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.core.loadcase import check_load
+from spsc.core.errors import ParameterError
+from spsc.core.loadcase import LoadCase, check_load
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.curve import Curve, SolveInfo
 from spsc.materials import Material
 
-from ..engine import CloseValve, Inflate, Press, Result, Settings, solve
+from ..engine import Result, Settings, load_steps, solve
 from .element import TET_EDGES
 from .mesh import cached_mesh, check_mesh_size, spsc_wall
 from .model import FEMModel
 
-__all__ = ["ChamberRun", "run_chamber", "to_curve", "curve_points", "solve_info", "write_vtu"]
+__all__ = ["ChamberRun", "chamber_run", "run_chamber", "to_curve", "curve_points", "solve_info", "write_vtu"]
 
 
 @dataclass(frozen=True)
 class ChamberRun:
-    """Inputs of a chamber run (mm, kPa, mm³). ``points``: plate positions of the curve,
-    y = 0 (first contact) to the stroke, as in ``spsc membrane``; points − 1 increments.
-    ``mesh_size_mm``: element edge along the wall surfaces (``spsc fem --mesh-size``; not the
-    preset footprint, which is ``--footprint`` and part of the geometry)."""
+    """Inputs of a chamber run: the chamber, the material, the load case every model shares
+    (:class:`~spsc.core.loadcase.LoadCase`: kPa gauge, mm³, mm; ``points`` plate positions from
+    first contact, points − 1 increments) and the mesh. ``mesh_size_mm``: element edge along
+    the wall surfaces (``spsc fem --mesh-size``; not the preset footprint, which is
+    ``--footprint`` and part of the geometry). :func:`chamber_run` builds one from keywords."""
 
     geometry: SPSCGeometry
     material: Material
-    pressure_kPa: float = 40.0
-    reservoir_mm3: float = 0.0
-    stroke_mm: float = 4.0
-    points: int = 11
+    load: LoadCase
     mesh_size_mm: float = 1.0
     layers: int = 2
-    polytropic_index: float = 1.0
     inflate_increments: int = 4
     full: bool = False
     bulk_ratio: float = 2000.0
 
     def __post_init__(self):
-        check_load(self.geometry, pressure_kPa=self.pressure_kPa,
-                   reservoir_mm3=self.reservoir_mm3, stroke_mm=self.stroke_mm,
-                   points=self.points, polytropic_n=self.polytropic_index)
+        if not isinstance(self.load, LoadCase):
+            raise ParameterError("load", type(self.load).__name__,
+                                 "a LoadCase (spsc.core.loadcase.check_load)")
+        check_load(self.geometry, **self.load.as_dict())  # the same limits, on this chamber
         check_mesh_size(self.geometry, self.mesh_size_mm, self.layers)
 
+    pressure_kPa = property(lambda self: self.load.pressure_kPa, doc="setup pressure, kPa")
+    reservoir_mm3 = property(lambda self: self.load.reservoir_mm3, doc="reservoir, mm³")
+    stroke_mm = property(lambda self: self.load.stroke_mm, doc="plate travel, mm")
+    points = property(lambda self: self.load.points, doc="plate positions")
+    polytropic_n = property(lambda self: self.load.polytropic_n, doc="polytropic index")
+
     def steps(self) -> list:
-        out = []
-        if self.pressure_kPa > 0:
-            out += [Inflate(self.pressure_kPa * 1e-3, self.inflate_increments),
-                    CloseValve(self.reservoir_mm3, self.polytropic_index)]
-        return out + [Press(self.stroke_mm, int(self.points) - 1)]
+        return load_steps(self.load, self.inflate_increments)
+
+
+def chamber_run(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
+                reservoir_mm3: float = 0.0, stroke_mm: float = 4.0, points: int = 11,
+                polytropic_n: float = 1.0, **mesh) -> ChamberRun:
+    """A :class:`ChamberRun` from the load case's keywords (checked by
+    :func:`~spsc.core.loadcase.check_load`) and the mesh's (``mesh_size_mm``, ``layers``,
+    ``full``, ...)."""
+    load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
+                      stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
+    return ChamberRun(geometry, material, load, **mesh)
 
 
 def build_model(run: ChamberRun, *, cache_dir=None) -> FEMModel:
@@ -136,7 +148,7 @@ def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
     pts = curve_points(run, result)
     part = "full" if run.full else "quarter"
     setup = {"p_i_kPa": run.pressure_kPa, "reservoir_mm3": run.reservoir_mm3,
-             "polytropic_n": run.polytropic_index, "mesh_size_mm": run.mesh_size_mm,
+             "polytropic_n": run.polytropic_n, "mesh_size_mm": run.mesh_size_mm,
              "layers": run.layers, "dofs": model.disc.n, "model_part": part}
     if result.instability:
         setup["instability"] = result.instability
