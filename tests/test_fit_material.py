@@ -256,3 +256,28 @@ def test_strongly_negative_C01_is_flagged_in_every_test():
 def test_neo_hookean_is_stable_everywhere(mu):
     d = drucker(law("neo-hookean"), [mu / 2])
     assert d.stable and d.stable_range == {t: (0.1, 10.0) for t in TESTS}
+
+
+@pytest.mark.parametrize("name", ["tpu60a", "elastic50a"])
+def test_a_fitted_law_is_the_law_the_models_solve_with(name):
+    """One law object: the catalogue's Material answers the fit's questions (test stresses,
+    Drucker's matrix) with the same numbers the fitting family computes for its constants,
+    and the family's constants give back that Material."""
+    from spsc.materials import material
+
+    mat = material(name)
+    family = law(mat.law)
+    params = [c for _, _, c in mat.coefficients]
+    lam = np.linspace(1.0, 3.0, 41)
+    for test in TESTS:
+        assert np.array_equal(mat.nominal_stress(test, lam), family.stress(test, lam, params))
+        l1, l2, l3 = stretches(test, lam)
+        assert all(np.array_equal(a, b) for a, b in zip(mat.log_hessian(l1, l2, l3),
+                                                         family.log_hessian(l1, l2, l3, params)))
+    back = family.material(params, name=mat.name, source=mat.source, provenance=mat.provenance)
+    assert back == mat
+    # small-strain uniaxial slope: Young's modulus 3 μ0 (incompressible), within the 0.1 %
+    # strain step's curvature
+    eps = 1e-3
+    E = mat.nominal_stress("uniaxial", np.array([1.0 + eps]))[0] / eps
+    np.testing.assert_allclose(E, 3 * mat.shear_modulus, rtol=2e-3)

@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.core.errors import ParameterError
-from .fit_laws import TESTS
+from .kinematics import TESTS
 
 __all__ = ["TestData", "read_tests", "test_name", "STRESS_UNITS", "STRAIN_UNITS"]
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from .fit_laws import TESTS, stretches
+from .kinematics import TESTS, stretches
 
 __all__ = ["CHECK_RANGE", "DruckerResult", "drucker", "min_eigenvalue"]
 

@@ -22,42 +22,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from .file import LAW_CONSTANTS
-from .law import polynomial_d2W, polynomial_dW, polynomial_energy
+from .kinematics import TESTS, WORK_DIRECTIONS, stretches
+from .law import Material, log_hessian, nominal_stress, stretch_energy
 
-__all__ = ["TESTS", "LAW_NAMES", "stretches", "PolynomialLaw", "OgdenLaw", "law"]
+__all__ = ["TESTS", "WORK_DIRECTIONS", "LAW_NAMES", "stretches", "PolynomialLaw", "OgdenLaw",
+           "law"]
 
-TESTS = ("uniaxial", "equibiaxial", "planar")
 LAW_NAMES = ("neo-hookean", "mooney-rivlin", "yeoh", "ogden")
-#: How many loaded directions do work in each test: dW/dλ = WORK_DIRECTIONS · P.
-WORK_DIRECTIONS = {"uniaxial": 1, "equibiaxial": 2, "planar": 1}
-
-
-def stretches(test: str, lam):
-    """Principal stretches (λ1, λ2, λ3) of ``test`` at stretch ``lam`` (incompressible)."""
-    lam = np.asarray(lam, float)
-    if test == "uniaxial":
-        return lam, lam**-0.5, lam**-0.5
-    if test == "equibiaxial":
-        return lam, lam, lam**-2.0
-    if test == "planar":
-        return lam, np.ones_like(lam), 1.0 / lam
-    raise ValueError(f"unknown test {test!r}")
-
-
-def invariants(l1, l2, l3):
-    """I1 = Σ λi², I2 = Σ λi^-2 (= Σ λi²λj² when λ1λ2λ3 = 1)."""
-    return l1**2 + l2**2 + l3**2, l1**-2.0 + l2**-2.0 + l3**-2.0
-
-
-def _log_strain_derivatives(l1, l2, l3):
-    """Gradient and Hessian of I1 and I2 in the log strains (e1, e2), e3 = −e1 − e2:
-    ((g1, H1), (g2, H2)) with g = (∂/∂e1, ∂/∂e2) and H = (∂11, ∂12, ∂22)."""
-    a, b, c = l1**2, l2**2, l3**2
-    g1 = (2 * (a - c), 2 * (b - c))
-    H1 = (4 * (a + c), 4 * c, 4 * (b + c))
-    g2 = (2 * (1 / c - 1 / a), 2 * (1 / c - 1 / b))
-    H2 = (4 * (1 / a + 1 / c), 4 / c, 4 * (1 / b + 1 / c))
-    return (g1, H1), (g2, H2)
 
 
 @dataclass(frozen=True)
@@ -90,10 +61,9 @@ class PolynomialLaw:
         return tuple((i, j, float(c)) for (i, j), c in zip(self.exponents, params))
 
     def stress(self, test: str, lam, params) -> np.ndarray:
-        """Nominal stress P (MPa) of ``test`` at stretch ``lam``."""
-        l1, l2, l3 = stretches(test, lam)
-        W1, W2 = polynomial_dW(self.coefficients(params), *invariants(l1, l2, l3))
-        return 2.0 * (l1 - l3**2 / l1) * (W1 + l2**2 * W2)
+        """Nominal stress P (MPa) of ``test`` at stretch ``lam``: the solving law's own
+        (:meth:`Material.nominal_stress`), for the constants ``params``."""
+        return nominal_stress(self.coefficients(params), test, lam)
 
     def jacobian(self, test: str, lam, params) -> np.ndarray:
         """∂P/∂C (n, p): the stress is linear in the constants, each column the stress of a
@@ -103,21 +73,17 @@ class PolynomialLaw:
 
     def energy(self, l1, l2, l3, params):
         """W (MPa) at the principal stretches (incompressible)."""
-        return polynomial_energy(self.coefficients(params), *invariants(l1, l2, l3))
+        return stretch_energy(self.coefficients(params), l1, l2, l3)
 
     def log_hessian(self, l1, l2, l3, params):
-        """(H11, H12, H22): the Hessian of W in the log strains (e1, e2), the tangent
-        dσ_a/dε_b of the stress differences σa − σ3 (Drucker's matrix), MPa."""
-        c = self.coefficients(params)
-        I1, I2 = invariants(l1, l2, l3)
-        W1, W2 = polynomial_dW(c, I1, I2)
-        W11, W12, W22 = polynomial_d2W(c, I1, I2)
-        (g1, H1), (g2, H2) = _log_strain_derivatives(l1, l2, l3)
-        out = []
-        for (a, b), k in (((0, 0), 0), ((0, 1), 1), ((1, 1), 2)):
-            out.append(W1 * H1[k] + W2 * H2[k] + W11 * g1[a] * g1[b]
-                       + W12 * (g1[a] * g2[b] + g2[a] * g1[b]) + W22 * g2[a] * g2[b])
-        return tuple(out)
+        """(H11, H12, H22): Drucker's matrix, MPa (:meth:`Material.log_hessian`)."""
+        return log_hessian(self.coefficients(params), l1, l2, l3)
+
+    def material(self, params, *, name: str, source: str = "",
+                 provenance: str = "user-fit") -> Material:
+        """The solving law of the constants ``params``: the :class:`Material` every model
+        takes (checked: μ0 > 0)."""
+        return Material(name, self.name, self.coefficients(params), source, provenance)
 
     def shear_modulus(self, params) -> float:
         """μ0 = 2 (C10 + C01), MPa."""

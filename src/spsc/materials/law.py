@@ -1,4 +1,7 @@
-"""Hyperelastic laws, written once as W(I1, I2), used by the membrane solver and the FEM.
+"""Hyperelastic laws, written once as W(I1, I2), used by the membrane solver, the wall model
+and the FEM — and, through :meth:`Material.nominal_stress` and :meth:`Material.log_hessian`, by
+the fitting of laws to tension tests and their Drucker check (:mod:`.fit_laws` evaluates a
+trial law with these same functions), so a fitted law is the law the models solve with.
 
 A law is a polynomial in the invariants, W = Σ C_ij (I1 − 3)^i (I2 − 3)^j (MPa), which covers
 neo-Hookean (C10), Mooney–Rivlin (C10, C01) and Yeoh 3rd order (C10, C20, C30). For the
@@ -17,9 +20,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from spsc.core.errors import ParameterError
+from .kinematics import invariants, log_strain_derivatives, stretches
 
 __all__ = ["Material", "PROVENANCES", "neo_hookean", "mooney_rivlin", "yeoh",
-           "polynomial_energy", "polynomial_dW", "polynomial_d2W"]
+           "polynomial_energy", "polynomial_dW", "polynomial_d2W", "nominal_stress",
+           "stretch_energy", "log_hessian"]
 
 #: Where a material's constants come from, from most to least trusted for a printed part:
 #: ``user-fit`` (fitted to the user's own tests), ``literature`` (a published fit of the
@@ -55,6 +60,33 @@ def polynomial_d2W(coefficients, I1, I2):
               if i > 0 and j > 0)
     W22 = sum(c * j * (j - 1) * a**i * b ** (j - 2) for i, j, c in coefficients if j > 1)
     return W11 + z, W12 + z, W22 + z
+
+
+def nominal_stress(coefficients, test: str, lam):
+    """Nominal stress P (MPa) along 1 of the homogeneous ``test`` at stretch ``lam``
+    (:mod:`.kinematics`): P = (σ1 − σ3)/λ1 = 2 (λ1 − λ3²/λ1)(W1 + λ2² W2)."""
+    l1, l2, l3 = stretches(test, lam)
+    W1, W2 = polynomial_dW(coefficients, *invariants(l1, l2, l3))
+    return 2.0 * (l1 - l3**2 / l1) * (W1 + l2**2 * W2)
+
+
+def stretch_energy(coefficients, l1, l2, l3):
+    """W (MPa) at the principal stretches of an incompressible state."""
+    return polynomial_energy(coefficients, *invariants(l1, l2, l3))
+
+
+def log_hessian(coefficients, l1, l2, l3):
+    """(H11, H12, H22): the Hessian of W in the log strains (e1, e2), the tangent dσ_a/dε_b of
+    the stress differences σa − σ3 (Drucker's matrix), MPa."""
+    I1, I2 = invariants(l1, l2, l3)
+    W1, W2 = polynomial_dW(coefficients, I1, I2)
+    W11, W12, W22 = polynomial_d2W(coefficients, I1, I2)
+    (g1, H1), (g2, H2) = log_strain_derivatives(l1, l2, l3)
+    out = []
+    for (a, b), k in (((0, 0), 0), ((0, 1), 1), ((1, 1), 2)):
+        out.append(W1 * H1[k] + W2 * H2[k] + W11 * g1[a] * g1[b]
+                   + W12 * (g1[a] * g2[b] + g2[a] * g1[b]) + W22 * g2[a] * g2[b])
+    return tuple(out)
 
 
 @dataclass(frozen=True)
@@ -114,6 +146,15 @@ class Material:
     def d2W(self, I1, I2):
         """(∂²W/∂I1², ∂²W/∂I1∂I2, ∂²W/∂I2²) in MPa, for consistent tangents."""
         return polynomial_d2W(self.coefficients, I1, I2)
+
+    # the same law in the tests it is fitted to (spsc fit-material, Drucker's check)
+    def nominal_stress(self, test: str, lam):
+        """Nominal stress P (MPa) of the homogeneous ``test`` at stretch ``lam``."""
+        return nominal_stress(self.coefficients, test, lam)
+
+    def log_hessian(self, l1, l2, l3):
+        """Drucker's matrix (H11, H12, H22) at the principal stretches, MPa."""
+        return log_hessian(self.coefficients, l1, l2, l3)
 
 
 def neo_hookean(mu: float, *, name: str = "neo-hookean", source: str = "",
