@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from .errors import ParameterError, require
 
-__all__ = ["LoadCase", "check_load", "PRESSURE_MAX_KPA", "POLYTROPIC_RANGE", "POINTS_MAX"]
+__all__ = ["LoadCase", "WithLoadCase", "check_load", "PRESSURE_MAX_KPA", "POLYTROPIC_RANGE", "POINTS_MAX"]
 
 #: Highest setup pressure (kPa gauge): the catalogue's hyperelastic fits cover strains an
 #: order of magnitude below what 1 MPa does to a 1 mm wall (Type D at 500 kPa already fails to
@@ -43,6 +43,16 @@ class LoadCase:
         return {"pressure_kPa": self.pressure_kPa, "reservoir_mm3": self.reservoir_mm3,
                 "stroke_mm": self.stroke_mm, "points": self.points,
                 "polytropic_n": self.polytropic_n}
+
+
+class WithLoadCase:
+    """For a run that holds its :class:`LoadCase` as ``load``: its quantities read through it."""
+
+    pressure_kPa = property(lambda self: self.load.pressure_kPa, doc="setup pressure, kPa")
+    reservoir_mm3 = property(lambda self: self.load.reservoir_mm3, doc="reservoir, mm³")
+    stroke_mm = property(lambda self: self.load.stroke_mm, doc="plate travel, mm")
+    points = property(lambda self: self.load.points, doc="plate positions")
+    polytropic_n = property(lambda self: self.load.polytropic_n, doc="polytropic index")
 
 
 def check_load(geometry, *, pressure_kPa, reservoir_mm3, stroke_mm, points, polytropic_n,

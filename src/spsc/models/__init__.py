@@ -8,13 +8,13 @@ Adding a model is one module (its class and its options dataclass) and one line 
 """
 
 from spsc.core.errors import ParameterError
-from .base import CurveModel, Outcome, cli_options, option, options_from
+from .base import CurveModel, ModelBase, Outcome, cli_options, option, options_from
 from .fem import FEMCurveModel
 from .membrane import MembraneModel
 from .simplified import SimplifiedModel
 from .wall import WallCurveModel
 
-__all__ = ["MODELS", "CurveModel", "Outcome", "cli_options", "get", "option", "options_from"]
+__all__ = ["MODELS", "CurveModel", "ModelBase", "Outcome", "cli_options", "get", "option", "options_from"]
 
 #: Every model, in the order the report shows them.
 MODELS: dict[str, CurveModel] = {m.name: m for m in (

@@ -17,7 +17,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields
 from typing import Any, Callable, ClassVar, Protocol, runtime_checkable
 
-__all__ = ["CurveModel", "Outcome", "Progress", "option", "cli_options", "options_from"]
+__all__ = ["CurveModel", "ModelBase", "Outcome", "Progress", "option", "cli_options",
+           "options_from"]
 
 #: ``progress(done, total)``: load steps done of the total so far (the total may grow).
 Progress = Callable[[int, int], None]
@@ -85,6 +86,28 @@ class CurveModel(Protocol):
         """Solve: the chamber inflated to the setup pressure, the valve state of the load case
         (reservoir 0: high stiffness), the plate pressed over the stroke. ``cache_dir``: where
         a meshed model may keep its meshes."""
+
+
+@dataclass(frozen=True)
+class ModelBase:
+    """What most models share, for a model to override: no bending, no mesh, fast, run at every
+    setup pressure by the report, no stroke-0 inflation, no progress to report and no limits of
+    its own beyond the load case's."""
+
+    bending: bool = False
+    meshed: bool = False
+    fast: bool = True
+    sweep: bool = True
+    zero_stroke: bool = False
+    color: str = "C4"
+    style: str = "-"
+    seconds_per_point: float = 0.1
+
+    def load_steps(self, load, options) -> int:
+        return 0
+
+    def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
+        return None
 
 
 def option(default, flag: str, help: str, *, kind: str = "value", group: str = "model",

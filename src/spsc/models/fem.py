@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .base import Outcome, option
+from .base import ModelBase, Outcome, option
 from .meshed import force_option, layers_option, mesh_size_option
 
 __all__ = ["FEMCurveModel", "FEMOptions"]
@@ -30,7 +30,7 @@ class FEMOptions:
 
 
 @dataclass(frozen=True)
-class FEMCurveModel:
+class FEMCurveModel(ModelBase):
     """The reference: the printed wall in 3D, quarter model by default (minutes per curve)."""
 
     name: str = "fem"
@@ -46,7 +46,6 @@ class FEMCurveModel:
     color: str = "C3"
     style: str = "o"
     seconds_per_point: float = 12.0
-    zero_stroke: bool = False
 
     def load_steps(self, load, options) -> int:
         from spsc.fem.solid.chamber import ChamberRun

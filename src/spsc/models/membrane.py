@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .base import Outcome, option
+from .base import ModelBase, Outcome, option
 
 __all__ = ["MembraneModel", "MembraneOptions", "check_membrane_load"]
 
@@ -37,7 +37,7 @@ def _meridians(result) -> list:
 
 
 @dataclass(frozen=True)
-class MembraneModel:
+class MembraneModel(ModelBase):
     """Inflation and plate contact of the membrane on the cavity surface, with the trapped
     gas; no bending (its force is p·A)."""
 
@@ -47,17 +47,10 @@ class MembraneModel:
     Options = MembraneOptions
     stroke_mm: float = 6.0
     points: int = 41
-    bending: bool = False
-    meshed: bool = False
-    fast: bool = True
-    sweep: bool = True
     color: str = "C0"
     style: str = "-"
     seconds_per_point: float = 0.025
     zero_stroke: bool = True
-
-    def load_steps(self, load, options) -> int:
-        return 0
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
         check_membrane_load(load)

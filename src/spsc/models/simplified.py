@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .base import Outcome
+from .base import ModelBase, Outcome
 from .membrane import check_membrane_load
 
 __all__ = ["SimplifiedModel", "SimplifiedOptions"]
@@ -17,7 +17,7 @@ class SimplifiedOptions:
 
 
 @dataclass(frozen=True)
-class SimplifiedModel:
+class SimplifiedModel(ModelBase):
     """The nominal cavity cut by the plate: contact area and volume change from the geometry
     alone, the pressure from the gas law (eqs. 1–9)."""
 
@@ -27,17 +27,9 @@ class SimplifiedModel:
     Options = SimplifiedOptions
     stroke_mm: float = 6.0
     points: int = 41
-    bending: bool = False
-    meshed: bool = False
-    fast: bool = True
-    sweep: bool = True
     color: str = "C2"
     style: str = "--"
     seconds_per_point: float = 0.004
-    zero_stroke: bool = False
-
-    def load_steps(self, load, options) -> int:
-        return 0
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
         check_membrane_load(load)

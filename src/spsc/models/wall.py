@@ -6,7 +6,7 @@ from __future__ import annotations
 import itertools
 from dataclasses import dataclass
 
-from .base import Outcome
+from .base import ModelBase, Outcome
 from .meshed import force_option, layers_option, mesh_size_option
 
 __all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
@@ -41,7 +41,7 @@ def wall_size_check(verb: str, geometry, mesh_size, layers, steps: int, *, force
 
 
 @dataclass(frozen=True)
-class WallCurveModel:
+class WallCurveModel(ModelBase):
     """Pressure and bending in one solve: the wall's own structural force F_el(y) of the vented
     chamber as well as the pressurised one (seconds per curve)."""
 
@@ -54,12 +54,9 @@ class WallCurveModel:
     points: int = 25
     bending: bool = True
     meshed: bool = True
-    fast: bool = True
-    sweep: bool = True
     color: str = "C1"
     style: str = "-."
     seconds_per_point: float = 0.9
-    zero_stroke: bool = False
 
     def load_steps(self, load, options) -> int:
         from spsc.fem.wall import WallSettings

@@ -21,7 +21,7 @@ from spsc.core.errors import ParameterError, require
 from spsc.cad.geometry import TYPES, SPSCGeometry, preset
 from spsc.models import MODELS
 
-__all__ = ["Run", "Study", "code_version", "model", "source_closure",
+__all__ = ["Run", "Study", "code_version", "model", "source_closure", "imported_names",
            "quick_study", "full_study"]
 
 
@@ -112,10 +112,28 @@ def _module_file(name: str) -> Path | None:
     return Path(spec.origin) if spec and spec.origin and spec.origin.endswith(".py") else None
 
 
+def imported_names(name: str, path: Path) -> set[str]:
+    """The dotted names module ``name`` (source at ``path``) imports, anywhere in it (relative
+    and absolute imports, also inside functions; ``from pkg import mod`` as ``pkg.mod``)."""
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.rsplit(".", node.level - 1)[0] if node.level > 1 else package
+                target = f"{base}.{node.module}" if node.module else base
+            else:
+                target = node.module or ""
+            found |= {target} | {f"{target}.{a.name}" for a in node.names}
+        elif isinstance(node, ast.Import):
+            found |= {a.name for a in node.names}
+    return found
+
+
 @functools.lru_cache(maxsize=None)
 def source_closure(module: str) -> tuple[Path, ...]:
     """The source files of ``module`` and of every ``spsc`` module it imports, followed
-    statically (relative and absolute imports, also inside functions), sorted."""
+    statically (:func:`imported_names`), sorted."""
     seen: dict[str, Path] = {}
     todo = [module]
     while todo:
@@ -126,20 +144,7 @@ def source_closure(module: str) -> tuple[Path, ...]:
         if path is None:
             continue
         seen[name] = path
-        package = name if path.name == "__init__.py" else name.rpartition(".")[0]
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
-            if isinstance(node, ast.ImportFrom):
-                if node.level:
-                    base = package.rsplit(".", node.level - 1)[0] if node.level > 1 else package
-                    target = f"{base}.{node.module}" if node.module else base
-                else:
-                    target = node.module or ""
-                if target.startswith("spsc."):
-                    todo.append(target)
-                    # `from pkg import mod` imports a submodule by name
-                    todo += [f"{target}.{a.name}" for a in node.names]
-            elif isinstance(node, ast.Import):
-                todo += [a.name for a in node.names if a.name.startswith("spsc.")]
+        todo += [t for t in imported_names(name, path) if t.startswith("spsc.")]
     return tuple(sorted(set(seen.values())))
 
 

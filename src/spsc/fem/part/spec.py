@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from spsc.core.errors import ParameterError, require
-from spsc.core.loadcase import LoadCase, check_load
+from spsc.core.loadcase import LoadCase, WithLoadCase, check_load
 from spsc.materials import Material
 
 from ..engine import load_steps
@@ -40,7 +40,7 @@ class ContactPatch:
 
 
 @dataclass(frozen=True)
-class PartRun:
+class PartRun(WithLoadCase):
     """Inputs of a part run (mm, kPa, mm³): the part file, its design dict (plugs the port,
     names sites), the support selector, the plate's direction of travel and the point it first
     touches (None: wherever it first touches), the load case as for a chamber
@@ -87,12 +87,6 @@ class PartRun:
                 raise ParameterError("plate-normal", self.plate_normal,
                                      "0,0,-1 with --motor (the motor translates along its own "
                                      "axis, z: a press along it)")
-
-    pressure_kPa = property(lambda self: self.load.pressure_kPa, doc="setup pressure, kPa")
-    reservoir_mm3 = property(lambda self: self.load.reservoir_mm3, doc="reservoir, mm³")
-    stroke_mm = property(lambda self: self.load.stroke_mm, doc="plate travel, mm")
-    points = property(lambda self: self.load.points, doc="plate positions")
-    polytropic_n = property(lambda self: self.load.polytropic_n, doc="polytropic index")
 
     def steps(self) -> list:
         return load_steps(self.load, self.inflate_increments)

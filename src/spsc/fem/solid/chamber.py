@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.core.errors import ParameterError
-from spsc.core.loadcase import LoadCase, check_load
+from spsc.core.loadcase import LoadCase, WithLoadCase, check_load
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.curve import Curve, SolveInfo
 from spsc.materials import Material
@@ -29,7 +29,7 @@ __all__ = ["ChamberRun", "chamber_run", "run_chamber", "to_curve", "curve_points
 
 
 @dataclass(frozen=True)
-class ChamberRun:
+class ChamberRun(WithLoadCase):
     """Inputs of a chamber run: the chamber, the material, the load case every model shares
     (:class:`~spsc.core.loadcase.LoadCase`: kPa gauge, mm³, mm; ``points`` plate positions from
     first contact, points − 1 increments) and the mesh. ``mesh_size_mm``: element edge along
@@ -51,12 +51,6 @@ class ChamberRun:
                                  "a LoadCase (spsc.core.loadcase.check_load)")
         check_load(self.geometry, **self.load.as_dict())  # the same limits, on this chamber
         check_mesh_size(self.geometry, self.mesh_size_mm, self.layers)
-
-    pressure_kPa = property(lambda self: self.load.pressure_kPa, doc="setup pressure, kPa")
-    reservoir_mm3 = property(lambda self: self.load.reservoir_mm3, doc="reservoir, mm³")
-    stroke_mm = property(lambda self: self.load.stroke_mm, doc="plate travel, mm")
-    points = property(lambda self: self.load.points, doc="plate positions")
-    polytropic_n = property(lambda self: self.load.polytropic_n, doc="polytropic index")
 
     def steps(self) -> list:
         return load_steps(self.load, self.inflate_increments)
