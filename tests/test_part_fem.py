@@ -332,9 +332,11 @@ def test_a_dome_part_agrees_with_the_structured_chamber_mesh(tmp_path):
     """An independent discretisation of the same problem: the dome as a part (fTetWild, 1 mm,
     curved, clamped by 'z<=0') against the same chamber as an SPSCGeometry (structured swept
     quarter mesh, 0.75 mm, 2 layers, clamped on z = 0). Inflated to 20 kPa, closed, pressed
-    1 mm: force within 2.5 % and pressure rise within 2 % (measured 1.4 % and 1.1 %: the part's
-    mesh is about one element through the 1 mm wall), volume gain of the inflation within 5 %
-    of itself (measured 0.1 %)."""
+    1 mm: force and pressure rise within 4 %, volume gain of the inflation within 5 % of itself
+    (measured 0.1 %). The part's mesh is about one element through the 1 mm wall and fTetWild
+    meshes it differently from run to run: over six runs the part's force was 1.7–2.8 % and its
+    pressure rise 1.3–2.6 % above the structured mesh's (at 0.5 and 1 mm), so 4 % holds that
+    spread with a margin; a wrong stiffness, gas or plate is off by far more."""
     from spsc.testing.part_shapes import dome_geometry
     from spsc.fem.part.run import run_part
     from spsc.fem.solid.chamber import chamber_run, run_chamber
@@ -346,8 +348,8 @@ def test_a_dome_part_agrees_with_the_structured_chamber_mesh(tmp_path):
     ref, _, _ = run_chamber(chamber_run(dome_geometry(), MAT, pressure_kPa=20, stroke_mm=1.0,
                                        points=3, mesh_size_mm=0.75, layers=2), cache_dir=tmp_path)
     assert part.all_converged and ref.all_converged
-    assert_allclose(part.force_N[1:], ref.force_N[1:], rtol=0.025)
-    assert_allclose(part.pressure_kPa[1:] - 20, ref.pressure_kPa[1:] - 20, rtol=0.02)
+    assert_allclose(part.force_N[1:], ref.force_N[1:], rtol=0.04)
+    assert_allclose(part.pressure_kPa[1:] - 20, ref.pressure_kPa[1:] - 20, rtol=0.04)
     inflation = lambda c: c.inflated_volume_mm3 / c.nominal_volume_mm3 - 1  # noqa: E731
     assert_allclose(inflation(part), inflation(ref), rtol=0.05)
 

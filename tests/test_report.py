@@ -238,7 +238,7 @@ def test_quick_report_end_to_end(tmp_path, capsys):
             "--quiet"]
     assert main(args) == 0
     page = (tmp_path / "r" / "index.html").read_text(encoding="utf-8")
-    for word in ("Headline", "JND depth", "Models vs FEM", "mesh convergence", "Versions",
+    for word in ("Headline", "JND depth", "Models vs FEM", "mesh convergence", "Provenance and versions",
                  "shapes-D-tpu60a-low.png", "curves-A-tpu60a-high.png"):
         assert word in page
     capsys.readouterr()
