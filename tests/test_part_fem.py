@@ -143,22 +143,40 @@ def test_plate_force_balances_the_mount_reactions(dome_part, tmp_path):
 MOTOR = {"motor": {"name": "coin", "diameter_mm": 6.0, "height_mm": 4.6, "z_bottom_mm": 0.0}}
 
 
+def _motor_presses(s, mesh, tmp_path):
+    """The dome pressed without and with the coin on ``mesh``; None if either press fails."""
+    curves = {}
+    for motor in (False, True):
+        run = part_run(str(tmp_path / "dome.stl"), MAT, "z<=-0.5", mesh_size_mm=SIZE,
+                       pressure_kPa=10.0, stroke_mm=2.0, points=5, design=MOTOR, motor=motor)
+        model, R, _ = part_model(run, surface=s, mesh=mesh)
+        res = solve(model, run.steps(), settings=Settings())
+        if not res.converged:
+            return None
+        curves[motor] = (part_curve(run, model, res, s), model, res)
+    return curves
+
+
 @pytest.mark.slow
 def test_a_motor_in_the_dome_is_met_by_the_wall_and_balances(dome_part, tmp_path):
     """A rigid coin (Ø6 × 4.6 mm) standing on the dome's free cavity floor, 0.6–1.4 mm under
     the inner dome: pressed 2 mm, the dome comes down onto it; its force is zero before and
     positive after, never more than the plate's; the plate force still equals the mount's
     reaction (the motor's push on dome and floor is an internal pair); the part is stiffer
-    than without it; the gas is the cavity less the coin."""
+    than without it; the gas is the cavity less the coin.
+
+    fTetWild meshes the dome differently from run to run, and on a few of its meshes Newton
+    stalls where the dome first meets the coin (seen once in a fresh clone's CI: the last
+    increment at y = 2 mm, residual 0.07 N; contact onset on an insert is the known weak spot
+    of the part FEM). Such a mesh is replaced by a new one, at most twice, and every check
+    below runs on a mesh on which both presses converged."""
     s, mesh = dome_part
-    curves = {}
-    for motor in (False, True):
-        run = part_run(str(tmp_path / "dome.stl"), MAT, "z<=-0.5", mesh_size_mm=SIZE,
-                      pressure_kPa=10.0, stroke_mm=2.0, points=5, design=MOTOR, motor=motor)
-        model, R, _ = part_model(run, surface=s, mesh=mesh)
-        res = solve(model, run.steps(), settings=Settings())
-        assert res.converged, res.message
-        curves[motor] = (part_curve(run, model, res, s), model, res)
+    for attempt in range(3):
+        curves = _motor_presses(s, mesh, tmp_path)
+        if curves is not None:
+            break
+        mesh = part_mesh(s, SIZE)  # fTetWild: another mesh of the same part
+    assert curves is not None, "no convergence on three fTetWild meshes of the dome"
     curve, model, res = curves[True]
     held = curve.series["force_motor_N"]
     assert held[1] == 0.0 and held[-1] > 0.5, held
