@@ -56,7 +56,7 @@ def _case(out: Path, parts: Path, name: str, stem: str, extra, mesh: float) -> C
     argv = ["fem", "--part", str(stl), "--pressure", "40", "--stroke", "4", "--points", "9",
             "--plate-at", "apex", "--mesh-size", f"{mesh:g}", "--material", "tpu60a", "--force",
             "--json", str(path), *extra]
-    kept = KeyedFile(path, input_key({"argv": argv[:-1 - len(extra)] + list(extra),
+    kept = KeyedFile(path, input_key({"argv": [a for a in argv if a != str(path)],
                                       "part": hashlib.sha256(stl.read_bytes()).hexdigest()},
                                      ("spsc.cli.fem",)))
     if not kept.valid:

@@ -92,6 +92,8 @@ def _section(model, x, z_centre: float) -> dict:
 def _fem_files(run: Run, out, directory: Path) -> dict:
     """The FEM's VTUs (inflated and last pressed state) and the deformed cavity section of
     each, and the solve's facts the curve's protocol may not carry yet."""
+    from spsc.fem.solid.chamber import write_vtu
+
     model, result = out.state
     curve = out.curve
     infl, presses = result.of("inflate"), result.of("press")
@@ -109,12 +111,6 @@ def _fem_files(run: Run, out, directory: Path) -> dict:
             "pressed_y_mm": float(curve.y_mm[len(presses)]) if presses else None,
             "sections": {name: _section(model, rec.x, run.geometry().z_widest)
                          for name, rec in keep.items()}}
-
-
-def write_vtu(model, result, directory):
-    from spsc.fem.solid.chamber import write_vtu as write
-
-    return write(model, result, directory)
 
 
 #: model name -> files(run, outcome, directory) -> payload additions: what the report shows
