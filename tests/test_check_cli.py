@@ -158,3 +158,19 @@ def test_cli_reads_a_bounds_form_sidecar_of_a_real_bladder(tmp_path, capsys):
     w = export_part(b.solid, b.design, tmp_path, "c", mesh=bladder_mesh(b.spec))
     assert main(["check", str(w["paths"]["stl"])]) == 0
     assert "PASSED" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("solid, design, wording", [
+    # a closed box with a box-shaped cavity and no port: nothing is capped, nothing said of one
+    (lambda: M.cube((20.0, 20.0, 20.0), True) - M.cube((10.0, 10.0, 10.0), True), {},
+     "1 enclosed cavity (no port in the design: nothing capped)"),
+    # the hollow sphere with its bore open and the design's port: the port is capped
+    (lambda: bladder(), port_design(), "1 enclosed cavity with the port capped"),
+    # the same open bore without a port in the design: no cavity, and why
+    (lambda: bladder(), {}, "no enclosed cavity: a solid part, or a bore open to the outside"),
+    (lambda: M.cube((5.0, 5.0, 5.0)), {}, "no enclosed cavity: a solid part"),
+])
+def test_cavity_count_words_what_was_capped(solid, design, wording):
+    rep = check_mesh(arrays(solid()), design=design)
+    assert wording in rep["cavity_count"].message
+    assert "port capped" not in rep["cavity_count"].message or "port" in design

@@ -248,7 +248,8 @@ def _cavities(v, f, design, measurable) -> dict:
     inner = [p for p, d in zip(parts, depth) if d % 2 == 1]
     if not inner:
         why = "the port cap left no enclosed cavity (check design port)" if "port" in design \
-            else "no enclosed cavity (give the design port to cap the bore)"
+            else ("no enclosed cavity: a solid part, or a bore open to the outside (give the "
+                  "design's port to cap it)")
         return {"reason": why, "expected": "port" in design or "cavity_volume_mm3" in design}
     return {"v": cv, "f": cf, "cavities": inner,
             "others": [p for p, d in zip(parts, depth) if d % 2 == 0]}
@@ -294,8 +295,18 @@ def _cavity_count(cav, design) -> Check:
                      f"cavity count {cav['reason']}")
     n = len(cav["cavities"])
     return Check("cavity_count", None if expected is None else n == expected, n, expected,
-                 f"{n} enclosed cavit{'y' if n == 1 else 'ies'} with the port capped"
+                 f"{n} enclosed cavit{'y' if n == 1 else 'ies'} {_capped(design)}"
                  + ("" if expected is None else f" (design {expected})"))
+
+
+def _capped(design) -> str:
+    """How the cavities were counted: with the design's port(s) capped, or as found (a part
+    whose design names no port: nothing was capped, the cavities are sealed in the mesh)."""
+    if "port" not in design:
+        return "(no port in the design: nothing capped)"
+    ports = design["port"]
+    return "with the ports capped" if isinstance(ports, list) and len(ports) > 1 \
+        else "with the port capped"
 
 
 def _cavity_volume(cav, design) -> Check:
