@@ -133,3 +133,20 @@ def test_mean_slopes_do_not_depend_on_the_sampling():
                contact_area_mm2=0 * y, volume_change_mm3=0 * y, converged=conv)
     assert np.isnan(c.mean_stiffness())
     assert c.mean_stiffness(reached=True) == pytest.approx(9.0, rel=1e-12)
+
+
+def test_an_even_y_grid_is_held_as_decimals_and_any_other_kept():
+    # an even grid (np.linspace's rounding) becomes the decimals k * step, in JSON and CSV
+    c = _grid_curve(np.linspace(0.0, 3.0, 21))
+    assert c.y_mm[3] == 0.45 and Curve.from_json(c.to_json()).y_mm[3] == 0.45
+    assert "0.45," in c.to_csv()
+    # a non-terminating step keeps the correctly rounded float (not a 15-digit decimal)
+    assert _grid_curve(np.linspace(0.0, 2.0, 4)).y_mm[2] == 4.0 / 3.0
+    # an uneven grid (a bench's measured positions) is kept bit for bit
+    y = np.array([0.0, 0.1, 0.44999999999999996, 0.7])
+    assert np.array_equal(_grid_curve(y).y_mm, y)
+
+
+def _grid_curve(y):
+    z = np.zeros_like(y)
+    return Curve(y_mm=y, force_N=z, pressure_kPa=z, contact_area_mm2=z, volume_change_mm3=z)

@@ -215,3 +215,18 @@ def test_warnings_go_to_stderr(toy, capsys):
 def _help(argv, capsys) -> str:
     assert main([*argv, "--help"]) == 0
     return capsys.readouterr().out
+
+
+def test_json_holds_the_plate_positions_as_decimals(tmp_path):
+    """3 mm in 21 points is a 0.15 mm grid: the JSON text holds 0.45, not np.linspace's
+    0.44999999999999996 (exact equality: each y is the float nearest the decimal k * 0.15)."""
+    from decimal import Decimal
+
+    path = tmp_path / "s.json"
+    assert main(["curve", "--model", "simplified", "--type", "B", "--stroke", "3",
+                 "--points", "21", "--json", str(path), "--quiet"]) == 0
+    text = path.read_text(encoding="utf-8")
+    assert "0.44999999999999996" not in text and "0.45," in text
+    ys = json.loads(text)["curve"]["y_mm"]
+    assert ys == [float(Decimal("0.15") * k) for k in range(21)]
+    assert np.linspace(0.0, 3.0, 21)[3] != 0.45  # what the models compute before the curve

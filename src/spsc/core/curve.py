@@ -18,6 +18,7 @@ import functools
 import io
 import json
 import math
+from decimal import Decimal
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
@@ -154,6 +155,9 @@ class Curve:
             elif a.size != n:
                 raise ParameterError(f"len({name})", a.size, f"= len(y_mm) = {n}")
             object.__setattr__(self, name, a)
+        y = _decimal_grid(self.y_mm)
+        y.setflags(write=False)
+        object.__setattr__(self, "y_mm", y)
         if n < 1:
             raise ParameterError("len(y_mm)", n, ">= 1 point")
         if np.any(~np.isfinite(self.y_mm)):
@@ -338,6 +342,27 @@ class Curve:
         series = {k: [float(r[header.index(k)]) for r in rows] for k in header
                   if k not in CURVE_COLUMNS and k != "converged"}
         return cls(**cols, **meta, converged=conv, series=series)
+
+
+#: How far (units in the last place of the largest |y|) a plate position may be from the even
+#: grid between the first and last for the curve's y to be that grid (np.linspace is within 1-2).
+_GRID_ULPS = 4
+
+
+def _decimal_grid(y: np.ndarray) -> np.ndarray:
+    """``y`` (mm); an even grid (within :data:`_GRID_ULPS` ulp) recomputed in decimal
+    arithmetic from its ends as written (``y_k = y_0 + (y_n - y_0) k / n``, each rounded once):
+    the plate positions the user asked for, so a stroke of 3 mm in 21 points gives 0.45, not
+    np.linspace's 0.44999999999999996, and JSON and CSV write them so. Any other y is kept."""
+    y = np.array(y, dtype=float)
+    n = y.size - 1
+    if n < 2 or not np.all(np.isfinite(y)):
+        return y
+    even = np.linspace(y[0], y[-1], n + 1)
+    if np.max(np.abs(y - even)) > _GRID_ULPS * np.spacing(np.max(np.abs(y))):
+        return y
+    y0, span = Decimal(repr(float(y[0]))), Decimal(repr(float(y[-1]))) - Decimal(repr(float(y[0])))
+    return np.array([float(y0 + span * k / n) for k in range(n + 1)])
 
 
 def _gradient(f: np.ndarray, y: np.ndarray) -> np.ndarray:
