@@ -230,3 +230,18 @@ def test_json_holds_the_plate_positions_as_decimals(tmp_path):
     ys = json.loads(text)["curve"]["y_mm"]
     assert ys == [float(Decimal("0.15") * k) for k in range(21)]
     assert np.linspace(0.0, 3.0, 21)[3] != 0.45  # what the models compute before the curve
+
+
+def test_plot_title_names_every_geometry_parameter_and_the_load(tmp_path):
+    """The PNG's title holds the seven parameters (t0 was missing) and the load case."""
+    from spsc.cad.geometry import preset
+
+    g = preset("D").as_dict()
+    z = np.zeros(3)
+    curve = Curve(y_mm=[0.0, 0.5, 1.0], force_N=z, pressure_kPa=z, contact_area_mm2=z,
+                  volume_change_mm3=z, model="simplified", geometry=g, material="tpu60a",
+                  setup={"p_i_kPa": 40.0, "reservoir_mm3": 0.0, "polytropic_n": 1.0})
+    t = cmd_curve.title(curve)
+    for k in ("w", "h", "l", "t0", "n1", "n2", "cy"):
+        assert f"{k}={g[k]:g}" in t, k
+    assert "p_i=40 kPa" in t and "V_r=0 mm³" in t and "n=1" in t and "tpu60a" in t

@@ -280,12 +280,25 @@ def plot(curve, result, path) -> None:
         a.legend(fontsize=8)
     else:
         a.axis("off")
-    g = curve.geometry
-    part = curve.setup.get("part")
-    what = (f"{part['file']} (fix {part['fix']})" if isinstance(part, dict) else
-            f"w={g.get('w')}, h={g.get('h')}, l={g.get('l')}, n1={g.get('n1')}, "
-            f"n2={g.get('n2')}, cy={g.get('cy')}")
-    fig.suptitle(f"{curve.model}: {what}; {curve.material}, "
-                 f"p_i={curve.setup.get('p_i_kPa')} kPa, V_r={curve.setup.get('reservoir_mm3')} mm³")
+    fig.suptitle(title(curve))
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def title(curve) -> str:
+    """The figure's title: the model, the chamber (its seven parameters, mm, or the part file),
+    the material and the load case (p_i kPa gauge, V_r mm³, polytropic n)."""
+    g, s = curve.geometry, curve.setup
+    part = s.get("part")
+    dims = ", ".join(f"{k}={g[k]:g}" for k in ("w", "h", "l", "t0", "n1", "n2", "cy")
+                     if _is_number(g.get(k)))
+    what = (f"{part['file']} (fix {part['fix']})" if isinstance(part, dict) else
+            f"{dims} mm" if dims else "no geometry")
+    load = [f"{label}={s[key]:g}{unit}" for key, label, unit in
+            (("p_i_kPa", "p_i", " kPa"), ("reservoir_mm3", "V_r", " mm³"),
+             ("polytropic_n", "n", "")) if _is_number(s.get(key))]
+    return f"{curve.model}: {what}; {curve.material}, " + ", ".join(load)
+
+
+def _is_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
