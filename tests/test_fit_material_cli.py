@@ -81,6 +81,10 @@ def test_a_test_column_holds_several_tests(tmp_path):
     ("strain,stress_MPa\n0,0\n-1.5,0.1\n", "stretch > 0"),
     ("stretch,stress_MPa\n1,0\n1.5,0.2\n1.4,0.3\n", "the stretch must increase"),
     ("stretch,stress_MPa\n1,0.5\n1.5,0.2\n", "increases with the stretch"),
+    ("stretch,stress_MPa\n1,0\n1.25,-0.1\n1.5,0.5\n2,1.8\n", "row 3, column 'stress_MPa' = "
+     "'-0.1 MPa' is invalid: allowed a nominal stress >= 0"),
+    ("stretch,stress_MPa\n1,0\n1.5,1.06\n2,0.75\n3,2.9\n", "row 4, column 'stress_MPa' = "
+     "'0.75 MPa' is invalid: allowed >= 1.06 MPa of a row before"),
     ("stretch,stress_bar\n1,0\n1.5,0.2\n", "a stress unit of"),
     ("stretch,true_stress_MPa\n1,0\n1.5,0.2\n", "nominal (engineering) stress"),
     ("stretch,stress_MPa,stress_kPa\n1,0,0\n1.5,0.2,200\n", "one stress column"),
@@ -95,6 +99,20 @@ def test_bad_data_is_one_line_naming_file_row_column(tmp_path, text, says):
         read_tests([_csv(tmp_path, "bad.csv", text)])
     msg = str(exc.value)
     assert says in msg and "\n" not in msg and "bad.csv" in msg
+
+
+def test_noise_within_one_percent_of_the_largest_stress_is_data():
+    """A load cell's zero offset and a dip of its noise (0.9 % of the largest stress, under
+    STRESS_NOISE = 1 %) are read; 1.1 % is refused."""
+    from spsc.materials.data import read_file
+
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        ok = _csv(Path(tmp), "ok.csv", "stretch,stress_MPa\n1,-0.009\n1.5,1\n1.6,0.991\n2,1\n")
+        bad = _csv(Path(tmp), "bad.csv", "stretch,stress_MPa\n1,0\n1.5,1\n1.6,0.989\n2,1\n")
+        assert read_file(ok)[0][0].points == 4
+        with pytest.raises(ParameterError, match="must not fall"):
+            read_file(bad)
 
 
 def test_test_options_and_declarations_must_agree(tmp_path):
@@ -244,3 +262,54 @@ def test_one_test_plots_predictions_and_ogden_file_is_a_record(tmp_path, capsys)
     assert "a record of the fit: the models take" in out
     rc, _, err = _run(["membrane", "--type", "B", "--material", tmp_path / "og.json"], capsys)
     assert rc == 2 and "--law all" in err
+
+
+# -- the law the material file takes --------------------------------------------------------
+def _written(tmp_path, capsys, name, lam, P, fmt):
+    rows = "".join(f"{a:{fmt[0]}},{b:{fmt[1]}}\n" for a, b in zip(lam, P))
+    data = _csv(tmp_path, f"{name}.csv", "stretch,stress_MPa\n" + rows)
+    out = tmp_path / f"{name}.material.json"
+    rc, stdout, _ = _run(["fit-material", data, "--out", out], capsys)
+    assert rc == 0
+    return json.loads(out.read_text()), stdout
+
+
+@pytest.mark.parametrize("fmt", [(".4f", ".6f"), (".2f", ".4f")])
+def test_exact_neo_hookean_data_give_a_neo_hookean_file(tmp_path, capsys, fmt):
+    """μ = 1 MPa at 41 stretches 1-3, written to 6 (or 4) decimals: Mooney-Rivlin fits the
+    rounding better (C01 ~ 1e-6, lower AICc), within the data's resolution: the file is
+    neo-Hookean."""
+    lam = np.linspace(1.0, 3.0, 41)
+    rec, stdout = _written(tmp_path, capsys, "nh", lam, NH.stress("uniaxial", lam, [0.5]), fmt)
+    assert rec["law"] == "neo-hookean", stdout
+    assert rec["constants"]["C10"] == pytest.approx(0.5, rel=1e-4)  # 4 decimals of ~1 MPa
+    assert "within the data's resolution" in rec["fit"]["choice"]
+
+
+def test_mooney_rivlin_data_with_a_real_C01_give_a_mooney_rivlin_file(tmp_path, capsys):
+    """C10 = 0.4, C01 = 0.02 MPa (C01/C10 = 5 %), written to 6 decimals: neo-Hookean misses
+    by ~1e-2 MPa, far above the resolution (~4e-5 MPa): the file is Mooney-Rivlin with C01
+    recovered to 1 %."""
+    lam = np.linspace(1.0, 3.0, 41)
+    P = law("mooney-rivlin").stress("uniaxial", lam, [0.4, 0.02])
+    rec, stdout = _written(tmp_path, capsys, "mr", lam, P, (".4f", ".6f"))
+    assert rec["law"] == "mooney-rivlin", stdout
+    assert rec["constants"]["C01"] == pytest.approx(0.02, rel=0.01)
+
+
+def test_resolution_is_the_rounding_of_the_numbers_as_written(tmp_path):
+    """P = λ - 1 MPa (slope 1) written to 0.01 MPa and 1e-4 in stretch: resolution
+    sqrt((0.01² + 1e-4²)/12); trailing zeros count (1.5000 has 4 decimals); a kPa column's
+    step is in kPa (1 kPa = 1e-3 MPa)."""
+    from spsc.materials.fit_resolution import resolution_MPa
+
+    mpa = _csv(tmp_path, "mpa.csv", "stretch,stress_MPa\n1.0000,0.00\n1.5000,0.50\n2.0000,"
+               "1.00\n")
+    kpa = _csv(tmp_path, "kpa.csv", "stretch,stress_kPa\n1.0000,0\n1.5000,500\n2.0000,1000\n")
+    (d,), _ = read_tests([mpa])
+    assert d.columns["deformation_decimals"] == 4 and d.columns["stress_decimals"] == 2
+    assert resolution_MPa([d])["uniaxial"] == pytest.approx(np.sqrt((1e-4 + 1e-8) / 12),
+                                                            rel=1e-9)
+    (k,), _ = read_tests([kpa])
+    assert resolution_MPa([k])["uniaxial"] == pytest.approx(np.sqrt((1e-6 + 1e-8) / 12),
+                                                            rel=1e-9)

@@ -167,7 +167,9 @@ def run(args) -> int:
         if f is None:
             warn(VERB, f"{name} left out: not more data points than its constants")
     if args.law == "all":
-        chosen, why = choose(fits)
+        from spsc.materials.fit_resolution import resolution_MPa
+
+        chosen, why = choose(fits, resolution_MPa(tests))
     else:
         chosen, why = fits[args.law], f"{args.law}: the law asked for (--law)"
     for f in fits.values():

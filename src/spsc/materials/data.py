@@ -194,6 +194,13 @@ def _number(fname: str, row: int, col: str, text: str, decimal_comma: bool) -> f
     return v
 
 
+def _decimals(text: str) -> int:
+    """Decimals a number is written with (trailing zeros count: 1.50 has 2; 2.5e-05 has 6;
+    1e3 has -3), the resolution of the value being 10**-decimals."""
+    mantissa, _, exponent = text.strip().lower().replace(",", ".").partition("e")
+    return len(mantissa.partition(".")[2]) - int(exponent or 0)
+
+
 def _declared_test(fname: str, comments: list[str]) -> str | None:
     for c in comments:
         m = re.match(r"#\s*test\s*[:=]\s*(.+?)\s*$", c, re.I)
@@ -244,6 +251,28 @@ def _check_test(fname: str, test: str, lam: np.ndarray, P: np.ndarray, rows: lis
     if lam.size >= 2 and not P[-1] > P[0]:
         raise ParameterError(f"{fname}, column {scol!r}", f"{P[0]:g} .. {P[-1]:g}",
                              "a nominal stress that increases with the stretch")
+    _check_stress(fname, test, P, rows, scol)
+
+
+#: A tension test's stress may dip below zero, or below the largest stress before it, by this
+#: fraction of its largest stress (a load cell's zero offset and noise); more is refused.
+STRESS_NOISE = 0.01
+
+
+def _check_stress(fname: str, test: str, P: np.ndarray, rows: list[int], scol: str) -> None:
+    """Nominal stress in tension: not negative, and not falling as the stretch grows (by more
+    than STRESS_NOISE of the largest stress; Drucker's condition for the data)."""
+    tol = STRESS_NOISE * float(np.max(np.abs(P)))
+    running = np.maximum.accumulate(P)
+    for k, v in enumerate(P):
+        if v < -tol:
+            raise ParameterError(f"{fname} row {rows[k]}, column {scol!r}", f"{v:g} MPa",
+                                 f"a nominal stress >= 0 in {test} tension")
+        if running[k] - v > tol:
+            raise ParameterError(f"{fname} row {rows[k]}, column {scol!r}", f"{v:g} MPa",
+                                 f">= {running[k]:g} MPa of a row before (less "
+                                 f"{100 * STRESS_NOISE:g} % noise): the stress must not fall "
+                                 "as the stretch grows (one loading curve per test)")
 
 
 def read_file(path, *, test: str | None = None, strain_unit: str | None = None,
@@ -278,17 +307,20 @@ def read_file(path, *, test: str | None = None, strain_unit: str | None = None,
             t = test or declared or "uniaxial"
         d = _number(fname, line, header[cols["deform"]], row[cols["deform"]], dcomma)
         s = _number(fname, line, header[cols["stress"]], row[cols["stress"]], dcomma)
-        groups.setdefault(t, []).append((line, d, s))
+        groups.setdefault(t, []).append((line, d, s, _decimals(row[cols["deform"]]),
+                                         _decimals(row[cols["stress"]])))
     out = []
     for t in (t for t in TESTS if t in groups):
-        lines, d, s = (np.array(v) for v in zip(*groups[t]))
+        lines, d, s, dd, sd = (np.array(v) for v in zip(*groups[t]))
         lam = d if dunit == "stretch" else 1.0 + d * (0.01 if dunit == "%" else 1.0)
         P = s * STRESS_UNITS[sunit]
         _check_test(fname, t, lam, P, list(lines), header[cols["deform"]],
                     header[cols["stress"]])
         out.append(TestData(t, lam, P, str(path), digest,
                             {"deformation": header[cols["deform"]], "unit": dunit,
-                             "stress": header[cols["stress"]], "stress_unit": sunit}))
+                             "stress": header[cols["stress"]], "stress_unit": sunit,
+                             "deformation_decimals": int(dd.max()),
+                             "stress_decimals": int(sd.max())}))
     where = ("tests from its 'test' column" if "test" in cols else
              f"{out[0].test} (" + ("--test" if test else "'# test:' line" if declared
                                    else "assumed: no --test, '# test:' line or test column")

@@ -236,10 +236,13 @@ def fit_laws(names, tests, *, weighting: str = "relative", ogden_terms: int = 2)
     return out
 
 
-def choose(fits: dict) -> tuple[LawFit | None, str]:
+def choose(fits: dict, resolution: dict | None = None) -> tuple[LawFit | None, str]:
     """The law for the material file among the invariant-based fits (the models compute with
     W(I1, I2)): Drucker-stable over the whole checked range if any is, else stable over the
-    data, else any; among those the lowest AICc. Returns it and one sentence why."""
+    data, else any; among those the lowest AICc, unless a law with fewer constants fits within
+    the data's ``resolution`` (test -> RMS stress error of the data's rounding, MPa; see
+    :mod:`.fit_resolution`) of it: then the simplest such law (AICc alone rewards fitting the
+    rounding of exact data). Returns it and one sentence why."""
     cands = [f for name, f in fits.items() if f is not None and name != "ogden"
              and f.shear_modulus > 0]
     if not cands:
@@ -250,10 +253,32 @@ def choose(fits: dict) -> tuple[LawFit | None, str]:
         pool = [f for f in cands if pick(f)]
         if pool:
             best = min(pool, key=lambda f: f.aicc)
+            why = f"{best.name}: lowest AICc among the invariant-based laws {level}"
+            simpler = _within_resolution(best, pool, resolution or {})
+            if simpler is not None:
+                best, why = simpler, _simpler_why(simpler, best, level, resolution)
             others = ", ".join(f.name for f in pool if f is not best)
-            why = (f"{best.name}: lowest AICc among the invariant-based laws {level}"
-                   + (f" (also: {others})" if others else ""))
+            why += f" (also: {others})" if others else ""
             if "ogden" in fits and fits["ogden"] is not None:
                 why += "; ogden is reported, not written: the models take W(I1, I2)"
             return best, why
     return None, "no candidate"
+
+
+def _within_resolution(best: LawFit, pool, resolution: dict) -> LawFit | None:
+    """The law of ``pool`` with the fewest constants (then the lowest AICc) whose RMS misfit
+    exceeds ``best``'s by no more than the data's resolution in every test
+    (rms² <= rms_best² + resolution²: the extra misfit is the size of the rounding), or None."""
+    if not resolution:
+        return None
+    ok = [f for f in pool if len(f.params) < len(best.params)
+          and all(f.rms_MPa[t] ** 2 <= best.rms_MPa[t] ** 2 + resolution.get(t, 0.0) ** 2
+                  for t in best.rms_MPa)]
+    return min(ok, key=lambda f: (len(f.params), f.aicc)) if ok else None
+
+
+def _simpler_why(simple: LawFit, best: LawFit, level: str, resolution: dict) -> str:
+    rms = "; ".join(f"{t} RMS {simple.rms_MPa[t]:.3g} vs {best.rms_MPa[t]:.3g} MPa, "
+                    f"resolution {resolution.get(t, 0.0):.3g} MPa" for t in best.rms_MPa)
+    return (f"{simple.name}: fewest constants among the invariant-based laws {level} that fit "
+            f"within the data's resolution of the lowest-AICc law, {best.name} ({rms})")

@@ -7,23 +7,48 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["Case", "NOT_A_NUMBER", "OUT_OF_RANGE", "GEOMETRY", "SETUP", "numbers", "outputs",
+__all__ = ["Case", "KINDS", "NOT_A_NUMBER", "OUT_OF_RANGE", "GEOMETRY", "SETUP", "numbers", "outputs",
            "out_dirs"]
 
 
 @dataclass(frozen=True)
 class Case:
-    """One invalid invocation: ``argv`` (without ``spsc``), what is wrong (``why``) and the
-    name the one-line error must contain (None: any)."""
+    """One invalid invocation: ``argv`` (without ``spsc``), what is wrong (``why``), the
+    name the one-line error must contain (None: any) and the class of mistake it stands for
+    (``kind``, one of :data:`KINDS`)."""
 
     argv: tuple[str, ...]
     why: str
     names: str | None = None
+    kind: str = "other"
 
     @property
     def verb(self) -> str:
         return self.argv[0] if self.argv else ""
 
+
+#: The classes of mistake the table covers: each case names one (``Case.kind``).
+KINDS = {
+    "number": "a number option given text, nothing, a non-finite value or a decimal comma",
+    "range": "a number outside its option's range, or beyond a limit set by another option",
+    "number list": "a comma list of numbers with an empty item, a non-number or a value out "
+                   "of range, or the list option given twice",
+    "duplicate": "the same item twice in a list (a case, a type)",
+    "output file": "an output path that cannot be written as a file",
+    "output folder": "an output folder that cannot be written or created",
+    "input file": "an input file missing, a folder, binary, empty or of another format",
+    "tension data": "tension-test data that are not one loading curve (stretch below 1 or "
+                    "not increasing, stress negative or falling)",
+    "part surface": "a part's surface that is not a closed 2-manifold around one cavity",
+    "design file": "a design file that is not JSON or not of its schema (a motor that is "
+                   "not a table with its fields)",
+    "scheduler": "a Dask scheduler address of the wrong form, where nothing listens, or "
+                 "where something listens that does not speak Dask",
+    "choice": "a choice option given an unknown value",
+    "combination": "options that do not go together, or one missing",
+    "argparse": "argparse's own mistakes: an unknown option or verb, a missing value",
+    "other": "anything else (the verb's own checks)",
+}
 
 #: Values no number option accepts: text, empty, blank, non-finite, a decimal comma.
 NOT_A_NUMBER = ("abc", "", " ", "nan", "inf", "-inf", "1,5", "0x")
@@ -65,8 +90,10 @@ SETUP = ("pressure", "reservoir", "stroke", "points", "polytropic-n")
 def numbers(base, options, extra=()) -> list[Case]:
     cases = []
     for opt in options:
-        for v in NOT_A_NUMBER + OUT_OF_RANGE.get(opt, ()) + tuple(extra):
-            cases.append(Case(base + (f"--{opt}", v), f"--{opt} {v!r}", opt))
+        for v in NOT_A_NUMBER:
+            cases.append(Case(base + (f"--{opt}", v), f"--{opt} {v!r}", opt, "number"))
+        for v in OUT_OF_RANGE.get(opt, ()) + tuple(extra):
+            cases.append(Case(base + (f"--{opt}", v), f"--{opt} {v!r}", opt, "range"))
     return cases
 
 
@@ -80,11 +107,13 @@ def outputs(base, option, f, tmp, suffix=".json") -> list[Case]:
            ("", "empty")]
     if Path("/dev/full").is_char_device():  # a full disk (not every sandbox has the device)
         bad.append(("/dev/full", "a full device"))
-    return [Case(base + (option, p), f"{option} {why}", option.lstrip("-")) for p, why in bad]
+    return [Case(base + (option, p), f"{option} {why}", option.lstrip("-"), "output file")
+            for p, why in bad]
 
 
 def out_dirs(base, option, f) -> list[Case]:
     """``option`` given a folder that cannot be written or created."""
     bad = [(str(f["file"]), "an existing file"), (str(f["file"] / "sub"), "a folder under a file"),
            ("/proc/spsc-fuzz", "an unwritable place"), ("", "empty")]
-    return [Case(base + (option, p), f"{option} {why}", option.lstrip("-")) for p, why in bad]
+    return [Case(base + (option, p), f"{option} {why}", option.lstrip("-"), "output folder")
+            for p, why in bad]

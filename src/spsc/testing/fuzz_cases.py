@@ -9,14 +9,16 @@ written, a bad input file, or an argparse mistake. :func:`fixtures` writes the f
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
-from .fuzz_base import GEOMETRY, SETUP, Case, numbers, out_dirs, outputs
+from .fuzz_base import GEOMETRY, KINDS, SETUP, Case, numbers, out_dirs, outputs
 from .fuzz_fixtures import bases, fixtures
 from .fuzz_studies import (design_argv, design_cases, fit_material_cases, random_design,
                            sweep_cases)
 
-__all__ = ["Case", "fixtures", "invalid_cases", "random_design", "design_argv"]
+__all__ = ["Case", "KINDS", "classes", "fixtures", "invalid_cases", "random_design",
+           "design_argv"]
 
 
 def invalid_cases(tmp: Path) -> list[Case]:
@@ -32,8 +34,31 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += _check_identify_cases(f, b, tmp)
     cases += _calibrate_cases(f, b, tmp)
     cases += _report_cases(f, b, tmp)
-    cases += _argparse_cases(f, b, tmp)
-    return cases
+    cases += [replace(c, kind="argparse") for c in _argparse_cases(f, b, tmp)]
+    return [c if c.kind != "other" else replace(c, kind=_kind(c.why)) for c in cases]
+
+
+#: Words of a case's ``why`` -> its class, for the cases built without one (first match).
+_WHY_KINDS = (("twice", "duplicate"), ("unknown", "choice"), ("bad choice", "choice"),
+              ("empty type", "choice"), ("empty material", "choice"),
+              ("empty process", "choice"), ("scheduler", "scheduler"),
+              ("missing", "input file"), ("folder", "input file"), ("binary", "input file"),
+              ("empty", "input file"), ("text", "input file"), ("not json", "input file"),
+              ("design file", "design file"), ("surface", "part surface"),
+              ("cavity", "part surface"), ("without", "combination"), ("with --", "combination"),
+              ("no ", "combination"), ("predict", "number list"))
+
+
+def _kind(why: str) -> str:
+    low = why.lower()
+    return next((kind for word, kind in _WHY_KINDS if word in low), "other")
+
+
+def classes(cases) -> dict:
+    """Class -> number of cases (every class of :data:`~.fuzz_base.KINDS` the table holds)."""
+    from collections import Counter
+
+    return dict(Counter(c.kind for c in cases).most_common())
 
 
 def _chamber_cases(f, b, tmp) -> list[Case]:

@@ -28,7 +28,8 @@ def sweep_cases(f, b, tmp) -> list[Case]:
     cases = []
     for name, bad in SWEEP_OUT_OF_RANGE.items():
         for v in SWEEP_NOT_A_SPEC + bad:
-            cases.append(Case(base + (f"--{name}", v), f"sweep --{name} {v!r}", name))
+            cases.append(Case(base + (f"--{name}", v), f"sweep --{name} {v!r}", name,
+                              "range" if v in bad else "number list"))
     for opt, values in (("samples", ("0", "-1", "2.5", "abc", "")), ("seed", ("-1", "abc", "2.5")),
                         ("points", ("0", "1", "-3", "2.5", "1e9", "abc", "")),
                         ("stroke", ("abc", "", "nan", "inf", "-inf", "-1", "0")),
@@ -75,7 +76,8 @@ def design_cases(f, b, tmp) -> list[Case]:
     cases = []
     for name, bad in SWEEP_OUT_OF_RANGE.items():
         for v in DESIGN_NOT_A_SPEC + bad:
-            cases.append(Case(base + (f"--{name}", v), f"design --{name} {v!r}", name))
+            cases.append(Case(base + (f"--{name}", v), f"design --{name} {v!r}", name,
+                              "range" if v in bad else "number list"))
     for v in ("stiffness=6", "stiffness_high", "stiffness_high>6", "stiffness_high=abc",
               "stiffness_high=0", "stiffness_high=-1", "stiffness_high=inf", "=6", ""):
         cases.append(Case(base[:1] + ("--target", v) + base[3:], f"--target {v!r}", "target"))
@@ -120,7 +122,10 @@ def fit_material_cases(f, b, tmp) -> list[Case]:
     """spsc fit-material: bad data files, ranges, laws, tests, units, outputs; material files
     refused by the models and the bladder."""
     base, data = b["fit-material"], str(f["tension.csv"])
-    cases = [Case(("fit-material", str(f[k])), k, k) for k in TENSION_BAD]
+    shape = ("t-nonmono.csv", "t-negative.csv", "t-below1.csv", "t-falling.csv",
+             "t-negstress.csv", "t-allneg.csv", "t-dip.csv")
+    cases = [Case(("fit-material", str(f[k])), k, k,
+                  "tension data" if k in shape else "input file") for k in TENSION_BAD]
     cases += [Case(("fit-material", str(tmp / "missing.csv")), "missing file", "missing.csv"),
               Case(("fit-material", str(f["dir.csv"])), "a folder as data", "folder.csv"),
               Case(("fit-material", str(f["binary.csv"])), "binary data", "binary.csv"),
