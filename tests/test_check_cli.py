@@ -174,3 +174,25 @@ def test_cavity_count_words_what_was_capped(solid, design, wording):
     rep = check_mesh(arrays(solid()), design=design)
     assert wording in rep["cavity_count"].message
     assert "port capped" not in rep["cavity_count"].message or "port" in design
+
+
+def test_check_json_names_the_mesh_relative_to_itself(tmp_path, monkeypatch):
+    """check.json's source is relative to check.json's folder, not to where spsc ran: the
+    folder moved elsewhere, or the report written into another folder, still finds the mesh."""
+    import shutil
+
+    part = tmp_path / "a"
+    part.mkdir()
+    write_stl(part / "part.stl", bladder())
+    monkeypatch.chdir(tmp_path)
+    assert main(["check", "a/part.stl"]) in (0, 1)
+    (tmp_path / "r" / "x").mkdir(parents=True)
+    assert main(["check", "a/part.stl", "--json", "r/x/c.json"]) in (0, 1)
+    shutil.move(tmp_path / "a", tmp_path / "b")
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    beside = json.loads((tmp_path / "b" / "check.json").read_text(encoding="utf-8"))
+    assert beside["source"] == "part.stl" and (tmp_path / "b" / beside["source"]).is_file()
+    other = json.loads((tmp_path / "r" / "x" / "c.json").read_text(encoding="utf-8"))
+    assert other["source"] == "../../a/part.stl"

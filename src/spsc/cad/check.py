@@ -131,7 +131,14 @@ class CheckReport:
                        "failed": list(self.failed), "checks": [c.as_dict() for c in self.checks]})
 
     def to_json(self, path: str | os.PathLike) -> None:
-        Path(path).write_text(json.dumps(self.to_dict(), indent=2) + "\n", encoding="utf-8")
+        """Write :meth:`to_dict` to ``path``, ``source`` (a mesh file) relative to the folder
+        of ``path``: a folder of a part and its check.json moved elsewhere still points at
+        the part."""
+        path = Path(path)
+        data = self.to_dict()
+        if self.source != "<arrays>":
+            data["source"] = os.path.relpath(Path(self.source).resolve(), path.resolve().parent)
+        path.write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
 
     def summary(self) -> str:
         """A few lines: size, parts and genus, cavity volume, min wall, overhang, verdict."""
