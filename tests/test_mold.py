@@ -7,6 +7,7 @@ moved by 1 mm, a core too small, a piece with an undercut.
 
 from dataclasses import replace
 from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -165,3 +166,58 @@ def test_mold_of_a_bladder_file(tmp_path):
 
     info = json.loads((tmp_path / "m" / "mold.json").read_text())
     assert info["bladder"]["geometry"]["n2"] == 1.0
+
+
+def test_a_moved_mold_folder_reads_back_from_anywhere(tmp_path, monkeypatch):
+    """mold.json names its files relative to its own folder: written with an absolute --out,
+    moved, and read from another directory, every piece is found and is the piece it lists."""
+    import json
+    import shutil
+
+    from spsc.cad.meshload import load_mesh
+    from spsc.cad.meshtopo import signed_volume
+    from spsc.cad.moldexport import read_mold, write_mold
+
+    monkeypatch.chdir(tmp_path)
+    write_mold(_mold("B"), None, tmp_path / "a")
+    raw = json.loads((tmp_path / "a" / "mold.json").read_text())
+    assert all("/" not in f for p in raw["pieces"] for f in p["files"].values())
+    shutil.move(tmp_path / "a", tmp_path / "b")
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(tmp_path / "elsewhere")
+    info = read_mold(tmp_path / "b")
+    files = [f for p in info["pieces"] for f in p["files"].values()]
+    files += [info["part_in_mold"]["file"], info["assembly"]]
+    assert len(files) == 8 and all(Path(f).is_file() for f in files)
+    for p in info["pieces"]:
+        v, f = load_mesh(p["files"]["stl"])
+        assert_allclose(abs(signed_volume(v, f)), p["volume_mm3"], rtol=1e-6)
+
+
+@pytest.mark.parametrize("text, needle", [
+    ("[1, 2]", "design = '{p}' is invalid: allowed a JSON object (this file holds a JSON array)"),
+    ('"x"', "a JSON object (this file holds a JSON string)"),
+    ('{"kind": "bladder", "geometry": [1]}', "geometry = [1] is invalid"),
+    ('{"kind": "bladder", "geometry": {"w": 11}}', "geometry = {'w': 11} is invalid"),
+    ('{"kind": "bladder", "genus": "4", "geometry": {"w": 11, "h": 13, "l": 3, "t0": 1, '
+     '"n1": 2, "n2": 2.2, "cy": 0.6}}', "genus = '4' is invalid"),
+    ('{"kind": "fingertip"}', "a bladder's design file"),
+])
+def test_mold_of_a_bad_design_file_is_one_line(tmp_path, capsys, text, needle):
+    from spsc.cli.main import main
+
+    (tmp_path / "p.stl").write_text("solid x\nendsolid x\n")
+    design = tmp_path / "p.design.json"
+    design.write_text(text)
+    assert main(["mold", str(tmp_path / "p.stl"), "--out", str(tmp_path / "m")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and needle.replace("{p}", str(design)) in err[0], err
+    assert not (tmp_path / "m").exists()
+
+
+def test_read_mold_refuses_what_is_not_a_mold(tmp_path):
+    from spsc.cad.moldexport import read_mold
+
+    (tmp_path / "mold.json").write_text('{"pieces": 3}')
+    with pytest.raises(ParameterError, match="^mold = .* a mold.json written by spsc mold"):
+        read_mold(tmp_path)

@@ -35,8 +35,15 @@ def load_design(path: str | os.PathLike) -> dict:
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise ParameterError("design", str(p),
                              f"a JSON object ({exc.__class__.__name__})") from None
+    if not isinstance(data, dict):
+        raise ParameterError("design", str(p), "a JSON object (this file holds a JSON "
+                             f"{_JSON_TYPES.get(type(data), type(data).__name__)})")
     parse_design(data)
     return data
+
+
+_JSON_TYPES = {list: "array", str: "string", int: "number", float: "number", bool: "boolean",
+               type(None): "null"}
 
 
 def parse_design(design: dict | None) -> dict:

@@ -4,7 +4,6 @@ mold gate and an exploded render."""
 from __future__ import annotations
 
 import argparse
-import json
 import time
 from pathlib import Path
 
@@ -49,9 +48,7 @@ def register(sub) -> None:
 
 def _bladder(args):
     """The BladderSpec from the part's design file or the geometry options."""
-    from spsc.cad.checkdesign import design_path_for
-    from spsc.cad.geometry import SPSCGeometry
-
+    from spsc.cad.checkdesign import design_path_for, load_design
     from spsc.cad.specs import bladder_spec
 
     if args.part is not None:
@@ -64,21 +61,30 @@ def _bladder(args):
         if not design.is_file():
             raise ParameterError("part", args.part, "a bladder written by spsc bladder "
                                  "(NAME.design.json or the STL beside it)")
-        try:
-            d = json.loads(design.read_text(encoding="utf-8"))
-        except (OSError, ValueError):
-            raise ParameterError("part", args.part, "a readable design JSON") from None
+        d = load_design(design)
         if d.get("kind") != "bladder" or "geometry" not in d:
             raise ParameterError("part", args.part, "a bladder's design file (molds of the "
                                  f"fingertip or other parts are not made yet; this is "
                                  f"{d.get('kind', 'unknown')!r})")
-        return bladder_spec(SPSCGeometry(**d["geometry"]), int(d.get("genus", 4)),
+        return bladder_spec(_geometry(d["geometry"]), int(d.get("genus", 4)),
                             args.tube_id), design.name.removesuffix(".design.json")
     from spsc.cli.options import geometry_from_args
 
     geom = geometry_from_args(args)
     name = f"mold-{str(args.type).strip().upper()}" if args.type else "mold"
     return bladder_spec(geom, args.flange_holes, args.tube_id), name
+
+
+def _geometry(g):
+    """The design file's ``geometry``: an object with the seven parameters (mm), each checked
+    by :class:`~spsc.cad.geometry.SPSCGeometry`."""
+    from spsc.cad.geometry import SPSCGeometry
+
+    names = ("w", "h", "l", "t0", "n1", "n2", "cy")
+    if not isinstance(g, dict) or set(g) != set(names):
+        raise ParameterError("geometry", g, "an object with the seven parameters "
+                             + ", ".join(names) + " (mm)")
+    return SPSCGeometry(**g)
 
 
 def run(args: argparse.Namespace) -> int:
