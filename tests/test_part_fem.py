@@ -171,8 +171,9 @@ def test_a_motor_in_the_dome_is_met_by_the_wall_and_balances(dome_part, tmp_path
     increment at y = 2 mm, residual 0.07 N; contact onset on an insert is the known weak spot
     of the part FEM). Such a mesh is replaced by a new one, at most twice, and every check
     below runs on a mesh on which both presses converged. On the CI machine all three meshes
-    stalled (stop 31), while both presses converged on every mesh tried on this machine (4 of 4, stop 33): the case is marked
-    ``mesh_luck`` and CI skips it until the insert's edge contact is fixed (issue 26)."""
+    stalled (stop 31), while both presses converged on every mesh tried on this machine (4 of
+    4, stop 33): the case is marked ``mesh_luck`` and CI skips it until the insert's edge
+    contact is fixed (issue 26)."""
     s, mesh = dome_part
     for attempt in range(3):
         curves = _motor_presses(s, mesh, tmp_path)
