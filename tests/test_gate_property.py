@@ -1,9 +1,14 @@
 """Property test of the printability gate over the valid design space: every random valid
 bladder (types A–D in the paper's family, any material, flange holes and tube, a wall at or
-above the process minimum) passes the gate or is refused with a named one-line error. A
-self-intersection or a wall failure here is a geometry bug (issue 10 found Type C with four
-flange holes). The fast suite draws a few designs; ``make test-slow`` (and ``make test-all``) more;
-``bench/bench_badinput.py --designs 200`` 200 through the CLI.
+above the process minimum) is built soundly (watertight, manifold, one part, no
+self-intersection, the designed cavity, genus and box) and the gate's verdict is the
+printability rule's (spsc.cad.printability, which also fills a sweep's ``printable`` column):
+it passes, or fails on the rule alone (a Type D bulge steeper than the process's overhang limit),
+or the design is refused with a named one-line error. A self-intersection or a wall failure
+here is a geometry bug (issue 10 found Type C with four flange holes). The fast suite draws a
+few designs; ``make test-slow`` (and ``make test-all``) more; ``bench/bench_badinput.py
+--designs 200`` 200 through the CLI and ``bench/bench_printability.py`` compares the gate with
+the sweep on 200.
 """
 
 import numpy as np
@@ -17,6 +22,7 @@ from spsc.cad.bladder import BladderSpec, FlangeSpec, PortSpec, build_bladder
 from spsc.cad.check import check_mesh
 from spsc.cad.export import write_stl
 from spsc.cad.geometry import SPSCGeometry, preset
+from spsc.cad.printability import printability
 from spsc.cad.meshbuild import (MESH_PROFILE_POINTS, bladder_mesh, chamber_manifold,
                                 hull_meridian)
 from spsc.core.errors import ParameterError
@@ -37,9 +43,11 @@ def _gate(seed: int) -> None:
         assert "\n" not in str(exc) and " = " in str(exc)
         return
     b = build_bladder(spec)
-    report = check_mesh(bladder_mesh(spec).to_trimesh(), design=b.design,
-                        process=MATERIAL_PROCESS[d["material"]])
-    assert report.passed, (d, report.failed, report.summary())
+    process = MATERIAL_PROCESS[d["material"]]
+    report = check_mesh(bladder_mesh(spec).to_trimesh(), design=b.design, process=process)
+    rule = printability(g, process)
+    assert set(report.failed) <= {"printability"}, (d, report.failed, report.summary())
+    assert report.passed == rule.ok, (d, report.failed, rule.reasons)
 
 
 @pytest.mark.slow

@@ -18,23 +18,28 @@ genus               genus of the printed surface (pymeshlab) = design ``genus``;
                     each through hole (flange screw hole) adds 1.
 min_wall            closest-point distance from the cavity surface to every other surface of the
                     capped solid (exact point-to-triangle, VTK), over the wall region, >= the
-                    process minimum less ``WALL_TOL_MM``. Samples: cavity vertices, face centroids
-                    and seeded area-uniform points (~1 per 0.2 mm x 0.2 mm). Reports the minimum,
-                    its location on the cavity surface and the 1 % quantile.
+                    process minimum less ``WALL_TOL_MM`` (+ ``MESH_THINNING_MM`` with a design
+                    ``geometry``, whose exact wall the rule judges). Samples: cavity vertices,
+                    face centroids and seeded area-uniform points (~1 per 0.2 x 0.2 mm).
+                    Reports the minimum, its location and the 1 % quantile.
 cavity_count        enclosed cavity shells of the capped solid; gated against ``cavities``.
 cavity_volume       volume enclosed by the cavity shell(s) of the capped solid; gated against
                     ``cavity_volume_mm3`` within ``volume_rtol`` when the design gives it.
 bbox                extents (and corners) of the printed mesh; gated against ``bbox_mm``
                     within max(0.5 mm, 1 % of the extent) per axis when given.
-overhang            report-only: area of downward faces more than the process's
-                    ``max_overhang_deg`` from vertical, build-plate faces (z = z_min) excluded,
-                    for the outer surface and for the cavity (an internal ceiling is a bridge,
-                    which cannot be supported inside a closed bladder anyway).
+overhang            report-only: area of faces facing down more than ``max_overhang_deg`` from
+                    vertical, plate faces excluded, outside (chamber, nipple, bore) and in the
+                    cavity (its ceiling, a bridge).
+printability        with a design ``geometry``: the printability rule on the chamber (wall and
+                    outer-wall overhang; :mod:`spsc.cad.printability`, the verdict of sweeps and
+                    of the design search, says why the overhang gates). Absent without it.
 
 The design dict (contract with cad/solids.py; sidecar ``<stem>.design.json``)
 ---------------------------------------------------------------------------
 All keys optional; unknown keys are ignored (keep provenance there freely).
 
+``geometry``           {"w", "h", "l", "t0", "n1", "n2", "cy"} (mm): the chamber, judged by the
+                        printability rule; min_wall then allows ``MESH_THINNING_MM`` more.
 ``cavity_volume_mm3``  float > 0. Analytic cavity volume (SPSCGeometry.cavity_volume()).
 ``volume_rtol``        float > 0, default 0.002. Allowed |mesh − analytic| / analytic.
 ``cavities``           int >= 1. Expected number of enclosed cavities with the port capped.
@@ -43,21 +48,18 @@ All keys optional; unknown keys are ignored (keep provenance there freely).
                         [[xmin, ymin, zmin], [xmax, ymax, zmax]] (then the corners are checked
                         too, with the same tolerance).
 ``port``               {"axis_point": [x, y, z], "axis_dir": [dx, dy, dz], "radius": r,
-                        "z_range": [z0, z1]}: the bore to plug before measuring the cavity. The
-                        plug is a cylinder of radius r on the axis between the axis points at
-                        heights z0 and z1 (so the axis must not be horizontal; for a side port give
-                        "s_range": [s0, s1], signed distances along axis_dir from axis_point,
-                        instead of "z_range"). Put the inner end flush with where the bore meets
-                        the cavity (z = 0 for our bladders): a plug reaching into the cavity
-                        removes π r² per mm of overshoot from the measured volume. The outer end
-                        may overshoot the port tip.
+                        "z_range": [z0, z1]}: the bore to plug (a cylinder of radius r on the
+                        axis between heights z0 and z1; a side port gives "s_range": [s0, s1],
+                        distances along axis_dir, instead) before measuring the cavity. Put the
+                        inner end flush with where the bore meets the cavity (z = 0 here): a plug
+                        reaching into it removes π r² per mm of overshoot from the volume.
 ``wall_region``        {"z_min": z}: only cavity points with z >= z_min count for min_wall (e.g.
                         above the floor, so the floor and the wall–floor fillet are not judged).
 ``exclude``            [{"center": [x, y, z], "radius": r}, ...]: balls around feature edges
                         (port lip, pocket rims) whose cavity points do not count for min_wall.
 
-Without a ``port`` the cavity is any shell enclosed by another (a closed cavity); a single-shell
-mesh without a port has no measurable cavity and min_wall / cavity_volume are report-only.
+Without a ``port`` the cavity is any shell enclosed by another; a single-shell mesh without a
+port has no measurable cavity and min_wall / cavity_volume are report-only.
 """
 
 from __future__ import annotations
@@ -65,7 +67,7 @@ from __future__ import annotations
 import json
 import math
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -75,14 +77,12 @@ from . import meshtopo as mt
 from .checkdesign import design_path_for, load_design, parse_design
 from spsc.core.errors import ParameterError, require
 from .meshload import load_mesh, weld
-from .process import Process, process as get_process
+from .printability import printability
+from .process import MESH_THINNING_MM, WALL_TOL_MM, Process, process as get_process
 
 __all__ = ["Check", "CheckReport", "check_mesh", "load_design", "parse_design",
            "design_path_for", "WALL_TOL_MM"]
 
-#: Tessellation allowance on the wall gate (mm): a 0.8 mm wall exported with a 0.005 mm chord
-#: tolerance measures ~0.795 mm; 0.01 mm is far below what FDM resolves (0.1–0.2 mm layers).
-WALL_TOL_MM = 0.01
 #: Sample spacing (mm) of the cavity surface for min_wall.
 SAMPLE_SPACING_MM = 0.2
 
@@ -147,7 +147,8 @@ class CheckReport:
         lines = [f"{self.source}: {tri} triangles, {bb[0]:.2f} x {bb[1]:.2f} x {bb[2]:.2f} mm, "
                  f"{c['one_part'].value} part(s), genus "
                  f"{'n/a' if c['genus'].value is None else c['genus'].value}"]
-        lines += [c[k].message for k in ("cavity_count", "cavity_volume", "min_wall", "overhang")]
+        lines += [c[k].message for k in ("cavity_count", "cavity_volume", "min_wall", "overhang",
+                                         "printability") if k in c]
         lines.append("PASSED" if self.passed else "FAILED: " + ", ".join(self.failed))
         return "\n".join(lines)
 
@@ -214,7 +215,15 @@ def _run(v, f, design, proc, limit) -> list[Check]:
                _cavity_volume(cav, design),
                _bbox(v, f, design),
                _overhang(v, f, cav, proc)]
-    return checks
+    return checks + ([_rule(design["geometry"], proc, limit)] if "geometry" in design else [])
+
+
+def _rule(geometry, proc, limit) -> Check:
+    """The printability rule on the design's chamber, with the gate's minimum wall."""
+    v = printability(geometry, replace(proc, min_wall_mm=limit))
+    return Check("printability", v.ok, v.measures, v.limits,
+                 "printability rule: " + (v.summary if v.ok else "; ".join(v.reasons)),
+                 {"reasons": list(v.reasons), "summary": v.summary})
 
 
 def _oriented(v, f, parts, depth, measurable) -> Check:
@@ -263,7 +272,9 @@ def _cavities(v, f, design, measurable) -> dict:
 
 
 def _min_wall(cav, design, limit, proc) -> Check:
-    lim = {"min_wall_mm": limit, "tolerance_mm": WALL_TOL_MM, "process": proc.name}
+    # with a geometry the rule judges its exact wall; the mesh fails beyond its tessellation
+    tol = WALL_TOL_MM + (MESH_THINNING_MM if "geometry" in design else 0.0)
+    lim = {"min_wall_mm": limit, "tolerance_mm": tol, "process": proc.name}
     if "reason" in cav:
         return Check("min_wall", False if cav.get("expected") else None, None, lim,
                      f"min wall {cav['reason']}")
@@ -287,7 +298,7 @@ def _min_wall(cav, design, limit, proc) -> Check:
     pts, d = np.vstack(pts_all), np.concatenate(d_all)
     k = int(np.argmin(d))
     dmin, p01 = float(d[k]), float(np.percentile(d, 1))
-    ok = dmin >= limit - WALL_TOL_MM
+    ok = dmin >= limit - tol
     x, y, z = pts[k]
     msg = (f"min wall {dmin:.3f} mm at ({x:.2f}, {y:.2f}, {z:.2f}), 1 % quantile {p01:.3f} mm "
            f"({proc.name} limit {limit:g} mm)")
@@ -386,6 +397,4 @@ def _plain(x):
         return _plain(x.tolist())
     if isinstance(x, np.generic):
         return x.item()
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    return x
+    return None if isinstance(x, float) and not math.isfinite(x) else x

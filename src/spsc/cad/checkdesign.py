@@ -69,6 +69,8 @@ def parse_design(design: dict | None) -> dict:
         out["genus"] = g
     if "bbox_mm" in design:
         out["bbox_mm"] = _bbox(design["bbox_mm"])
+    if "geometry" in design:
+        out["geometry"] = _geometry(design["geometry"])
     if "port" in design:
         ports = design["port"]
         out["port"] = [_port(q) for q in ports] if isinstance(ports, list) and ports \
@@ -86,6 +88,22 @@ def parse_design(design: dict | None) -> dict:
                            "radius": require("exclude.radius", e.get("radius"), gt=0, unit="mm")}
                           for e in ex]
     return out
+
+
+def _geometry(g):
+    """geometry: the chamber's seven parameters (mm), which the printability rule judges."""
+    from .geometry import SPSCGeometry
+
+    if isinstance(g, SPSCGeometry):
+        return g
+    keys = ("w", "h", "l", "t0", "n1", "n2", "cy")
+    if not isinstance(g, dict) or set(g) != set(keys):
+        raise ParameterError("geometry", g, "a dict of the seven parameters " + ", ".join(keys))
+    try:
+        return SPSCGeometry(**{k: require(f"geometry.{k}", g[k]) for k in keys})
+    except ParameterError as exc:
+        raise ParameterError(f"geometry.{exc.name}".replace("geometry.geometry.", "geometry."),
+                             exc.value, exc.allowed) from None
 
 
 def _bbox(bb) -> dict:

@@ -1,35 +1,56 @@
-"""The printability verdict from the design facts, without building the solid (issue 13).
+"""The printability rule: one verdict, from the design facts, for the gate, sweeps, the design
+search and the report (issues 13, 30).
 
-``printability(geometry, "fdm")`` answers in milliseconds what the printability gate
-(:mod:`spsc.cad.check`) measures on the exported mesh in seconds, for sweeps over thousands of
-designs. Each check computes, from the meridian (eqs. 10–16), the quantity the gate measures on
-the mesh, and applies the same limit (:mod:`spsc.cad.process`):
+``printability(geometry, "fdm")`` judges a chamber in milliseconds, without building the solid.
+It is the only place a chamber's printability is decided: the gate (:mod:`spsc.cad.check`)
+runs it on the design's geometry (its ``printability`` check) beside its mesh checks of the
+construction, ``spsc sweep`` writes it in the ``printable`` column, ``spsc design`` makes it the
+constraint, and the report counts and draws that column. Each check computes, from the meridian
+(eqs. 10–16), the quantity the gate can also measure on the exported mesh, against the limits
+of :mod:`spsc.cad.process`:
 
-wall       the gate's ``min_wall``: the closest distance from the cavity surface above z = t0 to
-           the outer surface. Bodies of revolution and extrusion have their nearest points in the
+wall       gates. The closest distance from the cavity surface above z = t0 to the outer
+           surface. Bodies of revolution and extrusion have their nearest points in the
            meridian plane, so it is the distance between the two profile polylines the export
            mesh is built from (:meth:`SPSCGeometry.wall_profiles` at ``MESH_PROFILE_POINTS``),
            exact for polylines: t0 (less a chord's sagitta) on a smooth profile and round a
            profile corner (n2 = 1 with c_y > 0, whose offset is an arc of t0). Passes at
-           >= the process minimum less the gate's ``WALL_TOL_MM``. The mesh's circles add at most
-           ``meshbuild.SAG_MM`` (0.004 mm) of thinning, which the gate sees and this does not.
-overhang   the steepest downward-facing outer wall, in degrees from the vertical, for the part
-           standing on its base (build +z), against ``max_overhang_deg``. Only the bulge below
-           the widest section of a c_y > 0 chamber faces down; it is steepest where the outer
-           wall meets the base plane: the point of the offset curve at z = 0, whose normal is the
-           profile's normal there (analytic, one root find). The gate reports the area of facets
-           steeper than the limit; a facet is a chord, so its angle is the mean of the normals
-           over one profile segment, within a fraction of a degree of this.
-ceiling    report-only, as in the gate: the cavity's ceiling faces down up to the apex
-           (90 degrees for n1 > 1): a bridge closing a closed bladder, which no support can reach.
+           >= the process minimum less ``WALL_TOL_MM``. The mesh's circles add at most
+           ``meshbuild.SAG_MM`` (0.004 mm) of thinning, which the gate's own ``min_wall`` sees
+           and allows for (``MESH_THINNING_MM``): a design this rule passes, its mesh passes.
+overhang   gates, for every process. The steepest downward-facing outer wall of the chamber, in
+           degrees from the vertical, for the part standing on its base (build +z, the paper's
+           print plane, Table 2 note 3), against ``max_overhang_deg``. Only the bulge below the
+           widest section of a c_y > 0 chamber faces down; it is steepest where the outer wall
+           meets the base plane: the point of the offset curve at z = 0, whose normal is the
+           profile's normal there (analytic, one root find). The mesh's facets are chords: the
+           steepest lies within one profile segment's turn (~1°) of this angle.
+ceiling    reported only: the cavity's ceiling faces down up to the apex (90° for n1 > 1), a
+           bridge closing a closed bladder, which no support can reach.
+
+Why the outer overhang gates, per process. FDM (TPU 60A) and SLA (Elastic 50A, Silicone 40A)
+print the bladder as one closed part, base down, without support, as the paper's were. Inside,
+a support could never be removed from the sealed cavity; outside, under the bulge, it would
+stand in the notch between the wall and the flange and be fused to the air-tight skin of a
+0.5–2 mm wall that holds 40 kPa, and tearing it off scars that skin (the paper's FDM bladders
+already leaked < 1 kPa and needed a latex sealant, sec. 3.2). A layer-wise wall leaning out
+beyond the limit sags and opens gaps between layers: a leak. So beyond the limit the chamber
+is not printable as designed, for the gate as for a sweep. The paper's printed Types stay
+within it: Types A–C have no downward outer wall, Type D (c_y = 0.6) leans 43.1° (under FDM's
+45°, SLA's 60°). Molding casts the part in a mould: it has no build direction and its limit is
+90°, so the check never fails (the mould's pieces have their own gate, spsc.cad.moldgate, with
+pull directions and undercuts). The ceiling and the port's short horizontal cylinders (the
+nipple lying on its barbs, the bore's roof) are short bridges every bladder has and the paper
+printed: the gate reports their area (its ``overhang`` check) and gates none of them. So does
+it for a mould piece (an open part, supported and cleaned where needed) and for a mesh without a
+design geometry (``spsc check`` on any STL, the fingertip): no chamber to judge, only the
+report.
 
 With ``port`` or ``flange`` (the other then takes its default), the mounting hardware's thin
 walls are judged against the process minimum as well, which the gate does not (it judges the
-chamber wall only, docs/design.md): the nipple's wall (:attr:`PortSpec.wall`), the roof of the bore
-under the flange top (:attr:`BladderSpec.bore_roof`) and the flange around its screw holes
-(:attr:`FlangeSpec.ligament`). The nipple's shaft, lying on its barbs, and the bore's ceiling
-are short horizontal-cylinder overhangs of every design; the gate counts them in its outer
-overhang area, this verdict does not judge them.
+chamber wall only, docs/design.md): the nipple's wall (:attr:`PortSpec.wall`), the roof of the
+bore under the flange top (:attr:`BladderSpec.bore_roof`) and the flange around its screw holes
+(:attr:`FlangeSpec.ligament`).
 
 What the gate checks about the construction (watertight, one part, genus, cavity volume, box)
 is the CAD's business, not the design's: the property test of the gate covers it.
@@ -46,27 +67,37 @@ from scipy.spatial import cKDTree
 
 from spsc.core.errors import ParameterError
 
-from .check import WALL_TOL_MM
 from .geometry import MESH_PROFILE_POINTS, SPSCGeometry
-from .process import Process, process as get_process
+from .process import WALL_TOL_MM, Process, process as get_process
 from .specs import BladderSpec, FlangeSpec, PortSpec
 
-__all__ = ["Verdict", "printability"]
+__all__ = ["GATES", "Verdict", "printability"]
 
 
 @dataclass(frozen=True)
 class Verdict:
-    """A printability verdict: ``ok``, one sentence per failed check (``reasons``), one line
-    naming every check with its value and limit (``summary``), the process, and the measured
-    values: ``wall_mm`` (None without a wall region), ``wall_at_mm`` (x, z of the thinnest point
-    on the cavity profile), ``overhang_deg``, ``ceiling_deg`` and, with a port or flange,
-    ``port_wall_mm``, ``bore_roof_mm``, ``flange_ligament_mm`` (None without holes)."""
+    """A printability verdict: ``ok`` (also ``printable``), one sentence per failed check
+    (``reasons``), one line naming every check with its value and limit (``summary``), the
+    process, the measured values: ``wall_mm`` (None without a wall region), ``wall_at_mm``
+    (x, z of the thinnest point on the cavity profile), ``overhang_deg``, ``ceiling_deg`` and,
+    with a port or flange, ``port_wall_mm``, ``bore_roof_mm``, ``flange_ligament_mm`` (None
+    without holes); and the ``limits`` applied: ``min_wall_mm``, ``wall_tolerance_mm``,
+    ``max_overhang_deg`` and ``gates`` (which checks gate; the rest are reported)."""
 
     ok: bool
     reasons: tuple[str, ...]
     summary: str
     process: str = ""
     measures: dict = field(default_factory=dict, hash=False)
+    limits: dict = field(default_factory=dict, hash=False)
+
+    @property
+    def printable(self) -> bool:
+        return self.ok
+
+
+#: The checks of the rule that gate (module docstring); ``ceiling`` is reported only.
+GATES = ("wall", "overhang", "port wall", "bore roof", "flange ligament")
 
 
 def printability(geometry: SPSCGeometry, process: str | Process = "fdm", *,
@@ -120,7 +151,9 @@ def printability(geometry: SPSCGeometry, process: str | Process = "fdm", *,
             judge(ok, f"{label} {value:.3f} {'≥' if ok else '<'} {lim_w:g} mm",
                   f"{label} {value:.3f} mm < {name} minimum {lim_w:g} mm")
     summary = f"{name}: " + ", ".join(lines)
-    return Verdict(not reasons, tuple(reasons), summary, name, measures)
+    limits = {"min_wall_mm": lim_w, "wall_tolerance_mm": WALL_TOL_MM, "max_overhang_deg": lim_a,
+              "gates": list(GATES)}
+    return Verdict(not reasons, tuple(reasons), summary, name, measures, limits)
 
 
 def _deg(angle: float, limit: float) -> str:

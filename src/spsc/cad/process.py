@@ -2,7 +2,10 @@
 
 Lengths in mm, angles in degrees. ``max_overhang_deg`` is the largest angle from the vertical a
 downward-facing surface may make without support, for the part standing on its base (build
-direction +z, print plane i–k of the paper = x–y here, Table 2 note 3).
+direction +z, print plane i–k of the paper = x–y here, Table 2 note 3). The rule that applies
+these limits, and why the overhang of the chamber's outer wall gates while other overhangs are
+only reported, is :mod:`spsc.cad.printability` (one rule for the gate, sweeps, the design
+search and the report).
 """
 
 from __future__ import annotations
@@ -11,7 +14,17 @@ from dataclasses import dataclass
 
 from spsc.core.errors import ParameterError
 
-__all__ = ["Process", "PROCESSES", "process"]
+__all__ = ["Process", "PROCESSES", "process", "WALL_TOL_MM", "MESH_THINNING_MM"]
+
+#: Tessellation allowance on the wall (mm): a 0.8 mm wall exported with a 0.005 mm chord
+#: tolerance measures ~0.795 mm; 0.01 mm is far below what FDM resolves (0.1–0.2 mm layers).
+WALL_TOL_MM = 0.01
+#: How much thinner the export mesh's wall can measure than the design's profile polylines (mm):
+#: the circles' chord sag (``meshbuild.SAG_MM``, 0.004 mm) plus what the gate's sampling of the
+#: cavity misses (< 0.001 mm; the slow agreement test in tests/test_printability.py). Where the
+#: rule judges the design's wall, the gate's mesh wall gets this on top of ``WALL_TOL_MM``, so
+#: a design the rule passes is never failed by its own mesh.
+MESH_THINNING_MM = 0.005
 
 
 @dataclass(frozen=True)

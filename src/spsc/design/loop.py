@@ -156,16 +156,19 @@ def _finite(v) -> bool:
 
 
 def _printable(row: dict, design: dict, process: str) -> tuple[bool, str]:
-    """The row's printability verdict; where the evaluation could not judge it (no verdict
-    module), the process's minimum wall against t0."""
+    """The row's printability verdict; where the evaluation never returned one (its worker
+    died), the sweep's columns of the same rule on the design's geometry, and not printable
+    when that geometry is itself invalid."""
     if row.get("printable") is not None:
         return bool(row["printable"]), str(row.get("printability") or "")
-    from spsc.cad.process import process as get_process
+    from spsc.cad.geometry import PARAMS, SPSCGeometry
+    from spsc.sweep.evaluate import printability_columns
 
-    limit = get_process(process).min_wall_mm
-    t0 = full_params(design)["t0"]
-    ok = t0 >= limit - 1e-12
-    return ok, (f"wall {t0:g} mm {'>=' if ok else '<'} {limit:g} mm ({process} minimum)")
+    try:
+        params = full_params(design)
+        return printability_columns(SPSCGeometry(**{k: params[k] for k in PARAMS}), process)
+    except ParameterError as exc:
+        return False, str(exc)
 
 
 def _tell(study, problem: Problem, trial, design: dict, row: dict) -> bool:

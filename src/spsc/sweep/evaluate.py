@@ -32,7 +32,7 @@ from spsc.study.metrics import DesignMetrics, design_metrics
 from spsc.cad.geometry import PARAMS
 
 __all__ = ["INPUTS", "METRICS", "COLUMNS", "STATUSES", "DONE", "resolve_design",
-           "design_curves", "evaluate", "failed_row", "design_key"]
+           "design_curves", "evaluate", "failed_row", "design_key", "printability_columns"]
 
 #: The inputs of a design, under the CLI's parameter names.
 INPUTS = ("type",) + PARAMS + ("material", "pressure", "reservoir")
@@ -108,10 +108,11 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
     return curves
 
 
-def _printability(geometry, process: str) -> tuple[bool, str]:
-    """(printable, verdict) of the chamber for ``process``, from the design facts
-    (:func:`spsc.cad.printability.printability`, milliseconds, no solid built): the verdict's
-    summary when it passes (every check with its value and limit), its reasons when not."""
+def printability_columns(geometry, process: str) -> tuple[bool, str]:
+    """The ``printable`` and ``printability`` columns of the chamber for ``process``: the
+    printability rule (:func:`spsc.cad.printability.printability`, the gate's own, milliseconds,
+    no solid built); the verdict's summary when it passes (every check with its value and
+    limit), its reasons when not. The design search uses it too."""
     from spsc.cad.printability import printability
 
     v = printability(geometry, process)
@@ -130,7 +131,7 @@ def evaluate(design: dict, model: str, process: str, points: int | None = None,
         row["key"] = design_key(design, model, process, points, stroke_mm)
         geometry, _, _ = resolve_design(design)
         row["cavity_mm3"] = geometry.cavity_volume()  # known even if the load is refused
-        row["printable"], row["printability"] = _printability(geometry, process)
+        row["printable"], row["printability"] = printability_columns(geometry, process)
         curves = design_curves(design, model, points=points, stroke_mm=stroke_mm)
         row.update(asdict(design_metrics([curves["high"]], [curves["low"]])))
         row["status"], row["message"] = _outcome(curves, geometry)
