@@ -18,8 +18,10 @@ GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
+	@echo "    (with overrides: build/bladder-TYPE-NAME=VALUE.../, e.g. W=12 -> build/bladder-D-w=12/)"
 	@echo "make bladder TYPE=D HAPTIC=1    (the haptic chamber, FIT0774 motor) -> build/bladder-D-haptic/"
-	@echo "make mold TYPE=A|B|C|D [PROCESS=casting|compression]           -> build/mold-TYPE/"
+	@echo "make mold TYPE=A|B|C|D [PROCESS=casting|compression] [W= ...]  -> build/mold-TYPE/"
+	@echo "    (likewise: PROCESS=compression -> build/mold-TYPE-process=compression/)"
 	@echo "make fingertip                                                   -> build/fingertip/"
 	@echo "make fingertip-fem [FT_MESH=2]                                 -> build/fingertip/fem/"
 	@echo "make haptic-fem                                                -> build/haptic-fem/ (the motor's cost)"

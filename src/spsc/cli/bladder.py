@@ -17,12 +17,21 @@ MATERIAL_PROCESS = {"tpu60a": "fdm", "elastic50a": "sla", "silicone40a": "sla", 
 def register(sub) -> None:
     p = sub.add_parser("bladder", help="build a printable bladder and check it",
                        description="Build the bladder (wall + floor/flange + barbed port) of a "
-                       "chamber, write STEP, STL, 3MF and the printability report check.json.")
+                       "chamber, write STEP, STL, 3MF and the printability report check.json. "
+                       "The folder (and the files' stem) is named for what is in it: "
+                       "build/bladder-TYPE/ for a preset as it is, then each value that differs "
+                       "from the preset's or the default, as NAME=VALUE: --type D --w 12 "
+                       "writes build/bladder-D-w=12/, --type D --w 12 --material elastic50a "
+                       "build/bladder-D-w=12-material=elastic50a/, the seven parameters "
+                       "without --type build/bladder-w=..-h=..-l=..-t0=..-n1=..-n2=..-cy=../; "
+                       "--haptic adds -haptic. --out picks the folder instead.")
     add_geometry_options(p)
     p.add_argument("--material", default="tpu60a",
                    help="tpu60a (FDM), elastic50a or silicone40a (SLA), as40 (molding); "
-                   "selects the process whose minimum wall the gate applies")
-    p.add_argument("--out", default=None, help="output folder (default build/bladder-TYPE)")
+                   "selects the process whose limits (minimum wall, overhang) the gate's "
+                   "printability rule applies, the same rule as spsc sweep's printable column")
+    p.add_argument("--out", default=None, help="output folder (default build/NAME, NAME as "
+                   "above; the files are NAME.step, .stl, .3mf, .design.json either way)")
     p.add_argument("--flange-holes", type=integer("flange_holes"), default=4,
                    help="screw holes: 0, 2 or 4")
     p.add_argument("--tube-id", type=number("tube_id", "mm"), default=3.0,
@@ -49,11 +58,46 @@ def process_for(material_name: str) -> str:
     return MATERIAL_PROCESS[material(material_name).name]
 
 
+def output_name(prefix: str, args: argparse.Namespace, geom, extras=()) -> str:
+    """The name of an output folder, for what is in it: ``prefix``, the preset (``--type``,
+    and ``--footprint`` when not table1), then ``NAME=VALUE`` for each of the seven parameters
+    that differs from the preset's (all seven without ``--type``), then :func:`option_labels`
+    of ``extras``. Numbers as ``:g`` (mm)."""
+    from spsc.cad.geometry import PARAMS, preset
+
+    parts, base = [prefix], {}
+    if args.type:
+        parts.append(str(args.type).strip().upper())
+        if str(args.footprint).strip().lower() != "table1":
+            parts.append(str(args.footprint).strip().upper())
+        base = preset(args.type, size=args.footprint).as_dict()
+    g = geom.as_dict()
+    parts += [f"{k}={g[k]:g}" for k in PARAMS if base.get(k) != g[k]]
+    return "-".join(parts + option_labels(extras))
+
+
+def option_labels(extras) -> list[str]:
+    """``NAME=VALUE`` for each ``(name, value, default)`` whose value is given and is not the
+    default (numbers as ``:g``, words in lower case)."""
+    out = []
+    for label, value, default in extras:
+        if isinstance(value, str):
+            value = value.strip().lower()
+        if value is not None and value != default:
+            out.append(f"{label}={value:g}" if isinstance(value, float) else f"{label}={value}")
+    return out
+
+
 def run(args: argparse.Namespace) -> int:
     # every check before the CAD kernel is even imported (2 s): a bad input fails at once
     geom = geometry_from_args(args)
     process = process_for(args.material)
-    name = f"bladder-{str(args.type).strip().upper()}" if args.type else "bladder"
+    from spsc.materials import material
+
+    name = output_name("bladder", args, geom, (("material", material(args.material).name,
+                                                "tpu60a"),
+                                               ("flange_holes", args.flange_holes, 4),
+                                               ("tube_id", args.tube_id, 3.0)))
     if args.haptic:
         name += "-haptic"
     outdir = check_output_dir("--out", args.out if args.out is not None else f"build/{name}")

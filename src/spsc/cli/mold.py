@@ -40,7 +40,12 @@ def register(sub) -> None:
                    help="least mold material between the part and the outside, mm")
     p.add_argument("--parting", default="auto", help="auto (the split without undercut), z "
                    "(horizontal, through the port axis) or x (vertical, x = 0)")
-    p.add_argument("--out", default=None, help="output folder (default build/mold-TYPE)")
+    p.add_argument("--out", default=None, help="output folder (default build/NAME: "
+                   "mold-TYPE for a preset's casting mold with the defaults, then NAME=VALUE "
+                   "for each parameter or option that differs, as spsc bladder names its "
+                   "folders: --type D --w 12 --process compression writes "
+                   "build/mold-D-w=12-process=compression/; from a part file, "
+                   "mold-STEM[-NAME=VALUE...])")
     p.add_argument("--no-step", action="store_true", help="skip the STEP files (B-rep, ~3 s)")
     p.add_argument("--no-render", action="store_true", help="skip the exploded render")
     p.set_defaults(func=run)
@@ -66,13 +71,25 @@ def _bladder(args):
             raise ParameterError("part", args.part, "a bladder's design file (molds of the "
                                  f"fingertip or other parts are not made yet; this is "
                                  f"{d.get('kind', 'unknown')!r})")
-        return bladder_spec(_geometry(d["geometry"]), int(d.get("genus", 4)),
-                            args.tube_id), design.name.removesuffix(".design.json")
+        stem = design.name.removesuffix(".design.json")
+        return bladder_spec(_geometry(d["geometry"]), int(d.get("genus", 4)), args.tube_id), \
+            "-".join([stem if stem.startswith("mold") else f"mold-{stem}", *_options(args)])
+    from spsc.cli.bladder import output_name
     from spsc.cli.options import geometry_from_args
 
     geom = geometry_from_args(args)
-    name = f"mold-{str(args.type).strip().upper()}" if args.type else "mold"
-    return bladder_spec(geom, args.flange_holes, args.tube_id), name
+    name = output_name("mold", args, geom, (("flange_holes", args.flange_holes, 4),))
+    return bladder_spec(geom, args.flange_holes, args.tube_id), "-".join([name, *_options(args)])
+
+
+def _options(args) -> list[str]:
+    """``NAME=VALUE`` for each mold option that is not its default (the folder's name)."""
+    from spsc.cli.bladder import option_labels
+
+    return option_labels((("tube_id", args.tube_id, 3.0), ("process", args.process, "casting"),
+                          ("material", args.material, "as40"),
+                          ("shrinkage", args.shrinkage, None), ("clearance", args.clearance, 0.2),
+                          ("wall", args.wall, 5.0), ("parting", args.parting, "auto")))
 
 
 def _geometry(g):
@@ -95,8 +112,6 @@ def run(args: argparse.Namespace) -> int:
                     material=str(args.material).strip().lower(), shrinkage_pct=args.shrinkage,
                     clearance=args.clearance, wall=args.wall,
                     parting=str(args.parting).strip().lower())
-    if not name.startswith("mold"):
-        name = f"mold-{name}"
     outdir = check_output_dir("--out", args.out if args.out is not None else f"build/{name}")
 
     from spsc.cad.mold import build_mold
