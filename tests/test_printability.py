@@ -210,6 +210,9 @@ def test_the_bladder_guide_quotes_the_verdict():
     assert f'"{printability(preset("B", t0=0.6)).reasons[0]}"' in text
     assert f'"{printability(preset("D", cy=0.7)).reasons[0].split(" (")[0]} …"' in text
     assert f"Type D: {printability(preset('D')).measures['overhang_deg']:.1f}°" in text
+    steep = printability(preset("D", w=12.0))
+    assert f"at w = 12 mm it leans {steep.measures['overhang_deg']:.1f}° and FDM refuses" in text
+    assert not steep.ok and printability(preset("D", w=12.0), "sla").ok
 
 
 def test_verdict_builds_no_solid():

@@ -148,7 +148,9 @@ def run(args: argparse.Namespace) -> int:
 
 def gate(stl: Path, design: dict, process: str, outdir: Path, extra: list = ()) -> int:
     """Run the printability gate on ``stl`` (plus ``extra`` part-specific checks), write
-    check.json and print the summary; 0 if passed, 1 naming the failed checks."""
+    check.json and print the summary; 0 if passed, 1 naming the failed checks. With the
+    design's ``geometry`` (a bladder, the haptic chamber) the gate includes the printability
+    rule (:mod:`spsc.cad.printability`) that sweeps and the design search apply."""
     import dataclasses
 
     from spsc.cad.check import check_mesh

@@ -26,7 +26,9 @@ def register(subparsers) -> None:
     p = subparsers.add_parser(
         "check", help="printability report of an STL/3MF mesh",
         description="Printability gate: watertight, 2-manifold, no self-intersections, one part, "
-                    "genus, minimum wall, cavity volume, bounding box, overhang (report only).")
+                    "genus, minimum wall, cavity volume, bounding box, overhang area (report "
+                    "only); with the design's geometry, the printability rule (wall, chamber "
+                    "overhang).")
     p.add_argument("file", metavar="FILE", help="mesh to check (.stl or .3mf, mm)")
     p.add_argument("--min-wall", metavar="MM", default=None,
                    help="minimum wall thickness in mm (default: the process minimum)")
