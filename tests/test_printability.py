@@ -304,7 +304,8 @@ def test_fast_verdict_agrees_with_the_gate(name, process):
     report = check_mesh(mesh, design=design, process=process)
     fast = printability(g, process, flange=spec.flange, port=spec.port)
     proc = PROCESSES[process]
-    assert set(report.failed) <= {"min_wall"}, report.summary()  # the construction is sound
+    assert set(report.failed) <= {"min_wall", "printability"}, report.summary()  # sound build
+    assert report["printability"].passed == fast.ok  # the gate runs this very rule
 
     gate_wall = report["min_wall"]
     assert gate_wall.passed == (not any(r.startswith("wall") for r in fast.reasons))
