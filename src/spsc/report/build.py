@@ -20,7 +20,9 @@ from spsc.report.bench import bench_section
 from spsc.report.figures import FigureCache
 from spsc.report.paper import paper_bench
 from spsc.study.provenance import Provenance, provenance, versions
-from spsc.report.render import render_page
+from spsc.report.bench_figure import bench_gap_figure
+from spsc.report.overview import overview_section
+from spsc.report.render import draw_figures, render_page
 from spsc.report.fingertip import fingertip_section
 from spsc.report.haptic import haptic_section
 from spsc.report.mold import mold_section
@@ -76,6 +78,11 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
            "fingertip": fingertip_section(fingertip, out) if fingertip is not None else None,
            "mold": mold_section(out, molds, render=render) if molds else None,
            "haptic": haptic_section(haptic, out) if haptic is not None else None}
+    ctx["overview"] = overview_section(study, ctx["headline"], ctx["comparison"],
+                                       ctx["convergence"], ctx["paper"])
+    drawn, ctx["figure_notes"] = draw_figures(
+        figs, [("bench-gap", bench_gap_figure, ctx["overview"]["bench_gap"])])
+    ctx["overview"]["figure"] = drawn.get("bench-gap")
     write_json(out / "summary.json", _summary(ctx))
     path = out / "index.html"
     path.write_text(render_page(ctx), encoding="utf-8")
@@ -93,7 +100,9 @@ def write_run_data(outcomes: dict, directory: Path) -> None:
 def _summary(ctx: dict) -> dict:
     """What ``summary.json`` keeps: the numbers of every section, the study, the provenance."""
     runs = ctx["runs"]
+    overview = {k: v for k, v in ctx["overview"].items() if k != "bench_gap"}
     return {"study": asdict(ctx["study"]), "command": ctx["command"],
+            "overview": overview, "bench_gap": ctx["overview"]["bench_gap"],
             "executor": ctx["executor"],
             "provenance": ctx["provenance"], "failed": runs["failed"], "runs": runs["rows"],
             "comparison": ctx["comparison"]["summary"],

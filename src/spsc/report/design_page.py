@@ -45,7 +45,8 @@ def write_page(doc: dict, rows: list[dict], curves: dict | None, out) -> Path:
            "metrics": METRIC_NAMES, "targets": _targets(goal),
            "top": _top(rows, goal), "searched": searched,
            "failures": _failures(rows), "labels": _LABELS,
-           "needed_labels": [_LABELS[k] for k in goal.needed]}
+           "needed_labels": [_LABELS[k] for k in goal.needed],
+           "files": [(n, what) for n, what in _FILES if (out / n).is_file()]}
     path = out / "index.html"
     path.write_text(render_page(ctx, "design.html.j2"), encoding="utf-8")
     for n in notes:
@@ -57,6 +58,11 @@ _LABELS = {"stiffness_high": "stiffness high (N/mm)", "stiffness_low": "stiffnes
            "sensitivity_high": "sensitivity high (kPa/mm)",
            "sensitivity_low": "sensitivity low (kPa/mm)", "jnd_mm": "JND depth (mm)",
            "cavity_mm3": "cavity (mm³)"}
+
+
+#: The run's files beside its page, linked when present.
+_FILES = (("design.json", "the result"), ("trials.parquet", "every trial"),
+          ("study.journal", "the Optuna study: a re-run with the same --out continues it"))
 
 
 def _row(rows, entry):

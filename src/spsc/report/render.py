@@ -9,7 +9,9 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-__all__ = ["environment", "num", "render_page", "draw_figures"]
+from spsc.report.page_check import LONG_TABLE_ROWS, outline
+
+__all__ = ["environment", "num", "render_page", "draw_figures", "with_contents", "CONTENTS"]
 
 TEMPLATES = Path(__file__).with_name("templates")
 
@@ -30,12 +32,34 @@ def environment():
                              undefined=jinja2.StrictUndefined, trim_blocks=True,
                              lstrip_blocks=True)
     env.filters["num"] = num
+    env.globals["long_table_rows"] = LONG_TABLE_ROWS
     return env
 
 
 def render_page(context: dict, template: str = "report.html.j2") -> str:
-    """The report page from ``context`` (see :func:`~.report.build_report`)."""
-    return environment().get_template(template).render(**context)
+    """The page of ``template`` from ``context`` (see :func:`~.report.build_report`), with its
+    table of contents where the template marks it (:func:`with_contents`)."""
+    return with_contents(environment().get_template(template).render(**context))
+
+
+#: Where a template wants its table of contents.
+CONTENTS = "<!-- contents -->"
+
+
+def with_contents(page: str) -> str:
+    """``page`` with :data:`CONTENTS` replaced by a list of links to the ``<h2 id=…>``
+    headings that follow it, made from the page itself: every entry has its anchor, every
+    section after the contents its entry."""
+    if CONTENTS not in page:
+        return page
+    import html
+
+    at = page.index(CONTENTS)
+    heads = [v for k, v in outline(page[at:]).events if k == "h2" and v[0]]
+    items = "".join(f'<li><a href="#{html.escape(i)}">{html.escape(text)}</a></li>'
+                    for i, text in heads)
+    nav = f'<nav id="contents"><p><b>Contents</b></p><ol>{items}</ol></nav>'
+    return page.replace(CONTENTS, nav, 1)
 
 
 def draw_figures(figs: Path, specs) -> tuple[dict, list[str]]:

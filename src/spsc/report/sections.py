@@ -108,7 +108,7 @@ def comparison_section(study: Study, res: Results, figs: FigureOutput) -> dict:
                 images = [_curves_png(figs, res, tag, title, runs, f_el_run)]
                 if figs.render and fem_run is not None:
                     images.append(_shapes_png(figs, res, tag, title, runs[0][1], fem_run))
-                blocks.append({"title": title, "images": images})
+                blocks.append({"id": f"curves-{tag}", "title": title, "images": images})
                 if fem_run is None:
                     continue
                 per = _errors(res, res.curve(fem_run), runs, res.curve(f_el_run))

@@ -57,7 +57,7 @@ def write_page(df, out, *, model: str, process: str, stroke_mm: float, points: i
     on_front = sorted((r for r, m in zip(rows, mask) if m), key=lambda r: r[front.metrics[0]],
                       reverse=front.senses[0] == "max")
     ctx = {"model": model, "process": process, "stroke_mm": stroke_mm, "points": points,
-           "command": command, "table": table, "front": front, "labels": LABEL,
+           "command": command, "front": front, "labels": LABEL, **_table_ref(table, out),
            "metrics": METRICS, "varied": varied, "fixed": fixed, "by_type": by_type, "figures": figures,
            "notes": notes, "n": len(rows), "stats": dict(df.attrs.get("sweep", {})),
            "status_counts": _status_counts(rows),
@@ -70,6 +70,18 @@ def write_page(df, out, *, model: str, process: str, stroke_mm: float, points: i
     for n in notes:
         print(f"spsc sweep: warning: {n}", file=sys.stderr)
     return path
+
+
+def _table_ref(table: str, out: Path) -> dict:
+    """How the page names the sweep's own table: a link relative to the page when the table
+    is inside the page's folder (it moves with it), else its absolute path as text (a link
+    would lean on where the page was written)."""
+    if not table:
+        return {"table": "", "table_link": ""}
+    path, folder = Path(table).resolve(), out.resolve()
+    inside = path.is_relative_to(folder)
+    return {"table": str(path), "table_link": path.relative_to(folder).as_posix() if inside
+            else ""}
 
 
 def _plain(row: dict) -> dict:
