@@ -138,3 +138,21 @@ def test_broken_links_finds_what_points_nowhere(tmp_path):
                     '<img src="b.png"><a href="/abs/c.html">c</a><a href="https://e.org">e</a>',
                     encoding="utf-8")
     assert broken_links(page) == ["#y", "b.png", "/abs/c.html"]
+
+
+def test_a_moved_design_folder_resolves_every_link(tmp_path):
+    """``spsc design``'s folder (page, design.json, trials, journal, figures) moved elsewhere
+    still resolves every link of its page; design.json names no path outside it."""
+    from spsc.cli.main import main
+
+    out = tmp_path / "a" / "run"
+    assert main(["design", "--model", "simplified", "--points", "5", "--workers", "1",
+                 "--verify", "none", "--no-build", "--trials", "3", "--seed", "1",
+                 "--target", "stiffness_high=6", "--out", str(out), "--quiet"]) in (0, 1)
+    moved = tmp_path / "b" / "moved"
+    shutil.move(str(out), str(moved))
+    links = set(outline((moved / "index.html").read_text(encoding="utf-8")).links)
+    assert {"design.json", "trials.parquet", "figures/history.png"} <= links
+    assert broken_links(moved / "index.html") == []
+    doc = (moved / "design.json").read_text(encoding="utf-8")
+    assert str(out) not in doc.replace(json.loads(doc)["command"], "")

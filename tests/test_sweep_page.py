@@ -5,6 +5,7 @@ listed, and the figures and the CSV are written."""
 import itertools
 import re
 import shlex
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -112,3 +113,26 @@ def test_page_without_any_printable_design_says_so(table, tmp_path):
     path = write_page(thin, tmp_path / "p", model="simplified", process="fdm", stroke_mm=4.0,
                       points=5)
     assert "No printable design was computed" in path.read_text(encoding="utf-8")
+
+
+def test_a_moved_page_folder_resolves_every_link(table, tmp_path):
+    """Every path on the page is relative to it: the folder moved elsewhere still shows its
+    figures and links its CSV and (inside the folder) the sweep's own table; a table outside
+    the folder is named by its absolute path, not linked."""
+    import shutil
+
+    from spsc.report.page_check import broken_links, outline
+
+    out = tmp_path / "a" / "page"
+    out.mkdir(parents=True)
+    table.to_parquet(out / "sweep.parquet")
+    write_page(table, out, model="simplified", process="fdm", stroke_mm=4.0, points=5,
+               table=str(out / "sweep.parquet"))
+    moved = Path(shutil.move(str(out), str(tmp_path / "b" / "moved")))
+    links = outline((moved / "index.html").read_text(encoding="utf-8")).links
+    assert {"table.csv", "sweep.parquet", "figures/front.png"} <= set(links)
+    assert broken_links(moved / "index.html") == []
+    outside = tmp_path / "outside.parquet"
+    page = write_page(table, tmp_path / "c", model="simplified", process="fdm", stroke_mm=4.0,
+                      points=5, table=str(outside))
+    assert broken_links(page) == [] and str(outside) in page.read_text(encoding="utf-8")
