@@ -5,7 +5,10 @@ The plate prescribes its active unknowns (each moved by its jump onto the plate)
 one master, u_s = u_m + jump_s. Both are eliminated from the linear system: the tangent is
 restricted to the free unknowns (:class:`Reduction`: its upper triangle read straight from the
 fixed-pattern CSR, the slaves summed into the master's row and column, PᵀKP; or
-:class:`Submatrix`, the free block as assembled, for solvers that take the whole matrix).
+:class:`Submatrix`, the free block as assembled, for solvers that take the whole matrix) or,
+where nothing is aliased and the solver takes the upper triangle, kept on every unsupported
+unknown with the constrained ones as unit rows (:class:`Masked`): its sparsity pattern does not
+change with the contact active set, so the solver's symbolic analysis is done once per mesh.
 """
 
 from __future__ import annotations
@@ -15,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["Constraints", "Reduction", "Submatrix", "constraint_key", "restriction"]
+__all__ = ["Constraints", "Reduction", "Submatrix", "Masked", "constraint_key", "restriction"]
 
 
 def constraint_key(free, slaves) -> bytes:
@@ -96,7 +99,16 @@ class Reduction:
         self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n))])
         self.indices = c.astype(np.int32)
         self.n = n
+        self.free = free
         self.key = constraint_key(free, slaves)
+
+    def take(self, v) -> np.ndarray:
+        """The system's entries of a full-numbering vector (already condensed)."""
+        return v[self.free]
+
+    def put(self, step, dx) -> None:
+        """Add the system's solution ``dx`` to the full step."""
+        step[self.free] += dx
 
     def matrix(self, K):
         data = K.data[self.sel]
@@ -115,13 +127,70 @@ class Submatrix:
         self.free = free
         self.key = constraint_key(free, None)
 
+    def take(self, v) -> np.ndarray:
+        return v[self.free]
+
+    def put(self, step, dx) -> None:
+        step[self.free] += dx
+
     def matrix(self, K):
         return K[self.free][:, self.free]
 
 
+class Masked:
+    """Upper triangle of K on every unknown that is free or prescribed by the plate (``free``
+    ∪ ``presc``), the prescribed ones as unit rows and columns (their entries zeroed, 1 on the
+    diagonal): the same solution on the free unknowns as :class:`Reduction` (Δ = 0 on the
+    prescribed ones, whose move is the constraints' shift) and the same negative eigenvalues
+    (the unit block adds positive ones), on a pattern that stays the same while the active set
+    changes. Needs K's diagonal in its pattern (every assembled unknown has it)."""
+
+    upper = True
+
+    def __init__(self, K, free, presc):
+        index = free.copy()
+        index[presc] = True
+        rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
+        new = np.cumsum(index) - 1
+        r_all, c_all = new[rows], new[K.indices]
+        keep = index[rows] & index[K.indices] & (r_all <= c_all)
+        self.sel = np.nonzero(keep)[0]
+        r, c = r_all[keep], c_all[keep]
+        n = int(index.sum())
+        held = ~free[index]  # the system's prescribed unknowns
+        zero = held[r] | held[c]
+        self.zero = np.nonzero(zero)[0]
+        self.unit = np.nonzero(zero & (r == c))[0]
+        if self.unit.size != int(held.sum()):
+            raise ValueError("Masked: a prescribed unknown has no diagonal entry in K's pattern")
+        self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n))])
+        self.indices = c.astype(np.int32)
+        self.n, self.index, self.held = n, index, held
+        self.key = constraint_key(free, None)
+
+    def take(self, v) -> np.ndarray:
+        out = v[self.index]
+        out[self.held] = 0.0
+        return out
+
+    def put(self, step, dx) -> None:
+        dx = np.array(dx, dtype=float)
+        dx[self.held] = 0.0
+        step[self.index] += dx
+
+    def matrix(self, K):
+        data = K.data[self.sel]
+        data[self.zero] = 0.0
+        data[self.unit] = 1.0
+        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n,) * 2)
+
+
 def restriction(K, free, con: Constraints, full_input: bool):
     """The tangent's restriction for the constraint set: the free block as assembled when the
-    solver takes the whole matrix and nothing is aliased, else :class:`Reduction`."""
-    if full_input and not con.slaves.size:
+    solver takes the whole matrix and nothing is aliased, :class:`Masked` when it takes the
+    upper triangle and nothing is aliased, else :class:`Reduction`."""
+    if con.slaves.size:
+        return Reduction(K, free, con.slaves, con.master)
+    if full_input:
         return Submatrix(free)
-    return Reduction(K, free, con.slaves, con.master)
+    return Masked(K, free, con.presc)

@@ -64,9 +64,9 @@ def linear_step(model, ev, restriction, free, con: Constraints, settings, *,
     s = con.shift()
     moved = bool(np.any(s))
     rhs = -rs - K @ s if moved else -rs
-    rhs = con.condense(rhs)[free]
+    rhs = restriction.take(con.condense(rhs))
     gs = gas_vector(model, ev, m)
-    gc = con.condense(gs)[free]
+    gc = restriction.take(con.condense(gs))
     if c > 0.0:
         if moved:
             rhs -= c * gc * _gas_shift(gs, s, con, settings.gas_shift)
@@ -75,7 +75,7 @@ def linear_step(model, ev, restriction, free, con: Constraints, settings, *,
         dx = factor(rhs)
     modes = model.unstable_modes(factor, c, gc)
     step = s
-    step[free] += dx
+    restriction.put(step, dx)
     if con.slaves.size:
         step[con.slaves] += step[con.master]
     lam = None

@@ -132,7 +132,7 @@ class _Newton:
         modes = self.modes if self.factored == key else None
         if self.factored != key and self.s.fresh_inertia:
             red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT)
-            gc = con.condense(gas_vector(self.model, ev, con.n))[free]
+            gc = red.take(con.condense(gas_vector(self.model, ev, con.n)))
             modes = inertia(self.model, red, ev, gc, self.s)
         return Converged(self.x, self.active, self.engaged, it, ev, modes)
 
