@@ -39,7 +39,8 @@ def bench_gap_figure(path, gap: dict) -> Path | None:
         ax.set_xlabel(d["unit"], fontsize=8)
         ax.grid(axis="x", alpha=0.3)
     axes[0][0].legend(fontsize=7, loc="lower right")
-    fig.suptitle("Headline means against the paper's bench (red: below it)", fontsize=10)
+    fig.suptitle("Headline means against the paper's bench (dashed; red: below it, blue: above)",
+                 fontsize=10)
     fig.savefig(path, dpi=90)
     plt.close(fig)
     return Path(path)

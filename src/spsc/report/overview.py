@@ -138,7 +138,8 @@ def _validated(study, comparison: dict) -> str:
                      f"{w['pressure_kPa']:.2g} % in pressure" for v, w in worst.items())
     return (f"The fast models against the 3D FEM (Types {', '.join(study.types)}, "
             f"{' and '.join(study.mode_names)} mode, p_i = {study.compare_pressure_kPa:g} kPa; "
-            f"RMS over the stroke as % of the FEM's largest value, worst type and mode): "
+            f"RMS difference over the stroke as % of the FEM's largest value, worst type and "
+            f"mode): "
             f"{each}.")
 
 
