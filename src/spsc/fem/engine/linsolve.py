@@ -36,9 +36,24 @@ import scipy.sparse.linalg as spla
 __all__ = ["solve_rank_one", "Factor", "factorize", "available_solvers", "FULL_INPUT"]
 
 
+def _point_pypardiso_at_mkl() -> None:
+    """Name MKL's runtime for pypardiso where pip puts it (``sys.prefix/lib``): unnamed,
+    pypardiso searches the whole environment's tree for it, twice per process (1.5 s of a
+    3D FEM curve's profile, every CLI call and Dask worker)."""
+    import os
+    import sys
+    from pathlib import Path
+
+    if "PYPARDISO_MKL_RT" not in os.environ:
+        found = sorted(Path(sys.prefix, "lib").glob("libmkl_rt.so*"), key=lambda p: len(p.name))
+        if found:
+            os.environ["PYPARDISO_MKL_RT"] = str(found[0])
+
+
 def available_solvers() -> list[str]:
     out = []
     try:
+        _point_pypardiso_at_mkl()
         import pypardiso  # noqa: F401
 
         out.append("pardiso")
@@ -64,6 +79,7 @@ class _Pardiso:
     libmkl_rt, and keeping it lets the analysis be reused across Newton iterations."""
 
     def __init__(self):
+        _point_pypardiso_at_mkl()
         import pypardiso
 
         self.ps = pypardiso.PyPardisoSolver(mtype=-2)
