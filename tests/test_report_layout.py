@@ -64,18 +64,44 @@ def test_a_models_p_a_alone_is_not_compared_when_it_has_f_el():
     assert set(gap["stiffness"]["high"]["models"]) == {"membrane+F_el", "simplified p·A"}
 
 
+def _sweep_table():
+    """A four-design sweep of Type B with the simplified model (its page: four figures)."""
+    from spsc.sweep.evaluate import evaluate
+    from spsc.sweep.store import frame
+
+    base = {"type": "B", "h": 13.0, "l": 3.0, "n1": 2.0, "n2": 2.2, "cy": 0.0,
+            "material": "tpu60a", "pressure": 40.0, "reservoir": 40000.0}
+    return frame([evaluate({**base, "w": w, "t0": t0}, model="simplified", process="fdm",
+                           points=5, stroke_mm=4.0) for w in (9.0, 12.0) for t0 in (1.0, 1.3)])
+
+
+def _paths(value):
+    """Every string in a JSON value that names a file (a relative path with a suffix)."""
+    if isinstance(value, dict):
+        return [p for v in value.values() for p in _paths(v)]
+    if isinstance(value, list):
+        return [p for v in value for p in _paths(v)]
+    ok = isinstance(value, str) and " " not in value and "/" in value
+    return [value] if ok and value.rsplit(".", 1)[-1] in ("png", "html", "csv", "json") else []
+
+
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
     """The report of :data:`STUDY` with the simplified model only (the fastest: ~1 s of
-    runs), written to a temporary folder; (folder, page outline, summary.json)."""
+    runs) and a small sweep, written to a temporary folder; (folder, page, summary.json)."""
+    from dataclasses import replace
+
     from spsc.models import MODELS
 
     with pytest.MonkeyPatch.context() as mp:
-        for name in [k for k in MODELS if k != "simplified"]:
+        for name in [k for k in MODELS if k not in ("simplified", "membrane")]:
             mp.delitem(MODELS, name)
+        # the sweep's model, named by its page's commands, but not run by the study
+        mp.setitem(MODELS, "membrane", replace(MODELS["membrane"], sweep=False))
         outcomes = run_all(STUDY.runs(), Cache(tmp_path_factory.mktemp("cache")), progress=False)
         out = tmp_path_factory.mktemp("report") / "report"
-        path = build_report(STUDY, outcomes, out, source=CLEAN)
+        path = build_report(STUDY, outcomes, out, source=CLEAN,
+                            sweep=(_sweep_table(), "spsc sweep ..."))
     page = path.read_text(encoding="utf-8")
     return out, page, json.loads((out / "summary.json").read_text(encoding="utf-8"))
 
@@ -128,7 +154,11 @@ def test_a_moved_report_resolves_every_link(report, tmp_path):
     assert broken_links(f"{moved}/index.html") == []
     summary = json.loads((tmp_path / "elsewhere" / "validation" / "summary.json")
                          .read_text(encoding="utf-8"))
-    assert (tmp_path / "elsewhere" / "validation" / summary["overview"]["figure"]).is_file()
+    paths = _paths(summary)
+    assert {summary["overview"]["figure"], "sweep/index.html", "sweep/figures/front.png"} <= \
+        set(paths)
+    assert [p for p in paths if not (tmp_path / "elsewhere" / "validation" / p).is_file()] == []
+    assert broken_links(f"{moved}/sweep/index.html") == []
 
 
 def test_broken_links_finds_what_points_nowhere(tmp_path):
@@ -147,7 +177,7 @@ def test_a_moved_design_folder_resolves_every_link(tmp_path):
 
     out = tmp_path / "a" / "run"
     assert main(["design", "--model", "simplified", "--points", "5", "--workers", "1",
-                 "--verify", "none", "--no-build", "--trials", "3", "--seed", "1",
+                 "--verify", "none", "--no-build", "--trials", "2", "--seed", "1",
                  "--target", "stiffness_high=6", "--out", str(out), "--quiet"]) in (0, 1)
     moved = tmp_path / "b" / "moved"
     shutil.move(str(out), str(moved))
