@@ -53,7 +53,7 @@ def register(sub) -> None:
 
 def _bladder(args):
     """The BladderSpec from the part's design file or the geometry options."""
-    from spsc.cad.checkdesign import design_path_for, load_design
+    from spsc.cad.checkdesign import design_path_for, load_design, parse_design
     from spsc.cad.specs import bladder_spec
 
     if args.part is not None:
@@ -72,7 +72,8 @@ def _bladder(args):
                                  f"fingertip or other parts are not made yet; this is "
                                  f"{d.get('kind', 'unknown')!r})")
         stem = design.name.removesuffix(".design.json")
-        return bladder_spec(_geometry(d["geometry"]), int(d.get("genus", 4)), args.tube_id), \
+        geom = parse_design(d)["geometry"]  # the seven parameters, checked by the shared reader
+        return bladder_spec(geom, int(d.get("genus", 4)), args.tube_id), \
             "-".join([stem if stem.startswith("mold") else f"mold-{stem}", *_options(args)])
     from spsc.cli.bladder import output_name
     from spsc.cli.options import geometry_from_args
@@ -90,18 +91,6 @@ def _options(args) -> list[str]:
                           ("material", args.material, "as40"),
                           ("shrinkage", args.shrinkage, None), ("clearance", args.clearance, 0.2),
                           ("wall", args.wall, 5.0), ("parting", args.parting, "auto")))
-
-
-def _geometry(g):
-    """The design file's ``geometry``: an object with the seven parameters (mm), each checked
-    by :class:`~spsc.cad.geometry.SPSCGeometry`."""
-    from spsc.cad.geometry import SPSCGeometry
-
-    names = ("w", "h", "l", "t0", "n1", "n2", "cy")
-    if not isinstance(g, dict) or set(g) != set(names):
-        raise ParameterError("geometry", g, "an object with the seven parameters "
-                             + ", ".join(names) + " (mm)")
-    return SPSCGeometry(**g)
 
 
 def run(args: argparse.Namespace) -> int:
