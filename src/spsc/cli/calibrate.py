@@ -21,9 +21,9 @@ from spsc.core.loadcase import PRESSURE_MAX_KPA
 from spsc.models.wall import wall_size_check
 
 from spsc.studies.calibration import identification, mean_slope, plot_calibration
-from spsc.cli.identify import _floats
-from spsc.cli.options import (PLOT_SUFFIXES, add_gas_options, add_geometry_options, add_output_options,
-                      add_quiet_option, check_output_file, geometry_from_args, integer, number)
+from spsc.cli.options import (PLOT_SUFFIXES, Once, add_gas_options, add_geometry_options,
+                              add_output_options, add_quiet_option, check_output_file,
+                              geometry_from_args, integer, number, number_list)
 
 
 def register(subparsers) -> None:
@@ -45,9 +45,9 @@ def register(subparsers) -> None:
     m.add_argument("--force", action="store_true",
                    help="run beyond the size limits (the estimate is printed first)")
     q = p.add_argument_group("predictions with the calibrated material")
-    q.add_argument("--predict-pressures", default="10,40", metavar="KPA,...",
+    q.add_argument("--predict-pressures", default="10,40", metavar="KPA,...", action=Once,
                    help="kPa gauge, comma-separated (default 10,40; '' for none)")
-    q.add_argument("--predict-reservoirs", default="0,40000", metavar="MM3,...",
+    q.add_argument("--predict-reservoirs", default="0,40000", metavar="MM3,...", action=Once,
                    help="mm³, comma-separated (default 0,40000: high and low mode)")
     q.add_argument("--predict-stroke", type=number("predict_stroke", "mm"), default=4.0,
                    metavar="MM", help="stroke of the predicted curves, mm (default 4)")
@@ -62,9 +62,10 @@ def register(subparsers) -> None:
 def _predictions(args) -> list[tuple[float, float]]:
     if not str(args.predict_pressures).strip():
         return []
-    pressures = _floats("predict-pressures", args.predict_pressures, le=PRESSURE_MAX_KPA,
-                        unit="kPa gauge")
-    reservoirs = _floats("predict-reservoirs", args.predict_reservoirs, unit="mm³")
+    pressures = number_list("predict-pressures", args.predict_pressures, ge=0,
+                            le=PRESSURE_MAX_KPA, unit="kPa gauge", distinct=True)
+    reservoirs = number_list("predict-reservoirs", args.predict_reservoirs, ge=0, unit="mm³",
+                             distinct=True)
     return [(p, r) for r in reservoirs for p in pressures]
 
 

@@ -28,8 +28,8 @@ from spsc.core.loadcase import POINTS_MAX
 from spsc.models import MODELS
 
 from spsc.design.goal import METRIC_NAMES
-from spsc.cli.options import (_HELP, PARAMS, add_quiet_option, check_output_dir, check_output_file,
-                      integer, number, typed_command)
+from spsc.cli.options import (_HELP, PARAMS, Once, add_quiet_option, check_output_dir,
+                      check_output_file, integer, number, typed_command)
 
 __all__ = ["register", "run", "prepare", "DESIGN_MODELS"]
 
@@ -80,18 +80,18 @@ def _goal_options(g) -> None:
 
 
 def _space_options(s) -> None:
-    s.add_argument("--type", default=None, metavar="A,B,C,D",
+    s.add_argument("--type", default=None, action=Once, metavar="A,B,C,D",
                    help="preset types (default all four); n1, n2, cy are the type's unless given")
     for name in PARAMS:
         default = {"w": "8:14", "h": "8:16", "l": "0:6", "t0": "the process's wall:2"}.get(
             name, "the type's")
-        s.add_argument(f"--{name}", default=None, metavar="SPEC",
+        s.add_argument(f"--{name}", default=None, action=Once, metavar="SPEC",
                        help=f"{_HELP[name]} (default {default})")
-    s.add_argument("--material", default=None, metavar="NAME|FILE.json",
+    s.add_argument("--material", default=None, action=Once, metavar="NAME|FILE.json",
                    help="catalogue material or material file (default tpu60a)")
-    s.add_argument("--pressure", default=None, metavar="KPA",
+    s.add_argument("--pressure", default=None, action=Once, metavar="KPA",
                    help="setup pressure, kPa gauge (default 40)")
-    s.add_argument("--reservoir", default=None, metavar="MM3",
+    s.add_argument("--reservoir", default=None, action=Once, metavar="MM3",
                    help="reservoir of the low mode, mm³ (default 40000; an interval lo:hi "
                    "searches it as a continuous variable)")
 

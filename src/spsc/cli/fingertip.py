@@ -9,7 +9,7 @@ import time
 from spsc.cli.bladder import gate
 from spsc.cad.fingertip import MESH_TOLERANCE
 
-from spsc.cli.options import check_output_dir, number
+from spsc.cli.options import Once, check_output_dir, number
 
 
 
@@ -35,7 +35,7 @@ def register(sub) -> None:
     g.add_argument("--mesh-size", type=number("mesh size", "mm"), default=None, metavar="MM",
                    help="element edge at the chambers' walls, mm (default 2; graded to 4x "
                    "in the body)")
-    g.add_argument("--cases", default=None, metavar="SITE-MODE-KPA,...",
+    g.add_argument("--cases", default=None, metavar="SITE-MODE-KPA,...", action=Once,
                    help="only these cases, e.g. pulp-high-40,distal-high-40 (default all 8)")
     p.set_defaults(func=run)
 
@@ -53,6 +53,9 @@ def _cases(text):
         key = item.strip().replace("kPa", "")
         if key not in known:
             raise ParameterError("cases", text, "a comma list of " + ", ".join(known))
+        if known[key] in out:
+            raise ParameterError("cases", text, f"each case once ({item.strip()} is given "
+                                 "twice: it would run twice)")
         out.append(known[key])
     return tuple(out)
 

@@ -12,21 +12,15 @@ from __future__ import annotations
 from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import PRESSURE_MAX_KPA
 
-from spsc.cli.options import (add_gas_options, add_geometry_options, add_output_options,
-                      check_output_file, geometry_from_args, geometry_given, number)
+from spsc.cli.options import (Once, add_gas_options, add_geometry_options, add_output_options,
+                      check_output_file, geometry_from_args, geometry_given, number,
+                      number_list)
 
 
 def _floats(name: str, text: str, *, le: float | None = None, unit: str = "") -> list[float]:
-    """Comma-separated numbers, each finite, >= 0 and <= ``le``; at least one."""
-    try:
-        values = [float(v) for v in str(text).split(",") if v.strip()]
-    except ValueError:
-        raise ParameterError(name, text, "comma-separated numbers") from None
-    if not values:
-        raise ParameterError(name, text, "at least one number (comma-separated)")
-    for v in values:
-        require(name, v, ge=0, le=le, unit=unit)
-    return values
+    """Comma-separated numbers, each finite, >= 0 and <= ``le``; at least one, no empty item,
+    no value twice (:func:`spsc.cli.options.number_list`)."""
+    return list(number_list(name, text, ge=0, le=le, unit=unit, distinct=True))
 
 
 def register(subparsers) -> None:
@@ -40,9 +34,9 @@ def register(subparsers) -> None:
     g.add_argument("--bladder-volume", type=number("bladder_volume", "mm³"), metavar="MM3",
                    help="V_b,i in mm³ (default: nominal cavity of the chamber)")
     q = p.add_argument_group("predictions")
-    q.add_argument("--predict-pressures", default="10,20,30,40", metavar="KPA,...",
+    q.add_argument("--predict-pressures", default="10,20,30,40", metavar="KPA,...", action=Once,
                    help="kPa gauge, comma-separated (default 10,20,30,40)")
-    q.add_argument("--predict-reservoirs", default="0,40000", metavar="MM3,...",
+    q.add_argument("--predict-reservoirs", default="0,40000", metavar="MM3,...", action=Once,
                    help="mm³, comma-separated (default 0,40000)")
     add_output_options(p, json="write identified and predicted curves here",
                        csv="write the identified curve CSV here")

@@ -20,8 +20,8 @@ from spsc.cad.geometry import PARAMS, SIZES, SPSCGeometry, preset
 
 __all__ = ["PARAMS", "add_geometry_options", "add_setup_options", "add_gas_options",
            "add_output_options", "add_quiet_option", "check_output_file", "check_output_dir",
-           "geometry_from_args", "geometry_given", "integer", "number", "typed_command",
-           "warn"]
+           "geometry_from_args", "geometry_given", "integer", "number", "number_list",
+           "Once", "typed_command", "warn"]
 
 _HELP = {"w": "cavity semi-width at the base, mm", "h": "cavity height, mm",
          "l": "length of the extruded middle, mm (0: pure dome)", "t0": "wall thickness, mm",
@@ -59,6 +59,60 @@ def integer(name: str):
                 str(ParameterError(name, text, "an integer"))) from None
     parse.__name__ = "integer"
     return parse
+
+
+def number_list(name: str, text, *, ge: float | None = None, gt: float | None = None,
+                le: float | None = None, unit: str = "", count: int | None = None,
+                distinct: bool = False) -> tuple[float, ...]:
+    """Comma-separated numbers (``10,20,40``), each finite and within the bounds (``ge``,
+    ``gt``, ``le``, in ``unit``); exactly ``count`` of them if given; no repeated value if
+    ``distinct``. One ParameterError naming ``name`` and the whole text for a list that is
+    empty, has an empty item (``10,,40``, ``10,``), a non-number or a value out of range: every
+    verb that takes a list of numbers parses it here."""
+    from spsc.core.errors import require
+
+    items = str(text).split(",")
+    if not str(text).strip():
+        raise ParameterError(name, text, "one or more comma-separated numbers")
+    values = []
+    for k, item in enumerate(items, 1):
+        if not item.strip():
+            raise ParameterError(name, text, f"comma-separated numbers (item {k} is empty)")
+        try:
+            v = float(item.strip())
+        except ValueError:
+            raise ParameterError(name, text, f"comma-separated numbers (item {k}, "
+                                 f"{item.strip()!r}, is not a number)") from None
+        try:
+            values.append(require(name, v, ge=ge, gt=gt, le=le, unit=unit))
+        except ParameterError as exc:
+            raise ParameterError(name, text, f"{exc.allowed} in every item (item {k} is "
+                                 f"{item.strip()})") from None
+    if count is not None and len(values) != count:
+        raise ParameterError(name, text, f"{count} comma-separated numbers")
+    if distinct and len(set(values)) != len(values):
+        raise ParameterError(name, text, "each value once")
+    return tuple(values)
+
+
+class Once(argparse.Action):
+    """Store an option's value, refusing the option given a second time (argparse keeps the
+    last, so a bad first value would pass unseen): ``action=Once``."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._given: dict[int, object] = {}
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        first = self._given.get(id(namespace), _NOT_GIVEN)
+        if first is not _NOT_GIVEN:
+            raise argparse.ArgumentError(self, str(ParameterError(
+                option_string, f"{first} and {values}", "given once")))
+        self._given[id(namespace)] = values
+        setattr(namespace, self.dest, values)
+
+
+_NOT_GIVEN = object()
 
 
 # -- the chamber ---------------------------------------------------------------------------

@@ -22,8 +22,8 @@ from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import POINTS_MAX
 
 from spsc.models import MODELS
-from spsc.cli.options import (_HELP, PARAMS, _RenamedSize, add_quiet_option, check_output_dir,
-                      check_output_file, integer, number, typed_command)
+from spsc.cli.options import (_HELP, PARAMS, Once, _RenamedSize, add_quiet_option,
+                      check_output_dir, check_output_file, integer, number, typed_command)
 from spsc.sweep.evaluate import INPUTS, STATUSES
 
 __all__ = ["register", "run", "SWEEP_MODELS"]
@@ -38,18 +38,20 @@ def register(subparsers) -> None:
                               "on Dask: metrics, printability, one Parquet row per design",
                               description=__doc__.split("\n\n")[0])
     g = p.add_argument_group(f"the design space: each input {_FORMS}")
-    g.add_argument("--type", default=None, metavar="A,B,C,D", help="preset types (Table 1); "
+    g.add_argument("--type", default=None, action=Once, metavar="A,B,C,D",
+                   help="preset types (Table 1); "
                    "a parameter left out is the type's preset value")
     g.add_argument("--footprint", default="table1", metavar="table1|GS1",
                    help="the presets' footprint (default table1: w=11, h=13, l=3, t0=1 mm)")
     g.add_argument("--size", action=_RenamedSize, help=argparse.SUPPRESS)
     for name in PARAMS:
-        g.add_argument(f"--{name}", default=None, metavar="SPEC", help=_HELP[name])
-    g.add_argument("--material", default=None, metavar="NAME,...",
+        g.add_argument(f"--{name}", default=None, action=Once, metavar="SPEC", help=_HELP[name])
+    g.add_argument("--material", default=None, action=Once, metavar="NAME,...",
                    help="catalogue names or material files (default tpu60a)")
-    g.add_argument("--pressure", default=None, metavar="KPA",
+    g.add_argument("--pressure", default=None, action=Once, metavar="KPA",
                    help="setup pressure, kPa gauge (default 40)")
-    g.add_argument("--reservoir", default=None, metavar="MM3", help="reservoir of the low "
+    g.add_argument("--reservoir", default=None, action=Once, metavar="MM3",
+                   help="reservoir of the low "
                    "mode, mm³ (default 40000, the paper's; 0: both modes closed)")
     g.add_argument("--samples", type=integer("samples"), default=None, metavar="N",
                    help="Latin hypercube of N samples over the ranges lo:hi")

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.core.curve import Curve
+from spsc.core.errors import ParameterError
 
 __all__ = ["FingertipStudy", "CASES", "run_study", "case_name"]
 
@@ -53,6 +54,18 @@ class FingertipStudy:
     single: bool = True
     fast: bool = True
     fast_model: str = "wall"
+
+    def __post_init__(self):
+        unknown = [c for c in self.cases if tuple(c) not in CASES]
+        if unknown or not self.cases:
+            raise ParameterError("cases", self.cases, "one or more of the study's cases "
+                                 f"{CASES}")
+        seen = set()
+        for c in self.cases:
+            if tuple(c) in seen:
+                raise ParameterError("cases", case_name(*c), "each case once (it is given "
+                                     "twice: it would run twice)")
+            seen.add(tuple(c))
 
 
 def _part(out: Path) -> tuple[Path, dict]:
