@@ -5,7 +5,7 @@ of one chamber, one setup — the membrane's JSON; or, with ``--part``, of any c
              [--material tpu60a] [--mesh-size 1.0] [--layers 2] [--full] [--solver auto]
              [--json F] [--csv F] [--png F] [--vtu DIR] [--quiet]
     spsc fem --part FILE.stl|.3mf|.step [--design FILE.design.json] [--fix "z<=0"]
-             [--plate-normal 0,0,-1] [--plate-at X,Y,Z|SITE] [--motor]
+             [--plate-normal 0,0,-1] [--plate-at X,Y,Z|SITE] [--motor] [--cache DIR]
              [setup and outputs as above]
 
 Chamber: quarter model of the wall (clamped on z = 0, symmetry planes x = 0, y = 0), P2/P1
@@ -21,7 +21,10 @@ given: it plugs the inlet bore, names the mount, the sites and the FSR pockets, 
 (the plate pressing the sensor in each pocket) are written as ``force_<pocket>_N`` columns.
 ``--motor`` holds the design's motor (a haptic chamber's, ``spsc bladder --haptic``) as a rigid
 insert: seated on its ledge, met by the dome above it, its volume taken off the gas; its force
-is the ``force_motor_N`` column.
+is the ``force_motor_N`` column. The part's mesh is cached (keyed by the file's hash, its port
+and the mesh size) in ``--cache DIR``, by default ``spsc-cache/`` in the folder of the first
+output named (``--json``, ``--csv``, ``--png``, ``--vtu``), else ``build/cache/fem`` under the
+current folder; a run refused after meshing caches nothing.
 
 Pressures kPa gauge, volumes mm³, lengths mm. Exit 0 when every point converged, 1 when not
 (what converged is written), 2 on invalid input.
@@ -29,7 +32,7 @@ Pressures kPa gauge, volumes mm³, lengths mm. Exit 0 when every point converged
 
 from __future__ import annotations
 
-import math
+import os
 import sys
 from pathlib import Path
 
@@ -38,10 +41,11 @@ import numpy as np
 from spsc.core.errors import ParameterError
 
 from spsc.cli.curve import add_curve_parser, exit_status, plot, run as run_curve, summary
-from spsc.cli.options import PARAMS, PLOT_SUFFIXES, check_output_dir, check_output_file
+from spsc.cli.options import (PARAMS, PLOT_SUFFIXES, Once, check_output_dir, check_output_file,
+                              number_list)
 
 #: the options that belong to one mode only
-_PART_ONLY = ("design", "fix", "plate_normal", "plate_at", "motor")
+_PART_ONLY = ("design", "fix", "plate_normal", "plate_at", "motor", "cache")
 _CHAMBER_ONLY = ("type", "layers", "full") + tuple(PARAMS)
 
 
@@ -59,29 +63,29 @@ def register(subparsers) -> None:
     g.add_argument("--fix", metavar="SELECTOR", default=None,
                    help="nodes to clamp, e.g. 'z<=0' or 'y<-12 & z<1' (default: the design's "
                    "mount)")
-    g.add_argument("--plate-normal", metavar="NX,NY,NZ", default=None,
+    g.add_argument("--plate-normal", metavar="NX,NY,NZ", default=None, action=Once,
                    type=_vector("plate-normal"),
                    help="the plate's direction of travel (default 0,0,-1, or the site's)")
     g.add_argument("--motor", action="store_true", default=None,
                    help="hold the design file's motor as a rigid insert (haptic chamber: seated "
                    "on its ledge, met by the dome; its volume off the gas; force_motor_N)")
-    g.add_argument("--plate-at", metavar="X,Y,Z|SITE", default=None,
+    g.add_argument("--plate-at", metavar="X,Y,Z|SITE", default=None, action=Once,
                    help="the point the plate first touches, or a site of the design file")
+    g.add_argument("--cache", metavar="DIR", default=None,
+                   help="the part mesh's cache folder (default: spsc-cache/ beside the first "
+                   "output named, else build/cache/fem)")
     p.set_defaults(func=run)
 
 
 def _vector(name: str):
+    """argparse ``type``: three comma-separated numbers (:func:`number_list`)."""
     def parse(text: str):
-        parts = str(text).split(",")
+        import argparse
+
         try:
-            v = [float(s) for s in parts]
-        except ValueError:
-            v = []
-        if len(v) != 3 or not all(math.isfinite(x) for x in v):
-            import argparse
-            raise argparse.ArgumentTypeError(
-                str(ParameterError(name, text, "three numbers separated by commas")))
-        return tuple(v)
+            return number_list(name, text, count=3)
+        except ParameterError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
     parse.__name__ = "vector"
     return parse
 
@@ -113,9 +117,9 @@ def _design_of(args) -> tuple[dict | None, str | None]:
         data = read_json(path)
     except (ValueError, UnicodeDecodeError) as exc:
         raise ParameterError("design", str(path), f"a JSON design file ({exc})") from None
-    if not isinstance(data, dict):
-        raise ParameterError("design", str(path), "a JSON object (a .design.json)")
-    return data, str(path)
+    from spsc.fem.part.design import check_design
+
+    return check_design(data, path.name), str(path)
 
 
 def _sites(design: dict | None) -> dict:
@@ -139,6 +143,8 @@ def part_run_from_args(args):
         check_output_file("--png", args.png, PLOT_SUFFIXES)
     if args.vtu is not None:
         check_output_dir("--vtu", args.vtu)
+    if args.cache is not None:
+        check_output_dir("--cache", args.cache)
     part = Path(args.part)
     if not part.is_file():
         raise ParameterError("part", str(part), "an existing .stl, .3mf or .step file")
@@ -157,13 +163,11 @@ def part_run_from_args(args):
             normal = normal if normal is not None else tuple(site["normal"])
         else:
             try:
-                at = tuple(float(s) for s in args.plate_at.split(","))
-            except ValueError:
-                at = ()
-            if len(at) != 3 or not all(math.isfinite(x) for x in at):
+                at = number_list("plate-at", args.plate_at, count=3)
+            except ParameterError:
                 names = ", ".join(sites) or "none in the design file"
                 raise ParameterError("plate-at", args.plate_at,
-                                     f"X,Y,Z in mm or a site name ({names})")
+                                     f"X,Y,Z in mm or a site name ({names})") from None
     contacts = tuple(ContactPatch(p["name"], tuple(p["center"]), tuple(p["normal"]),
                                   float(p["radius"]), float(p.get("insert_mm", 0.0)))
                      for p in fem.get("contacts", ()))
@@ -187,6 +191,18 @@ def _estimate(run, surface) -> dict:
     tets = 20.0 * volume / run.mesh_size_mm ** 3
     nodes = 1.45 * tets
     return {"tetrahedra": int(tets), "nodes": int(nodes), "unknowns": int(3 * nodes + tets / 5)}
+
+
+def cache_dir(args) -> Path | None:
+    """The part mesh's cache folder: ``--cache``, else ``spsc-cache`` in the folder of the
+    first output named (``--json``, ``--csv``, ``--png``; ``--vtu`` is a folder: beside it),
+    else None (``build/cache/fem`` under the current folder)."""
+    if args.cache is not None:
+        return Path(args.cache)
+    for out in (args.json, args.csv, args.png, args.vtu):
+        if out is not None and str(out) != os.devnull:
+            return Path(out).absolute().parent / "spsc-cache"
+    return None
 
 
 def run_part_cli(args) -> int:
@@ -214,7 +230,7 @@ def run_part_cli(args) -> int:
     import time
 
     t0 = time.perf_counter()
-    model, R, surface = part_model(run, surface=surface)
+    model, R, surface = part_model(run, surface=surface, cache_dir=cache_dir(args))
     mesh_seconds = time.perf_counter() - t0
     bar = tqdm(total=steps, desc=f"spsc {verb}", unit="step", disable=bool(args.quiet),
                file=sys.stderr)

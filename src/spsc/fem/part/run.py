@@ -68,21 +68,48 @@ def _file_digest(path) -> str:
     return h.hexdigest()
 
 
-def _cached_part_mesh(run: PartRun, surface: PartSurface, cache_dir) -> TetMesh:
+def _cache_path(run: PartRun, cache_dir) -> Path:
     from ..solid.mesh import CACHE_DIR
 
     port = (run.design or {}).get("port")
     key = f"{_file_digest(run.part)}|{port}|{run.mesh_size_mm!r}|{MESH_VERSION}|part-2"
-    path = Path(cache_dir or CACHE_DIR) / f"part-{hashlib.sha256(key.encode()).hexdigest()[:16]}.npz"
+    return Path(cache_dir or CACHE_DIR) / f"part-{hashlib.sha256(key.encode()).hexdigest()[:16]}.npz"
+
+
+def _cached_part_mesh(run: PartRun, surface: PartSurface, cache_dir) -> tuple[TetMesh, Path | None]:
+    """The part's mesh from the cache (keyed by the file's hash, the port, the size), and the
+    path to cache a new one at once the run is accepted (None: it came from the cache)."""
+    path = _cache_path(run, cache_dir)
     if path.exists():
         try:
-            return TetMesh.load(path)
+            return TetMesh.load(path), None
         except (OSError, ValueError, KeyError):
             pass
-    mesh = part_mesh(surface, run.mesh_size_mm)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    mesh.save(path)
-    return mesh
+    return part_mesh(surface, run.mesh_size_mm), path
+
+
+def meshed_cavity_volume(mesh: TetMesh) -> float:
+    """Volume (mm³) enclosed by the mesh's cavity facets (corner nodes; 0 if it has none)."""
+    f = mesh.facets.get("cavity")
+    if f is None or len(f) == 0:
+        return 0.0
+    a, b, c = (mesh.nodes[f[:, k]] for k in range(3))
+    return abs(float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum()) / 6.0)
+
+
+#: The meshed cavity must keep at least this fraction of the part's cavity volume.
+CAVITY_KEPT = 0.5
+
+
+def check_meshed_cavity(run: PartRun, surface: PartSurface, mesh: TetMesh) -> None:
+    """A mesh size coarse enough to fill the cavity (fTetWild's envelope closes a cavity
+    smaller than the elements): one-line ParameterError naming ``mesh size``."""
+    kept = meshed_cavity_volume(mesh)
+    if not kept >= CAVITY_KEPT * surface.cavity_volume:
+        raise ParameterError("mesh size", run.mesh_size_mm, f"a mesh size that keeps the "
+                             f"part's cavity ({surface.cavity_volume:.3g} mm³; meshed at "
+                             f"{run.mesh_size_mm:g} mm it encloses {kept:.3g} mm³): a finer "
+                             "--mesh-size")
 
 
 def check_plate(run: PartRun, surface: PartSurface, fixed_mask_of) -> None:
@@ -199,7 +226,10 @@ def part_model(run: PartRun, *, cache_dir=None, surface: PartSurface | None = No
     surface = surface or load_part(run.part, run.design)
     check_part_run(run, surface)
     selector, tol = parse_selector(run.fix), _tolerance(run)
-    mesh = mesh if mesh is not None else _cached_part_mesh(run, surface, cache_dir)
+    mesh, new_path = (mesh, None) if mesh is not None else _cached_part_mesh(run, surface,
+                                                                             cache_dir)
+    check_meshed_cavity(run, surface, mesh)
+    full = mesh
     mesh, clamped = drop_clamped(mesh, selector(mesh.nodes, tol))
     R = press_rotation(run.plate_normal)
     gap = np.zeros(len(mesh.nodes))
@@ -216,6 +246,9 @@ def part_model(run: PartRun, *, cache_dir=None, surface: PartSurface | None = No
     insert = motor_insert(run, turned, tol) if run.motor else None
     model = FEMModel.build(turned, run.material, bulk_ratio=run.bulk_ratio, supports={},
                            clamped=clamped, gap=gap, groups=groups, insert=insert)
+    if new_path is not None:  # cached only once every check of the run passed
+        new_path.parent.mkdir(parents=True, exist_ok=True)
+        full.save(new_path)
     return model, R, surface
 
 

@@ -79,6 +79,10 @@ class PartRun(WithLoadCase):
                 raise ParameterError("plate-at", self.plate_at, "three numbers x,y,z (mm)")
             object.__setattr__(self, "plate_at", tuple(float(v) for v in a))
         parse_selector(self.fix)
+        if self.design is not None:
+            from .design import check_design
+
+            check_design(self.design)
         if self.motor:
             if not (self.design or {}).get("motor"):
                 raise ParameterError("motor", True, "a part whose design file names a motor "

@@ -115,12 +115,14 @@ def part_surface(vertices, faces, *, port: dict | None = None, source: str = "pa
         raise ParameterError(name, source, "a closed triangle surface (it has fewer than 4 "
                              "triangles)")
     m = mf.Manifold(mf.Mesh64(vert_properties=v, tri_verts=f.astype(np.uint64)))
-    if m.status() != mf.Error.NoError:
-        topo = mt.topology(v, f)
-        open_edges = int(topo.get("boundary_edges", 0))
-        nonmanifold = int(topo.get("non_two_manifold_edges", 0))
+    topo = mt.topology(v, f)  # the measures of spsc check's watertight and manifold checks
+    defects = {k: int(topo.get(k, 0)) for k in ("boundary_edges", "non_two_manifold_edges",
+                                                "non_two_manifold_vertices")}
+    if m.status() != mf.Error.NoError or any(defects.values()):
         raise ParameterError(name, source, "a closed, oriented 2-manifold surface (it has "
-                             f"{open_edges} open edges, {nonmanifold} non-manifold edges; "
+                             f"{defects['boundary_edges']} open edges, "
+                             f"{defects['non_two_manifold_edges']} non-manifold edges, "
+                             f"{defects['non_two_manifold_vertices']} non-manifold vertices; "
                              f"manifold3d: {m.status().name})")
     crossing = mt.self_intersecting_faces(v, f)
     if crossing:
