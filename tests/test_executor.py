@@ -72,6 +72,55 @@ def test_scheduler_that_does_not_answer_is_one_line_error_within_seconds():
     assert "\n" not in str(err.value)
 
 
+@pytest.fixture(params=["silent", "http"])
+def not_dask(request):
+    """A local port where something listens but does not speak Dask: a socket that accepts
+    and never answers, or one that answers as an HTTP server would."""
+    import threading
+
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(4)
+    held = []
+
+    def serve():
+        while True:
+            try:
+                conn, _ = server.accept()
+            except OSError:
+                return
+            held.append(conn)
+            if request.param == "http":
+                conn.sendall(b"HTTP/1.0 400 Bad Request\r\n\r\n")
+
+    threading.Thread(target=serve, daemon=True).start()
+    yield f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    server.close()
+    for conn in held:
+        conn.close()
+
+
+def test_a_port_that_is_not_a_dask_scheduler_is_refused_within_seconds(not_dask):
+    """The TCP probe passes there; Dask's handshake and identity request, bounded by the
+    timeout, do not: one line, in about the timeout (2 s), not a hang."""
+    t0 = time.perf_counter()
+    with pytest.raises(ParameterError, match=r"^scheduler = .*not a Dask scheduler") as err:
+        check_scheduler(not_dask, timeout=2.0)
+    assert time.perf_counter() - t0 < 8.0
+    assert "\n" not in str(err.value)
+
+
+def test_a_dask_worker_is_not_a_scheduler():
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, protocol="tcp",
+                      dashboard_address=None, scheduler_kwargs=_NO_DASHBOARD) as cluster:
+        assert check_scheduler(cluster.scheduler_address) == cluster.scheduler_address
+        worker = next(iter(cluster.scheduler_info["workers"]))
+        with pytest.raises(ParameterError, match=r"not a Dask scheduler \(Worker\)"):
+            check_scheduler(worker)
+
+
 @pytest.mark.parametrize("address", ["", "http://x:1", "tcp://", "tcp://host", "tcp://h:port"])
 def test_malformed_scheduler_address_is_refused(address):
     with pytest.raises(ParameterError, match="^scheduler = "):
@@ -95,13 +144,15 @@ def test_cluster_options_are_checked_together():
 
     assert check_cluster() == (default_workers(), None)
     assert check_cluster("3") == (3, None)
-    with socket.socket() as server:
-        server.bind(("127.0.0.1", 0))
-        server.listen()
-        port = server.getsockname()[1]
-        assert check_cluster(None, f"127.0.0.1:{port}") == (None, f"tcp://127.0.0.1:{port}")
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=0, processes=False, protocol="tcp", dashboard_address=None,
+                      scheduler_kwargs=_NO_DASHBOARD) as cluster:
+        address = cluster.scheduler_address
+        bare = address.removeprefix("tcp://")
+        assert check_cluster(None, bare) == (None, address)
         with pytest.raises(ParameterError, match="^workers = .*without a scheduler"):
-            check_cluster(2, f"127.0.0.1:{port}")
+            check_cluster(2, bare)
     with pytest.raises(ParameterError, match="^workers = "):
         check_cluster("0")
     with pytest.raises(ParameterError, match="^scheduler = .*nothing answered"):

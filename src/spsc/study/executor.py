@@ -13,6 +13,7 @@ import contextlib
 import logging
 import os
 import socket
+import warnings
 from urllib.parse import urlparse
 
 from spsc.core.errors import ParameterError
@@ -70,11 +71,13 @@ def check_workers(workers) -> int:
 
 
 def check_scheduler(address: str, timeout: float = 3.0) -> str:
-    """``address`` (``tcp://host:port`` or ``host:port``) if a scheduler port answers there within
-    ``timeout`` seconds; ParameterError naming the address otherwise.
+    """``address`` (``tcp://host:port`` or ``host:port``) if a Dask scheduler answers there
+    within ``timeout`` seconds; ParameterError naming the address otherwise.
 
-    A plain TCP connect, so a wrong address fails in seconds with one line instead of Dask's
-    retry loop and traceback; the Dask handshake itself happens in :func:`dask_client`.
+    First a plain TCP connect (a wrong address fails in seconds with one line instead of Dask's
+    retry loop and traceback), then Dask's handshake and an ``identity`` request, each bounded
+    by ``timeout``: the reply must come from a scheduler. A port where something else listens
+    (a web server, a silent socket, a Dask worker) is refused instead of waiting forever.
     """
     text = str(address).strip()
     allowed = "the address of a running Dask scheduler, e.g. tcp://10.0.0.5:8786"
@@ -94,7 +97,40 @@ def check_scheduler(address: str, timeout: float = 3.0) -> str:
         reason = exc.strerror or type(exc).__name__
         raise ParameterError("scheduler", address,
                              f"{allowed}; nothing answered there ({reason})") from None
-    return f"{url.scheme}://{url.hostname}:{port}"
+    canonical = f"{url.scheme}://{url.hostname}:{port}"
+    who = _identity(canonical, timeout)
+    if who != "Scheduler":
+        raise ParameterError("scheduler", address, f"{allowed}; something listens there but "
+                             f"it is not a Dask scheduler ({who})")
+    return canonical
+
+
+def _identity(address: str, timeout: float) -> str:
+    """What answers Dask's handshake and ``identity`` request at ``address`` within
+    ``timeout`` seconds each: ``Scheduler``, another Dask server's type, or why not."""
+    import asyncio
+
+    async def ask():
+        from distributed.comm import connect
+
+        comm = await asyncio.wait_for(connect(address, timeout=timeout), timeout)
+        try:
+            await asyncio.wait_for(comm.write({"op": "identity", "reply": True}), timeout)
+            return await asyncio.wait_for(comm.read(), timeout)
+        finally:
+            comm.abort()
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            reply = asyncio.run(ask())
+    except (asyncio.TimeoutError, TimeoutError):
+        return f"no Dask handshake within {timeout:g} s"
+    except Exception:  # whatever a foreign protocol makes of Dask's frames
+        return "no Dask handshake: the answer is not Dask's protocol"
+    if isinstance(reply, dict) and isinstance(reply.get("type"), str):
+        return reply["type"]
+    return "an answer that is not Dask's identity"
 
 
 def check_cluster(workers=None, scheduler=None) -> tuple[int | None, str | None]:
