@@ -7,7 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["Case", "KINDS", "NOT_A_NUMBER", "OUT_OF_RANGE", "GEOMETRY", "SETUP", "numbers", "outputs",
+__all__ = ["Case", "KINDS", "not_dask_address", "NOT_A_NUMBER", "OUT_OF_RANGE", "GEOMETRY", "SETUP", "numbers", "outputs",
            "out_dirs"]
 
 
@@ -117,3 +117,31 @@ def out_dirs(base, option, f) -> list[Case]:
            ("/proc/spsc-fuzz", "an unwritable place"), ("", "empty")]
     return [Case(base + (option, p), f"{option} {why}", option.lstrip("-"), "output folder")
             for p, why in bad]
+
+
+_LISTENER: list = []
+
+
+def not_dask_address() -> str:
+    """``tcp://127.0.0.1:PORT`` where something listens that is not a Dask scheduler: a socket
+    (one per process, kept open) that accepts every connection and closes it unanswered. The TCP
+    probe passes there; only Dask's handshake tells."""
+    if not _LISTENER:
+        import socket
+        import threading
+
+        server = socket.socket()
+        server.bind(("127.0.0.1", 0))
+        server.listen(64)
+
+        def serve():
+            while True:
+                try:
+                    conn, _ = server.accept()
+                except OSError:
+                    return
+                conn.close()
+
+        threading.Thread(target=serve, daemon=True, name="spsc-fuzz-not-dask").start()
+        _LISTENER.append(server)
+    return f"tcp://127.0.0.1:{_LISTENER[0].getsockname()[1]}"

@@ -12,7 +12,8 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
-from .fuzz_base import GEOMETRY, KINDS, SETUP, Case, numbers, out_dirs, outputs
+from .fuzz_base import (GEOMETRY, KINDS, SETUP, Case, not_dask_address, numbers, out_dirs,
+                        outputs)
 from .fuzz_fixtures import bases, fixtures
 from .fuzz_studies import (design_argv, design_cases, fit_material_cases, random_design,
                            sweep_cases)
@@ -174,7 +175,31 @@ def _part_cases(f, b, tmp) -> list[Case]:
                    "design"),
               Case(fp + ("--design", str(f["bad.json"])), "a design file of bad JSON", "design"),
               Case(b["fem"] + ("--fix", "z<0"), "--fix without --part", "fix"),
-              Case(b["fem"] + ("--plate-at", "0,0,1"), "--plate-at without --part", "plate-at")]
+              Case(b["fem"] + ("--plate-at", "0,0,1"), "--plate-at without --part", "plate-at"),
+              Case(b["fem"] + ("--cache", str(tmp / "cache")), "--cache without --part",
+                   "cache", "combination")]
+    cases += _part_input_cases(f, fp, tmp)
+    return cases
+
+
+def _part_input_cases(f, fp, tmp) -> list[Case]:
+    """The part's surface, its design file's fields, and its lists of numbers."""
+    fix = ("--fix", "z<=0", "--quiet")
+    cases = [Case(("fem", "--part", str(f[k])) + fix, why, "part", "part surface")
+             for k, why in (("nonmanifold.stl", "a non-manifold edge (a tetrahedron on it)"),
+                            ("pinched.stl", "a non-manifold vertex (manifold3d accepts it)"))]
+    motor = ("fem", "--part", str(f["motor-part.stl"])) + fix
+    cases += [Case(motor + ("--motor",), "--motor on a design naming the motor as a string",
+                   "motor", "design file"),
+              Case(motor, "a design file whose motor is a string", "motor", "design file"),
+              Case(fp + ("--design", str(f["array.design.json"])), "a design file that is a "
+                   "JSON array", "design", "design file")]
+    for opt in ("--plate-at", "--plate-normal"):
+        cases += [Case(fp + (opt, v), f"{opt} {v!r}", opt.lstrip("-"), "number list")
+                  for v in ("0,,1", "0,0,", ",0,0", "0,0,0,1", "0,0,nan")]
+        cases.append(Case(fp + (opt, "x,y,z", opt, "0,0,-1"), f"{opt} given twice",
+                          opt.lstrip("-"), "number list"))
+    cases += out_dirs(fp, "--cache", f)
     return cases
 
 
@@ -205,7 +230,15 @@ def _mold_fingertip_cases(f, b, tmp) -> list[Case]:
                    "cases"),
               Case(b["fingertip"] + ("--fem", "--mesh-size", "0.01"), "a mesh too fine",
                    "mesh-size"),
-              Case(b["fingertip"] + ("--fem", "--mesh-size", "nan"), "a NaN mesh", "mesh-size")]
+              Case(b["fingertip"] + ("--fem", "--mesh-size", "nan"), "a NaN mesh", "mesh-size"),
+              Case(b["fingertip"] + ("--fem", "--cases", "pulp-high-40,pulp-high-40"),
+                   "a case twice (it would run twice)", "cases", "duplicate"),
+              Case(b["fingertip"] + ("--fem", "--cases", "pulp-high-40,pulp-high-40kPa"),
+                   "a case twice, spelt two ways", "cases", "duplicate"),
+              Case(b["fingertip"] + ("--fem", "--cases", "pulp-high-40,,distal-high-40"),
+                   "an empty case", "cases", "number list"),
+              Case(b["fingertip"] + ("--fem", "--cases", "palm-x", "--cases", "pulp-high-40"),
+                   "--cases given twice", "cases", "number list")]
     cases += out_dirs(("fingertip",), "--out", f)
     cases += [Case(b["fingertip"] + ("--process", "foo"), "unknown process", "process"),
               Case(b["fingertip"] + ("--process", ""), "empty process", "process")]
@@ -237,12 +270,7 @@ def _check_identify_cases(f, b, tmp) -> list[Case]:
     cases += outputs(b["identify"], "--json", f, tmp)
     cases += outputs(b["identify"], "--csv", f, tmp, ".csv")
     ident = b["identify"][2:]
-    for v in ("", ",", "abc", "-5", "nan", "inf", "1e5"):
-        cases.append(Case(b["identify"] + ("--predict-pressures", v), "bad predict pressures",
-                          "predict-pressures"))
-    for v in ("", ",", "-1", "nan"):
-        cases.append(Case(b["identify"] + ("--predict-reservoirs", v),
-                          "bad predict reservoirs", "predict-reservoirs"))
+    cases += predict_lists(b["identify"], with_empty=True)
     for key, why in (("empty.csv", "an empty CSV"), ("nocol.csv", "a missing column"),
                      ("badrow.csv", "a text value"), ("short.csv", "too few rows"),
                      ("dir.csv", "a folder named .csv"), ("binary.csv", "binary data")):
@@ -262,9 +290,7 @@ def _calibrate_cases(f, b, tmp) -> list[Case]:
                             "predict-stroke"))
     cases += outputs(cal, "--json", f, tmp)
     cases += outputs(cal, "--png", f, tmp, ".png")
-    for v in (",", "abc", "-5", "nan", "1e5"):
-        cases.append(Case(cal + ("--predict-pressures", v), "bad predict pressures",
-                          "predict-pressures"))
+    cases += predict_lists(cal, with_empty=False)
     for key, why in (("empty.csv", "an empty CSV"), ("badrow.csv", "a text value"),
                      ("short.csv", "too few rows"), ("dir.csv", "a folder named .csv"),
                      ("binary.csv", "binary data")):
@@ -305,6 +331,8 @@ def _report_cases(f, b, tmp) -> list[Case]:
     cases += numbers(b["report"], ("workers",))
     closed = f"tcp://127.0.0.1:{_closed_port()}"
     cases += [Case(b["report"] + ("--scheduler", closed), "no scheduler answers", "scheduler"),
+              Case(b["report"] + ("--scheduler", not_dask_address()), "a port that listens "
+                   "but is not a Dask scheduler", "scheduler", "scheduler"),
               Case(b["report"] + ("--workers", "2", "--scheduler", closed),
                    "workers with a scheduler", "workers")]
     cases += [Case(b["report"] + ("--scheduler", v), f"--scheduler {v!r}", "scheduler")
@@ -326,6 +354,20 @@ def _argparse_cases(f, b, tmp) -> list[Case]:
     cases += [Case(("membrane", "--type"), "missing value", "type"),
               Case(("nothing",), "unknown verb", None),
               Case((), "no verb", None)]
+    return cases
+
+
+def predict_lists(base, *, with_empty: bool) -> list[Case]:
+    """--predict-pressures / --predict-reservoirs: every way a comma list of numbers goes
+    wrong (``with_empty``: an empty list is an error, not 'no predictions')."""
+    bad = (",", "abc", "10,,40", "10,", ",10", "10,x", "10,10", "-1", "-5,10", "nan", "inf")
+    cases = []
+    for opt, extra in (("predict-pressures", ("1e5", "10,1e5")), ("predict-reservoirs", ())):
+        for v in bad + extra + (("",) if with_empty else ()):
+            cases.append(Case(base + (f"--{opt}", v), f"--{opt} {v!r}", opt, "number list"))
+        for first in ("-1", "x", "10,,40"):  # a bad list, then a good one: argparse kept the last
+            cases.append(Case(base + (f"--{opt}", first, f"--{opt}", "0"),
+                              f"--{opt} {first!r} then 0", opt, "number list"))
     return cases
 
 

@@ -30,19 +30,7 @@ def fixtures(tmp: Path) -> dict[str, Path]:
         "bad.json": tmp / "bad.json",
         "binary.csv": tmp / "binary.csv",
         "tension.csv": tmp / "tension.csv",
-        "t-nocol.csv": tmp / "t-nocol.csv",
-        "t-nonmono.csv": tmp / "t-nonmono.csv",
-        "t-negative.csv": tmp / "t-negative.csv",
-        "t-below1.csv": tmp / "t-below1.csv",
-        "t-falling.csv": tmp / "t-falling.csv",
-        "t-negstress.csv": tmp / "t-negstress.csv",
-        "t-allneg.csv": tmp / "t-allneg.csv",
-        "t-dip.csv": tmp / "t-dip.csv",
-        "t-unit.csv": tmp / "t-unit.csv",
-        "t-nan.csv": tmp / "t-nan.csv",
-        "t-text.csv": tmp / "t-text.csv",
-        "t-header.csv": tmp / "t-header.csv",
-        "t-test.csv": tmp / "t-test.csv",
+        **{k: tmp / k for k in TENSION_BAD},
         "ogden.json": tmp / "ogden.json",
         "soft.json": tmp / "soft.json",
         "foreign.json": tmp / "foreign.json",
@@ -50,6 +38,11 @@ def fixtures(tmp: Path) -> dict[str, Path]:
         "part.stl": tmp / "dome.stl",
         "open.stl": tmp / "open-dome.stl",
         "bored.stl": tmp / "bored-dome.stl",
+        "nonmanifold.stl": tmp / "nonmanifold-dome.stl",
+        "pinched.stl": tmp / "pinched-dome.stl",
+        "motor-part.stl": tmp / "motor" / "dome.stl",
+        "dome.design.json": tmp / "motor" / "dome.design.json",
+        "array.design.json": tmp / "array.design.json",
     }
     for k in ("dir", "dir.json", "dir.csv", "dir.stl"):
         f[k].mkdir(exist_ok=True)
@@ -80,6 +73,34 @@ def _part_fixtures(f) -> None:
     write_stl(TriMesh(v, fc), f["part.stl"])
     write_stl(TriMesh(v, fc[1:]), f["open.stl"])
     write_stl(TriMesh(*dome(bore=0.8)), f["bored.stl"])
+    a, b = fc[0][:2]  # an edge of the dome, shared by a tetrahedron outside it
+    write_stl(TriMesh(*_with_tet(v, fc, (a, b))), f["nonmanifold.stl"])
+    write_stl(TriMesh(*_with_tet(v, fc, (a,))), f["pinched.stl"])
+    f["motor-part.stl"].parent.mkdir(exist_ok=True)
+    write_stl(TriMesh(v, fc), f["motor-part.stl"])
+    f["dome.design.json"].write_text('{"motor": "FIT0774"}', encoding="utf-8")
+    f["array.design.json"].write_text('[{"motor": {}}]', encoding="utf-8")
+
+
+def _with_tet(v, fc, shared):
+    """The dome with a closed tetrahedron outside it that shares the dome's vertices
+    ``shared`` (two: a non-manifold edge, four triangles on it; one: a pinched vertex)."""
+    import numpy as np
+
+    out = np.asarray(v[list(shared)]).mean(axis=0)
+    away = out - v.mean(axis=0)
+    away /= np.linalg.norm(away)
+    side = np.cross(away, [0.0, 0.0, 1.0]) if abs(away[2]) < 0.9 else np.array([1.0, 0, 0])
+    new = [out + 3 * away + k * side for k in (1.0, -1.0, 0.5)][: 4 - len(shared)]
+    verts = np.vstack([v, new])
+    ids = list(shared) + list(range(len(v), len(verts)))
+    c = verts[ids].mean(axis=0)
+    tet = []
+    for tri in ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)):
+        t = [ids[k] for k in tri]
+        n = np.cross(verts[t[1]] - verts[t[0]], verts[t[2]] - verts[t[0]])
+        tet.append(t if np.dot(n, verts[t[0]] - c) > 0 else t[::-1])
+    return verts, np.vstack([fc, tet])
 
 
 #: A valid uniaxial tension test (neo-Hookean, μ = 1 MPa) and broken variants of it.

@@ -3,7 +3,7 @@ fit-material``) and random valid designs for the gate's property test and the ba
 
 from __future__ import annotations
 
-from .fuzz_base import Case, out_dirs, outputs
+from .fuzz_base import Case, not_dask_address, out_dirs, outputs
 from .fuzz_fixtures import TENSION_BAD
 
 __all__ = ["sweep_cases", "design_cases", "fit_material_cases", "random_design", "design_argv"]
@@ -45,6 +45,10 @@ def sweep_cases(f, b, tmp) -> list[Case]:
               for v in ("fem", "nothing", "")]
     for v in ("", "http://x:1", "tcp://", "tcp://host", "tcp://127.0.0.1:1"):
         cases.append(Case(base + ("--scheduler", v), f"sweep --scheduler {v!r}", "scheduler"))
+    cases.append(Case(base + ("--scheduler", not_dask_address()), "a port that listens but is "
+                      "not a Dask scheduler", "scheduler", "scheduler"))
+    cases += [Case(base + (f"--{k}", bad, f"--{k}", good), f"sweep --{k} {bad!r} then "
+                   f"{good!r}", k, "number list") for k, bad, good in TWICE]
     cases += [Case(base + ("--workers", "2", "--scheduler", "tcp://127.0.0.1:1"),
                    "workers with a scheduler", "workers"),
               Case(base + ("--w", "9:11:3", "--samples", "4"), "a grid with --samples", "w"),
@@ -52,7 +56,7 @@ def sweep_cases(f, b, tmp) -> list[Case]:
               Case(base + ("--pressure", "0,40"), "a membrane without pressure", "pressure"),
               Case(base[:3] + ("--out", str(tmp / "sweep.parquet"), "--pressure", "0"),
                    "the default membrane without pressure", "pressure"),
-              Case(base + ("--type", "A,B,C,D", "--w", "1:20:60", "--h", "5:20:60"),
+              Case(base[:1] + base[3:] + ("--type", "A,B,C,D", "--w", "1:20:60", "--h", "5:20:60"),
                    "a sweep beyond the size limit", "sweep size"),
               Case(("sweep", "--w", "11", "--out", str(tmp / "s.parquet")), "no type, not all "
                    "seven parameters", "geometry"),
@@ -63,6 +67,9 @@ def sweep_cases(f, b, tmp) -> list[Case]:
     cases += outputs(base, "--csv", f, tmp, ".csv")
     return cases
 
+
+#: An input given twice, a bad value first (argparse would keep the last, good one).
+TWICE = (("w", "-1", "11"), ("pressure", "1,,2", "40"), ("type", "E", "B"))
 
 #: Values no design input accepts (a value, a choice a,b or an interval lo:hi).
 DESIGN_NOT_A_SPEC = ("abc", "", " ", "nan", "inf", "-inf", "0x", "1,,2", ",", "1:2:3", "2:1",
@@ -98,6 +105,10 @@ def design_cases(f, b, tmp) -> list[Case]:
         cases += [Case(base + (f"--{opt}", v), f"design --{opt} {v!r}", opt) for v in values]
     for v in ("", "http://x:1", "tcp://", "tcp://host", "tcp://127.0.0.1:1"):
         cases.append(Case(base + ("--scheduler", v), f"design --scheduler {v!r}", "scheduler"))
+    cases.append(Case(base + ("--scheduler", not_dask_address()), "a port that listens but is "
+                      "not a Dask scheduler", "scheduler", "scheduler"))
+    cases += [Case(base + (f"--{k}", bad, f"--{k}", good), f"design --{k} {bad!r} then "
+                   f"{good!r}", k, "number list") for k, bad, good in TWICE]
     cases += [Case(base + ("--workers", "2", "--scheduler", "tcp://127.0.0.1:1"),
                    "workers with a scheduler", "workers"),
               Case(base[:1] + base[3:], "no goal", "goal"),
