@@ -17,6 +17,7 @@ the study. Exit 0 when the goal is met and the part passes the printability gate
 
 from __future__ import annotations
 
+import math
 import secrets
 import shlex
 import sys
@@ -137,7 +138,8 @@ def prepare(args):
                              "cluster has its own workers)")
     args.workers = check_workers(args.workers) if args.scheduler is None else None
     args.process = process(args.process).name
-    goal = parse_goal(args.target, args.minimize, args.maximize, parse_tol(args.tol))
+    goal = check_targets(parse_goal(args.target, args.minimize, args.maximize,
+                                    parse_tol(args.tol)))
     space = parse_space({k: getattr(args, k) for k in INPUTS}, args.process)
     if args.points is not None and not 2 <= args.points <= POINTS_MAX:
         raise ParameterError("points", args.points, f"an integer from 2 to {POINTS_MAX}")
@@ -161,6 +163,26 @@ def prepare(args):
     if args.scheduler is not None:
         args.scheduler = check_scheduler(args.scheduler)
     return problem
+
+
+def check_targets(goal):
+    """``goal`` if its targets can be met together: each target once, and per metric the
+    values asked for (``=``), the lower bounds (``>=``) and the upper bounds (``<=``) leave a
+    value (two different ``=``, or ``>=`` above ``<=``, cannot). ParameterError naming
+    ``target`` otherwise."""
+    seen = set()
+    for t in goal.targets:
+        if str(t) in seen:
+            raise ParameterError("target", str(t), "each target once (it is given twice)")
+        seen.add(str(t))
+    for metric in dict.fromkeys(t.metric for t in goal.targets):
+        ts = [t for t in goal.targets if t.metric == metric]
+        lo = max((t.value for t in ts if t.relation in ("=", ">=")), default=0.0)
+        hi = min((t.value for t in ts if t.relation in ("=", "<=")), default=math.inf)
+        if lo > hi:
+            raise ParameterError("target", ", ".join(map(str, ts)), f"targets on {metric} "
+                                 "that a value can meet together (these contradict)")
+    return goal
 
 
 def run(args) -> int:

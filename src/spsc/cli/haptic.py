@@ -31,7 +31,8 @@ def run(args) -> int:
 
     require("mesh size", args.mesh_size, gt=0.2, le=5.0, unit="mm")
     out = check_output_dir("--out", args.out)
-    curves, rows = run_study(out, Path(args.parts), args.mesh_size)
+    parts = check_output_dir("--parts", args.parts)  # the bladders are made there if missing
+    curves, rows = run_study(out, parts, args.mesh_size)
     print(f"{'case':30s} {'F(4) N':>7s} {'ΔP kPa':>7s} {'N/mm':>6s} {'kPa/mm':>6s} "
           f"{'kPa/N':>6s} {'0-1 mm: N/mm':>12s} {'kPa/mm':>6s} {'3-4 mm: N/mm':>12s} "
           f"{'kPa/mm':>6s} {'motor N':>7s} {'s':>5s}")

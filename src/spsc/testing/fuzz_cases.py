@@ -124,6 +124,7 @@ def _bladder_cases(f, b, tmp) -> list[Case]:
     # haptic: the mesh of its three part runs and its folder
     cases += numbers(b["haptic"], ("mesh-size",))
     cases += out_dirs(b["haptic"][:1], "--out", f)
+    cases += out_dirs(b["haptic"][:3], "--parts", f)
     cases += [Case(b["haptic"] + ("--mesh-size", "0.1"), "a mesh too fine for 2 cores",
                    "mesh size")]
     return cases

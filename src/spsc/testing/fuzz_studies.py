@@ -112,6 +112,12 @@ def design_cases(f, b, tmp) -> list[Case]:
     cases += [Case(base + ("--workers", "2", "--scheduler", "tcp://127.0.0.1:1"),
                    "workers with a scheduler", "workers"),
               Case(base[:1] + base[3:], "no goal", "goal"),
+              Case(base + ("--target", "stiffness_high=6"), "a target twice", "target",
+                   "duplicate"),
+              Case(base + ("--target", "stiffness_high=7"), "two values asked of one metric",
+                   "target", "combination"),
+              Case(base[:1] + ("--target", "stiffness_high>=8", "--target", "stiffness_high<=5")
+                   + base[3:], "a lower bound above the upper bound", "target", "combination"),
               Case(base + ("--minimize", "jnd_mm", "--maximize", "jnd_mm"),
                    "a metric minimised and maximised", "maximize"),
               Case(base + ("--pressure", "0"), "a membrane model without pressure", "pressure"),
