@@ -133,3 +133,28 @@ def test_identification_is_compared_and_agrees_at_the_tests_own_setup(tmp_path, 
         assert c["curve"]["force_N"][-1] == pytest.approx(b.force_N[-1], rel=rel)
         assert c["curve"]["pressure_kPa"][-1] == pytest.approx(b.pressure_kPa[-1], rel=rel / 10)
     assert "paper's identification" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("text,says", [
+    ("10,,40", "item 2 is empty"), ("10,", "item 2 is empty"), (",10", "item 1 is empty"),
+    ("", "one or more"), ("10,x", "item 2, 'x', is not a number"),
+    ("10,-1", ">= 0 and <= 100 (kPa) in every item (item 2 is -1)"), ("nan", "item 1 is nan"),
+    ("10,10", "each value once"), ("1e5", "<= 100"),
+])
+def test_a_list_of_numbers_is_refused_whole_naming_the_item(text, says):
+    """calibrate's and identify's --predict-* lists (and fem's vectors) go through one parser:
+    an empty item is an error, not skipped ('10,,40' was read as 10, 40)."""
+    from spsc.cli.options import number_list
+
+    with pytest.raises(ParameterError, match=re.escape(says)) as exc:
+        number_list("predict-pressures", text, ge=0, le=100, unit="kPa", distinct=True)
+    assert str(exc.value).startswith(f"predict-pressures = {text!r} is invalid")
+
+
+def test_a_list_of_numbers_reads_as_typed():
+    from spsc.cli.options import number_list
+
+    assert number_list("x", " 10, 20.5 ,40 ", ge=0) == (10.0, 20.5, 40.0)
+    assert number_list("x", "0,0,-1", count=3) == (0.0, 0.0, -1.0)
+    with pytest.raises(ParameterError, match="3 comma-separated numbers"):
+        number_list("x", "0,1", count=3)
