@@ -62,6 +62,17 @@ class GasLaw:
         ratio = (self.p_closed + self.p_amb) / (np.asarray(pressure, float) + self.p_amb)
         return (self.v_closed + self.reservoir) * ratio ** (1.0 / self.n) - self.reservoir
 
+    def work(self, v_from, v_to) -> float:
+        """∫ p dV (MPa·mm³ = mJ) of the gauge pressure from cavity volume ``v_from`` to
+        ``v_to`` (mm³): the work the gas does on the wall, the closed form of :meth:`pressure`
+        integrated (ln for n = 1)."""
+        a, b = float(v_from) + self.reservoir, float(v_to) + self.reservoir
+        if self.n == 1.0:
+            absolute = self.constant * np.log(b / a)
+        else:
+            absolute = self.constant * (b ** (1 - self.n) - a ** (1 - self.n)) / (1 - self.n)
+        return float(absolute - self.p_amb * (b - a))
+
     def invariant(self, pressure, volume):
         """P (V + V_r)ⁿ at gauge ``pressure`` (MPa) and cavity ``volume`` (mm³): constant along
         a closed-valve path, equal to :attr:`constant`."""

@@ -94,6 +94,8 @@ class Result:
     seconds: float = float("nan")
     stop: Stop | None = None
     newton_iterations: int = 0
+    #: the snap-throughs followed (:class:`~spsc.fem.engine.snap.Jump`), in order
+    jumps: tuple = ()
 
     def of(self, kind: str) -> list:
         return [r for r in self.records if r.kind == kind]

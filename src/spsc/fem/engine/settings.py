@@ -51,6 +51,12 @@ class Settings:
     from the last state if it fails); gas_shift : gᵀs, the gas's share of a step's
     prescribed jumps s, summed over every unknown (``"full"``) or over the constrained ones
     (``"constrained"``): one number, rounded differently.
+
+    snap_through : a press that reaches an unstable equilibrium follows the wall's jump to
+    the stable one at the same plate position and goes on (:mod:`.snap`) instead of stopping
+    there; the onset is located between the last stable and the first unstable increment by
+    ``snap_bisections`` halvings. Needs the inertia of every converged state
+    (``fresh_inertia``).
     """
 
     rtol: float = 1e-8
@@ -68,6 +74,8 @@ class Settings:
     fresh_inertia: bool = False
     predictor: bool = False
     gas_shift: str = "full"
+    snap_through: bool = False
+    snap_bisections: int = 5
 
     def __post_init__(self):
         for name, allowed in _CHOICES.items():

@@ -21,12 +21,16 @@ from spsc.core.gaslaw import GasLaw
 
 from .active_set import first_contact, plate_force
 from .newton import newton
-from .result import Record, Result, Stop
+from .result import NewtonFailure, Record, Result, Stop
+from .snap import PUSH_MM, Jump, relax, unstable_mode
 from .steps import CloseValve, Inflate, Load, Press
 
 __all__ = ["solve", "record"]
 
 _log = logging.getLogger(__name__)
+
+#: snap-throughs followed in one press before the walk stops at the next one
+_MAX_JUMPS = 8
 
 
 def record(model, step, kind, load, sol) -> Record:
@@ -60,6 +64,7 @@ class _Walk:
         self.active, self.engaged = np.zeros(0, int), np.zeros(0, int)
         self.total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
         self.done, self.last_force, self.instability, self.iterations = 0, 0.0, "", 0
+        self.jumps: list[Jump] = []
 
     def close_valve(self, step: CloseValve) -> None:
         gas = GasLaw(self.load.pressure, self.model.volume(self.x), step.reservoir,
@@ -113,6 +118,12 @@ class _Walk:
                 if dt < self.s.min_fraction * nominal:
                     return Stop(k, kind, t_new, step, trial, str(exc))
                 continue
+            if sol.unstable_modes and kind == "press" and self.s.snap_through \
+                    and len(self.jumps) < _MAX_JUMPS:
+                jumped = self.snap(step, load_at, t, t_new, sol)
+                if jumped is not None:
+                    t_new, sol = jumped
+                    trial, history = load_at(t_new), []  # no secant across the jump
             self.x, self.active, self.engaged, t, self.load = (sol.x, sol.active, sol.engaged,
                                                                t_new, trial)
             self.iterations += sol.iterations
@@ -125,6 +136,50 @@ class _Walk:
                 self.keep(rec, kind, t, step)
                 ti += 1
         return None
+
+    def snap(self, step, load_at, t0, t1, sol1):
+        """Follow a snap-through found between the stable state at ``t0`` (the walk's) and
+        the unstable converged ``sol1`` at ``t1``: its onset located by halving, then the
+        descent to the stable state at the same plate (:mod:`.snap`). (t, stable solution)
+        at the jump, or None if no stable state was found (the walk then stops there)."""
+        m, s = self.model, self.s
+        x0, a0, e0 = self.x, self.active, self.engaged
+        for _ in range(s.snap_bisections):
+            tm = 0.5 * (t0 + t1)
+            try:
+                solm = newton(m, x0, load_at(tm), s, a0, e0)
+            except m.recoverable:
+                break
+            if solm.unstable_modes:
+                t1, sol1 = tm, solm
+            else:
+                t0, x0, a0, e0 = tm, solm.x, solm.active, solm.engaged
+        load = load_at(t1)
+        mode, _, _ = unstable_mode(m, sol1.x, load, sol1.active, sol1.engaged, s)
+        diag = np.abs(sol1.evaluation.K.diagonal()[: m.n_u])
+        metric = np.maximum(diag, 1e-6 * diag.max())
+        best = None
+        for sign in (1.0, -1.0):
+            push = np.zeros_like(sol1.x)
+            push[: mode.size] = sign * PUSH_MM * mode
+            try:
+                end, released, steps, its = relax(m, sol1.x, load, sol1.active, sol1.engaged,
+                                                  s, push, metric)
+            except NewtonFailure as exc:
+                _log.debug("snap descent %+g failed: %s", sign, exc)
+                continue
+            if best is None or released > best[1]:
+                best = (end, released, steps, its)
+        if best is None:
+            return None
+        end, released, steps, its = best
+        before, after = record(m, -1, "press", load, sol1), record(m, -1, "press", load, end)
+        self.jumps.append(Jump(step.travel_at(t1), before.force, after.force, before.pressure,
+                               after.pressure, before.volume, after.volume, released, steps,
+                               its))
+        self.iterations += its
+        self.instability = self.instability or self.jumps[-1].sentence()
+        return t1, end
 
     def keep(self, rec, kind, t, step) -> None:
         """Record a stable point; a plate force falling between points is reported."""
@@ -143,7 +198,7 @@ class _Walk:
         seconds = time.perf_counter() - self.t_start
         if stop is None:
             return Result(self.records, True, "converged", self.instability, seconds,
-                          None, self.iterations)
+                          None, self.iterations, tuple(self.jumps))
         if stop.record is not None:
             # an unstable equilibrium is not a result: stop before it (docs/design.md)
             message, instability = f"step {stop.index} ({stop.kind}) stopped: {stop.unstable}", \
@@ -151,7 +206,7 @@ class _Walk:
         else:
             message, instability = stop.failure, self.instability or stop.stall
         return Result(self.records, False, message, instability, seconds, stop,
-                      self.iterations)
+                      self.iterations, tuple(self.jumps))
 
 
 def solve(model, steps, *, settings=None, progress=None) -> Result:

@@ -30,10 +30,14 @@ The load path — inflate, close the valve, press — is walked by the engine
 (:func:`spsc.fem.engine.solve`, one Newton loop with the 3D FEM) with the wall's own Newton
 choices (:meth:`~spsc.fem.wall.model.WallSettings.newton_settings`).
 
-Stability: every recorded point's tangent (with the active constraints and the gas) is
+Stability: every converged state's tangent (with the active constraints and the gas) is
 factorised with its inertia; a negative eigenvalue is an unstable equilibrium (limit point,
-snap-through or buckling of the wall). It is reported, and the solve stops there: no point past
-it is reported as converged (docs/design.md).
+snap-through or buckling of the wall). Under the plate's displacement control the wall then
+snaps: the onset is located, the jump to the stable state at the same plate position followed
+(:mod:`spsc.fem.engine.snap`) and recorded in the solve's block (``details["jumps"]``: y, force
+and pressure before and after, the energy released), and the press goes on to the end of the
+stroke. No unstable point is reported as converged (docs/design.md); where no stable state is
+found the solve stops there as before.
 """
 
 from __future__ import annotations
@@ -76,13 +80,15 @@ class _Walked:
     instability: str = ""
     iterations: int = 0
     converged: bool = True
+    jumps: tuple = ()
 
 
 def _walked(result, pressure_kPa: float) -> _Walked:
     """The engine's result in the wall's words: "inflation at p = … kPa" or "press at y = …
     mm", the reason; at an unstable equilibrium "stopped: the tangent has …"."""
     out = _Walked(list(result.records[1:]), iterations=result.newton_iterations,
-                  converged=result.converged)
+                  converged=result.converged, jumps=result.jumps,
+                  instability=result.instability if result.jumps else "")
     stop = result.stop
     if stop is None:
         return out
@@ -194,16 +200,18 @@ def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reserv
                       "of the wall or a jump of the contact)")
             instability = instability or msg[k]
     s = model.settings
+    jumps = [j.as_dict() for j in path.jumps]
     info = SolveInfo(converged=path.converged, message=path.message,
                      y_reached_mm=y[conv][-1] if conv.any() else float("nan"),
                      instability=instability, seconds=seconds,
                      iterations=path.iterations,
+                     notes=tuple(j.sentence() for j in path.jumps),
                      details={"unknowns": model.n, "displacement_unknowns": model.n_u,
                               "part": model.kind,
                               "elements": len(model.solid.element_dofs),
                               "mesh_size_mm": model.mesh_size_mm, "layers": s.layers,
                               "sweep_size_mm": s.sweep_size_mm if model.stadium else None,
-                              "bulk_ratio": s.bulk_ratio})
+                              "bulk_ratio": s.bulk_ratio, "jumps": jumps})
     setup = {"p_i_kPa": pressure_kPa, "reservoir_mm3": reservoir, "polytropic_n": n_poly}
     return Curve(y, F, P, A, dV, model="wall", geometry=model.geometry.as_dict(),
                  material=model.material.name, setup=setup, nominal_volume_mm3=v_nominal,

@@ -81,12 +81,14 @@ class WallSettings:
         :mod:`spsc.fem.engine.linsolve`), the admissible line
         search, the semi-smooth active set (updated from the step's multipliers; 1e-2 of the
         scale before the first; 40 changes), the running force scale, a fresh inertia at
-        convergence, the secant predictor and gᵀs over the constrained unknowns."""
+        convergence, the secant predictor, gᵀs over the constrained unknowns and snap-throughs
+        followed to the stable branch (:mod:`spsc.fem.engine.snap`)."""
         return Settings(rtol=self.rtol, max_iterations=self.max_iterations,
                         min_fraction=self.min_fraction, contact_tolerance=self.contact_tolerance,
                         solver=_SOLVER, active_set_update=1e-2, search="admissible",
                         active_set="semismooth", max_active_changes=40, scale="running",
-                        fresh_inertia=True, predictor=True, gas_shift="constrained")
+                        fresh_inertia=True, predictor=True, gas_shift="constrained",
+                        snap_through=True)
 
     def profile_size(self, stadium: bool) -> float:
         """The element length along the profile (mm) for a dome or a stadium."""
@@ -243,6 +245,17 @@ class WallModel:
             r, rp = self.solid.residual(u, pc)
             g = self.part.volume_gradient(u, hessian=False)
         return _Evaluation(r - pressure * g, rp, K, G, g, c, pressure, volume)
+
+    def potential(self, x, load) -> float:
+        """The total potential Π (mJ) at x under ``load`` up to a constant: the wall's stored
+        energy less the gas's work on it (p V at a prescribed pressure, ∫ p dV from the
+        valve's closing for the closed gas); ∂Π/∂u is the residual r_u where the element
+        pressures are settled. The plate is a constraint: it adds nothing."""
+        volume = self.volume(x)
+        stored = self.solid.energy(self.displacements(x), self.pressures(x))
+        if load.gas is None:
+            return stored - float(load.pressure) * volume
+        return stored - load.gas.work(load.gas.v_closed, volume)
 
     def pressure_error(self, ev: "_Evaluation") -> float:
         return self.solid.pressure_error(ev.rp)

@@ -119,6 +119,12 @@ class MixedSolid:
               - np.einsum("ekl,el->ek", self.M, pc) / self.law.kappa)
         return F, J, p, rp
 
+    def energy(self, u, pc) -> float:
+        """The stored energy Σ ∫ Ψ(F, p) dV (mJ); at pressures settled on u (r_p = 0) it is
+        the reduced potential whose gradient is r_u."""
+        F, _, p, _ = self._fields(u, pc)
+        return float(np.sum(self.law.energy(F, p) * self.dV))
+
     def pressure_error(self, rp) -> float:
         """max |M⁻¹ r_p|: the element-mean error of J − 1 − p/κ (dimensionless)."""
         return float(np.max(np.abs(np.einsum("ekl,el->ek", self.Minv, rp)), initial=0.0))
