@@ -416,10 +416,12 @@ def test_gate_and_sweep_agree_on_the_issue_case_and_random_designs():
 
 @pytest.mark.slow
 def test_gate_and_sweep_agree_on_twenty_random_designs():
+    """As above on 20 random designs (~4-10 s each: the gate)."""
     import numpy as np
 
     from spsc.testing.printability_agreement import random_chamber
 
     rng = np.random.default_rng(2030)
     judged = _agree([random_chamber(rng) for _ in range(20)])
-    assert len(judged) >= 15
+    assert len(judged) >= 15  # seed 2030: all 20 valid, 17 printable, 3 thin walls
+    assert any(r["gate"] for r in judged) and any(not r["gate"] for r in judged)
