@@ -263,6 +263,7 @@ def plot(curve, result, path) -> None:
         a.set_xlabel("plate travel y (mm)")
         a.set_ylabel(lab)
         a.grid(alpha=0.3)
+    _mark_jumps(curve, ax.flat[0], ax.flat[1])
     a = ax.flat[5]
     if result is not None and getattr(result, "inflated", None) is not None:
         sh = result.inflated
@@ -283,6 +284,23 @@ def plot(curve, result, path) -> None:
     fig.suptitle(title(curve))
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def _mark_jumps(curve, force_ax, pressure_ax) -> None:
+    """Each snap-through the solver followed (``solver.details["jumps"]``): the jump at its
+    plate travel from the state before to the state after, with the energy it released."""
+    jumps = (curve.solver.details or {}).get("jumps") or [] if curve.solver else []
+    for k, j in enumerate(jumps):
+        label = "snap-through (followed)" if k == 0 else None
+        for a, key in ((force_ax, "force"), (pressure_ax, "pressure")):
+            unit = "N" if key == "force" else "kPa"
+            before, after = j[f"{key}_before_{unit}"], j[f"{key}_after_{unit}"]
+            a.plot([j["y_mm"]] * 2, [before, after], "r--", lw=1.2, label=label)
+            a.plot([j["y_mm"]], [after], "rv", ms=5)
+        force_ax.annotate(f"{j['energy_released_mJ']:.2g} mJ", (j["y_mm"], j["force_after_N"]),
+                          textcoords="offset points", xytext=(6, -12), fontsize=8, color="r")
+    if jumps:
+        force_ax.legend(fontsize=8, loc="upper left")
 
 
 def title(curve) -> str:
