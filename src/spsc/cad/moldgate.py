@@ -32,7 +32,9 @@ OVERLAP_TOL_MM3 = 1e-3
 COLLISION_TOL_MM3 = 1e-3
 #: Keys and bolt holes keep at least this much mold material from the part and the core (mm).
 KEY_WALL_MM = 2.0
-#: Printability checks that gate a mold piece (the rest of the part gate is about bladders).
+#: Printability checks that gate a mold piece (the rest of the part gate is about bladders; a
+#: piece is an open part, supported where needed, so its overhang is not gated: the pull tests
+#: and undercuts judge its shape; spsc.cad.printability says why per process).
 PIECE_CHECKS = ("watertight", "manifold", "oriented", "self_intersections", "one_part")
 
 
