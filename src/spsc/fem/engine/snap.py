@@ -78,9 +78,12 @@ class Jump:
         return d
 
     def sentence(self) -> str:
-        return (f"snap-through at y = {self.y_mm:.3g} mm: the plate force falls from "
-                f"{self.force_before_N:.4g} N to {self.force_after_N:.4g} N, the pressure from "
-                f"{self.pressure_before * 1e3:.4g} to {self.pressure_after * 1e3:.4g} kPa, "
+        way = "falls" if self.force_after_N < self.force_before_N else "rises"
+        gas = "" if self.pressure_before == self.pressure_after == 0.0 else (
+            f", the pressure from {self.pressure_before * 1e3:.4g} to "
+            f"{self.pressure_after * 1e3:.4g} kPa")
+        return (f"snap-through at y = {self.y_mm:.3g} mm: the plate force {way} from "
+                f"{self.force_before_N:.4g} N to {self.force_after_N:.4g} N{gas}, "
                 f"{self.energy_released_mJ:.3g} mJ released (followed to the stable branch)")
 
 
