@@ -150,22 +150,15 @@ class Masked:
     def __init__(self, K, free, presc):
         index = free.copy()
         index[presc] = True
-        rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
-        new = np.cumsum(index) - 1
-        r_all, c_all = new[rows], new[K.indices]
-        keep = index[rows] & index[K.indices] & (r_all <= c_all)
-        self.sel = np.nonzero(keep)[0]
-        r, c = r_all[keep], c_all[keep]
-        n = int(index.sum())
+        pat = _upper_pattern(K, index)
         held = ~free[index]  # the system's prescribed unknowns
-        zero = held[r] | held[c]
-        self.zero = np.nonzero(zero)[0]
-        self.unit = np.nonzero(zero & (r == c))[0]
-        if self.unit.size != int(held.sum()):
+        self.sel, self.indptr, self.indices, self.n = pat.sel, pat.indptr, pat.indices, pat.n
+        rows = np.flatnonzero(held)
+        self.unit = pat.diagonal[rows]
+        if np.any(self.unit < 0):
             raise ValueError("Masked: a prescribed unknown has no diagonal entry in K's pattern")
-        self.indptr = np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n))])
-        self.indices = c.astype(np.int32)
-        self.n, self.index, self.held = n, index, held
+        self.zero = np.flatnonzero(held[pat.r] | held[pat.c])
+        self.index, self.held = index, held
         self.key = constraint_key(free, None)
 
     def take(self, v) -> np.ndarray:
@@ -183,6 +176,52 @@ class Masked:
         data[self.zero] = 0.0
         data[self.unit] = 1.0
         return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n,) * 2)
+
+
+@dataclass(frozen=True, eq=False)
+class _UpperPattern:
+    """The upper triangle of a CSR pattern restricted to the unknowns ``index``: which stored
+    entries (``sel``), their new rows and columns, the CSR arrays and each row's diagonal
+    entry (its position among ``sel``, −1 if absent)."""
+
+    sel: np.ndarray
+    r: np.ndarray
+    c: np.ndarray
+    indptr: np.ndarray
+    indices: np.ndarray
+    diagonal: np.ndarray
+    n: int
+
+
+#: the last patterns built, keyed by the matrix's index buffer (kept alive) and the unknowns:
+#: a model assembles every tangent on one pattern, and the active set changes only ``held``
+_PATTERNS: dict = {}
+
+
+def _upper_pattern(K, index) -> _UpperPattern:
+    # scipy wraps the model's fixed index array in a new view each time: key on its buffer
+    # (held alive below, so no other array can take its address)
+    buffer = K.indices.__array_interface__["data"][0]
+    key = (buffer, K.indices.size, K.shape[0], hash(index.tobytes()))
+    hit = _PATTERNS.get(key)
+    if hit is not None and np.array_equal(hit[1], index):
+        return hit[2]
+    rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
+    new = np.cumsum(index) - 1
+    r_all, c_all = new[rows], new[K.indices]
+    keep = index[rows] & index[K.indices] & (r_all <= c_all)
+    sel = np.nonzero(keep)[0]
+    r, c = r_all[keep], c_all[keep]
+    n = int(index.sum())
+    diagonal = np.full(n, -1, np.int64)
+    on = np.flatnonzero(r == c)
+    diagonal[r[on]] = on
+    pat = _UpperPattern(sel, r, c, np.concatenate([[0], np.cumsum(np.bincount(r, minlength=n))]),
+                        c.astype(np.int32), diagonal, n)
+    if len(_PATTERNS) >= 4:
+        _PATTERNS.pop(next(iter(_PATTERNS)))
+    _PATTERNS[key] = (K.indices, index.copy(), pat)
+    return pat
 
 
 def restriction(K, free, con: Constraints, full_input: bool):
