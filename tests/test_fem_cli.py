@@ -7,7 +7,7 @@ from spsc.cli.main import main
 
 
 def test_spsc_fem_writes_the_curve_json(tmp_path, capsys, monkeypatch):
-    monkeypatch.chdir(tmp_path)  # the mesh cache goes under build/cache/fem here
+    monkeypatch.chdir(tmp_path)  # the mesh cache goes beside --json, never under build/ here
     out = tmp_path / "fem.json"
     code = main(["fem", "--type", "B", "--pressure", "40", "--reservoir", "40000",
                  "--stroke", "1", "--points", "3", "--mesh-size", "3", "--layers", "1",
@@ -24,7 +24,8 @@ def test_spsc_fem_writes_the_curve_json(tmp_path, capsys, monkeypatch):
     assert len(curve) == 3 and curve.all_converged and curve.force_N[-1] > 0
     assert len(list((tmp_path / "vtu").glob("*.vtu"))) == 1 + 4 + 2
     assert "cavity volume" in capsys.readouterr().out
-    assert list((tmp_path / "build" / "cache" / "fem").glob("*.npz"))
+    assert list((tmp_path / "spsc-cache").rglob("*.npz"))
+    assert not (tmp_path / "build").exists()
 
 
 def test_spsc_fem_bad_input_is_one_line_and_exit_2(capsys):

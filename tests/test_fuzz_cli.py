@@ -174,7 +174,7 @@ def test_a_part_fem_refused_after_meshing_leaves_no_file(tmp_path, monkeypatch, 
 def test_the_part_mesh_cache_goes_beside_the_output_named():
     from argparse import Namespace
 
-    from spsc.cli.fem import cache_dir
+    from spsc.cli.options import output_cache_dir as cache_dir
 
     none = dict(cache=None, json=None, csv=None, png=None, vtu=None)
     assert cache_dir(Namespace(**none)) is None  # build/cache/fem under the current folder
@@ -182,3 +182,26 @@ def test_the_part_mesh_cache_goes_beside_the_output_named():
         "/a/b/spsc-cache")
     assert cache_dir(Namespace(**none | {"vtu": "/a/vtu"})) == Path("/a/spsc-cache")
     assert cache_dir(Namespace(**none | {"json": "/a/x.json", "cache": "/k"})) == Path("/k")
+    assert cache_dir(Namespace(json="/a/x.json")) == Path("/a/spsc-cache")  # no --cache
+
+
+def test_spsc_curve_hands_its_model_the_cache_beside_the_output(tmp_path, monkeypatch):
+    """The chamber FEM (any model through spsc curve) keeps its meshes beside --json, not
+    under the current folder's build/ (issue 30)."""
+    from spsc.models import MODELS
+
+    seen = []
+    kind = type(MODELS["simplified"])
+    real = kind.curve
+
+    def spy(self, *a, cache_dir=None, **k):
+        seen.append(cache_dir)
+        return real(self, *a, cache_dir=cache_dir, **k)
+
+    monkeypatch.setattr(kind, "curve", spy)
+    monkeypatch.chdir(tmp_path)
+    out = tmp_path / "elsewhere" / "c.json"
+    out.parent.mkdir()
+    assert main(["curve", "--type", "B", "--model", "simplified", "--stroke", "1", "--points",
+                 "3", "--json", str(out), "--quiet"]) == 0
+    assert seen == [out.parent / "spsc-cache"]

@@ -23,6 +23,7 @@ from spsc.core.errors import ParameterError
 from spsc.models import MODELS, cli_options, options_from
 
 from spsc.cli.options import (PLOT_SUFFIXES, add_geometry_options, add_output_options,
+                              output_cache_dir,
                       add_quiet_option, add_setup_options, check_output_dir,
                       check_output_file, geometry_from_args, integer, number, warn)
 
@@ -163,9 +164,10 @@ def prepare(args) -> Job:
     return Job(model, geom, mat, load, options)
 
 
-def solve(job: Job, *, verb: str, quiet: bool):
+def solve(job: Job, *, verb: str, quiet: bool, cache_dir=None):
     """The job's model solved, with a progress bar on stderr (unless ``quiet``) for a model
-    that reports load steps."""
+    that reports load steps; a meshed model keeps its meshes in ``cache_dir`` (None: its
+    default)."""
     from tqdm import tqdm
 
     total = job.model.load_steps(job.load, job.options)
@@ -178,7 +180,7 @@ def solve(job: Job, *, verb: str, quiet: bool):
 
     try:
         return job.model.curve(job.geometry, job.material, job.load, job.options,
-                               progress=progress)
+                               progress=progress, cache_dir=cache_dir)
     finally:
         bar.close()
 
@@ -188,7 +190,7 @@ def run(args) -> int:
     job = prepare(args)
     for msg in job.geometry.design_space_warnings():
         warn(verb, msg)
-    out = solve(job, verb=verb, quiet=bool(args.quiet))
+    out = solve(job, verb=verb, quiet=bool(args.quiet), cache_dir=output_cache_dir(args))
     curve = out.curve
     if args.json:
         curve.to_json(args.json, extra=out.extra or None)

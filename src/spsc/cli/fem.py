@@ -32,7 +32,6 @@ Pressures kPa gauge, volumes mm³, lengths mm. Exit 0 when every point converged
 
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 
@@ -42,6 +41,7 @@ from spsc.core.errors import ParameterError
 
 from spsc.cli.curve import add_curve_parser, exit_status, plot, run as run_curve, summary
 from spsc.cli.options import (PARAMS, PLOT_SUFFIXES, Once, check_output_dir, check_output_file,
+                              output_cache_dir,
                               number_list)
 
 #: the options that belong to one mode only
@@ -193,18 +193,6 @@ def _estimate(run, surface) -> dict:
     return {"tetrahedra": int(tets), "nodes": int(nodes), "unknowns": int(3 * nodes + tets / 5)}
 
 
-def cache_dir(args) -> Path | None:
-    """The part mesh's cache folder: ``--cache``, else ``spsc-cache`` in the folder of the
-    first output named (``--json``, ``--csv``, ``--png``; ``--vtu`` is a folder: beside it),
-    else None (``build/cache/fem`` under the current folder)."""
-    if args.cache is not None:
-        return Path(args.cache)
-    for out in (args.json, args.csv, args.png, args.vtu):
-        if out is not None and str(out) != os.devnull:
-            return Path(out).absolute().parent / "spsc-cache"
-    return None
-
-
 def run_part_cli(args) -> int:
     from tqdm import tqdm
 
@@ -230,7 +218,7 @@ def run_part_cli(args) -> int:
     import time
 
     t0 = time.perf_counter()
-    model, R, surface = part_model(run, surface=surface, cache_dir=cache_dir(args))
+    model, R, surface = part_model(run, surface=surface, cache_dir=output_cache_dir(args))
     mesh_seconds = time.perf_counter() - t0
     bar = tqdm(total=steps, desc=f"spsc {verb}", unit="step", disable=bool(args.quiet),
                file=sys.stderr)

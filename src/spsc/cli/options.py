@@ -270,6 +270,20 @@ def check_output_dir(option: str, path) -> Path:
     return p
 
 
+def output_cache_dir(args) -> Path | None:
+    """Where a meshed model keeps its meshes: ``--cache`` if the verb has it and it is given,
+    else ``spsc-cache`` in the folder of the first output named (``--json``, ``--csv``,
+    ``--png``; ``--vtu`` is a folder: beside it), else None (the model's default,
+    ``build/cache/fem`` under the current folder)."""
+    if getattr(args, "cache", None) is not None:
+        return Path(args.cache)
+    for name in ("json", "csv", "png", "vtu"):
+        out = getattr(args, name, None)
+        if out is not None and str(out) != os.devnull:
+            return Path(out).absolute().parent / "spsc-cache"
+    return None
+
+
 def warn(verb: str, message: str) -> None:
     """A warning: one line on stderr, ``spsc <verb>: warning: <message>``."""
     import sys
