@@ -130,8 +130,14 @@ def test_sweep_size_limit_prints_the_count_and_force_lifts_it():
     assert len(build_space(spec, limit=20_000)) == 10_404
 
 
-def test_list_values_are_deduplicated_and_types_upper_cased():
-    assert parse_axis("w", "11, 11 ,12").values == (11.0, 12.0)
+def test_a_value_given_twice_is_refused_and_types_upper_cased():
+    # a repeat is refused, as spsc design refuses it (it was silently merged: issue 30)
+    with pytest.raises(ParameterError, match=r"^w = '11, 11 ,12' is invalid: allowed a list of "
+                       r"distinct values \(11 given twice\)"):
+        parse_axis("w", "11, 11 ,12")
+    with pytest.raises(ParameterError, match=r"\(B given twice\)"):
+        parse_axis("type", "B,b")
+    assert parse_axis("w", "11 ,12").values == (11.0, 12.0)
     assert parse_axis("type", "a,b").values == ("A", "B")
     assert parse_axis("w", "10").kind == "fixed"
 

@@ -98,7 +98,13 @@ def parse_axis(name: str, text) -> Axis:
         items = [_tidy(_number(name, text, p)) for p in items]
     elif name == "type":
         items = [p.upper() for p in items]
-    values = tuple(dict.fromkeys(items))  # a value given twice is one design
+    twice = [v for k, v in enumerate(items) if v in items[:k]]
+    if twice:
+        # refused, as spsc design refuses it: a repeat is a typo more often than an intent
+        raise ParameterError(name, text, f"a list of distinct values ({twice[0]:g} given twice)"
+                             if not isinstance(twice[0], str) else
+                             f"a list of distinct values ({twice[0]} given twice)")
+    values = tuple(items)
     return Axis(name, "fixed" if len(values) == 1 else "list", text, values)
 
 

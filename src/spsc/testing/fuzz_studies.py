@@ -43,6 +43,8 @@ def sweep_cases(f, b, tmp) -> list[Case]:
                   for v in values]
     cases += [Case(base + ("--model", v), f"sweep --model {v!r}", "model")
               for v in ("fem", "nothing", "")]
+    cases += [Case(base + (f"--{k}", v), f"sweep --{k} {v!r}: a value twice", k, "duplicate")
+              for k, v in (("type", "B,b"), ("w", "9,9.0"), ("material", "tpu60a,tpu60a"))]
     for v in ("", "http://x:1", "tcp://", "tcp://host", "tcp://127.0.0.1:1"):
         cases.append(Case(base + ("--scheduler", v), f"sweep --scheduler {v!r}", "scheduler"))
     cases.append(Case(base + ("--scheduler", not_dask_address()), "a port that listens but is "
