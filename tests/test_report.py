@@ -292,7 +292,6 @@ def test_spsc_report_runs_on_the_cluster_its_options_name(tmp_path, monkeypatch)
     """--workers N: a LocalCluster of N (1: this process, no cluster); --scheduler: that
     scheduler; neither: one worker per core. The report says where its runs were computed."""
     import functools
-    import socket
 
     from spsc.study import provenance
 
