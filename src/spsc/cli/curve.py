@@ -291,7 +291,8 @@ def plot(curve, result, path) -> None:
 def _mark_jumps(curve, force_ax, pressure_ax) -> None:
     """Each snap-through the solver followed (``solver.details["jumps"]``): the jump at its
     plate travel from the state before to the state after, with the energy it released."""
-    jumps = (curve.solver.details or {}).get("jumps") or [] if curve.solver else []
+    details = curve.solver.details if curve.solver is not None else None
+    jumps = (details or {}).get("jumps") or []
     for k, j in enumerate(jumps):
         label = "snap-through (followed)" if k == 0 else None
         for a, key in ((force_ax, "force"), (pressure_ax, "pressure")):

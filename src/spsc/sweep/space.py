@@ -101,9 +101,8 @@ def parse_axis(name: str, text) -> Axis:
     twice = [v for k, v in enumerate(items) if v in items[:k]]
     if twice:
         # refused, as spsc design refuses it: a repeat is a typo more often than an intent
-        raise ParameterError(name, text, f"a list of distinct values ({twice[0]:g} given twice)"
-                             if not isinstance(twice[0], str) else
-                             f"a list of distinct values ({twice[0]} given twice)")
+        shown = twice[0] if isinstance(twice[0], str) else f"{twice[0]:g}"
+        raise ParameterError(name, text, f"a list of distinct values ({shown} given twice)")
     values = tuple(items)
     return Axis(name, "fixed" if len(values) == 1 else "list", text, values)
 

@@ -27,6 +27,7 @@ core, factorisation / refactorisation with the analysis reused / solve:
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -50,7 +51,9 @@ def _point_pypardiso_at_mkl() -> None:
             os.environ["PYPARDISO_MKL_RT"] = str(found[0])
 
 
-def available_solvers() -> list[str]:
+@functools.cache
+def _probe() -> tuple[str, ...]:
+    """The solvers this install has, probed once per process."""
     out = []
     try:
         _point_pypardiso_at_mkl()
@@ -59,7 +62,11 @@ def available_solvers() -> list[str]:
         out.append("pardiso")
     except ImportError:  # pragma: no cover - depends on the install
         pass
-    return out + ["superlu", "superlu-mmd"]
+    return tuple(out + ["superlu", "superlu-mmd"])
+
+
+def available_solvers() -> list[str]:
+    return list(_probe())
 
 
 @dataclass(frozen=True, eq=False)

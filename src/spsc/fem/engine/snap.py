@@ -35,9 +35,10 @@ import logging
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
 from .linear import gas_vector
-from .linsolve import factorize, solve_rank_one
+from .linsolve import FULL_INPUT, factorize, solve_rank_one
 from .newton import _Newton, newton
 from .result import NewtonFailure
 from .constraints import restriction
@@ -107,11 +108,12 @@ class Damped:
         r[: self.model.n_u] += self.damping(x)
         K = ev.K
         if K is not None:
-            K = K.copy()
+            # new values on the model's own index arrays: the restriction's pattern still hits
             rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
-            diag = np.flatnonzero(rows == K.indices)
-            on = rows[diag] < self.model.n_u
-            K.data[diag[on]] += self.mu * self.metric[rows[diag[on]]]
+            diag = np.flatnonzero((rows == K.indices) & (rows < self.model.n_u))
+            data = K.data.copy()
+            data[diag] += self.mu * self.metric[rows[diag]]
+            K = sp.csr_matrix((data, K.indices, K.indptr), shape=K.shape)
         return dataclasses.replace(ev, r=r, K=K)
 
 
@@ -122,35 +124,23 @@ def _settled(model, x, load) -> np.ndarray:
     return x + model.expand(ev, np.zeros(len(model.fixed)))
 
 
-def unstable_mode(model, x, load, active, engaged, settings, iterations: int = 8):
-    """(mode, λ): the eigenvector of the constrained tangent (gas included) whose eigenvalue is
-    nearest zero, by inverse iteration on its factorisation, scaled to a largest nodal
-    displacement of 1 (full numbering, zero on constrained unknowns), and its Rayleigh
-    quotient λ (N/mm per unit²)."""
-    nw = _Newton(model, load, settings, x, active, engaged)
+def unstable_mode(model, sol, load, settings, iterations: int = 8) -> np.ndarray:
+    """The eigenvector of the converged ``sol``'s constrained tangent (gas included) whose
+    eigenvalue is nearest zero, by inverse iteration on its factorisation, scaled to a largest
+    nodal displacement of 1 (full numbering, zero on constrained unknowns)."""
+    nw = _Newton(model, load, settings, sol.x, sol.active, sol.engaged)
     con, free = nw.constrain()
-    ev = model.evaluate(x, load)
-    red = restriction(ev.K, free, con, settings.solver in ("superlu-sym",))
-    A = red.matrix(ev.K)
-    factor = factorize(A, settings.solver, upper=red.upper)
+    ev = sol.evaluation
+    red = restriction(ev.K, free, con, settings.solver in FULL_INPUT)
+    factor = factorize(red.matrix(ev.K), settings.solver, upper=red.upper)
     gc = red.take(con.condense(gas_vector(model, ev, con.n)))
-    rng = np.random.default_rng(0)
-    v = red.take(rng.standard_normal(con.n))
-    full = A + (A.T - _diag(A)) if red.upper else A
+    v = red.take(np.random.default_rng(0).standard_normal(con.n))
     for _ in range(iterations):
         v = solve_rank_one(factor, ev.c, gc, v) if ev.c > 0 else factor(v)
         v /= np.linalg.norm(v)
-    lam = float(v @ (full @ v) + ev.c * (gc @ v) ** 2)
     mode = np.zeros(con.n)
     red.put(mode, v)
-    mode /= np.max(np.abs(mode[: model.n_u]))
-    return mode, lam, A
-
-
-def _diag(A):
-    import scipy.sparse as sp
-
-    return sp.diags(A.diagonal())
+    return mode / np.max(np.abs(mode[: model.n_u]))
 
 
 def relax(model, x_u, load, active, engaged, settings, push: np.ndarray, metric):

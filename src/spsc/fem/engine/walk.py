@@ -155,7 +155,7 @@ class _Walk:
             else:
                 t0, x0, a0, e0 = tm, solm.x, solm.active, solm.engaged
         load = load_at(t1)
-        mode, _, _ = unstable_mode(m, sol1.x, load, sol1.active, sol1.engaged, s)
+        mode = unstable_mode(m, sol1, load, s)
         diag = np.abs(sol1.evaluation.K.diagonal()[: m.n_u])
         metric = np.maximum(diag, 1e-6 * diag.max())
         best = None
