@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .constraints import Constraints
-from .linsolve import factorize, solve_rank_one
+from .linsolve import Factor, factorize, solve_rank_one
 
 __all__ = ["Step", "linear_step", "inertia", "gas_vector"]
 
@@ -23,13 +23,15 @@ __all__ = ["Step", "linear_step", "inertia", "gas_vector"]
 @dataclass(frozen=True, eq=False)
 class Step:
     """A Newton step: ``dx`` of all n unknowns, the negative eigenvalues of the displacement
-    problem on the factorised constraint set (None: unknown), the linearised reactions of the
-    active contact unknowns (N, None unless asked for) and that set's key."""
+    problem on the factorised constraint set (None: unknown or not recomputed), the linearised
+    reactions of the active contact unknowns (N, None unless asked for), that set's key and
+    the factorisation it was solved with."""
 
     dx: np.ndarray
     unstable_modes: int | None
     multipliers: np.ndarray | None
     key: bytes
+    factor: Factor | None = None
 
 
 def gas_vector(model, ev, m) -> np.ndarray:
@@ -54,12 +56,16 @@ def inertia(model, restriction, ev, gc, settings) -> int | None:
 
 
 def linear_step(model, ev, restriction, free, con: Constraints, settings, *,
-                multipliers: bool = False) -> Step:
+                multipliers: bool = False, factor: Factor | None = None) -> Step:
     """The Newton step of ev's system on the ``free`` unknowns under ``con``; with
     ``multipliers`` also the active contact unknowns' linearised reactions
-    λ = −(r + K Δx + c g gᵀΔx)_active."""
+    λ = −(r + K Δx + c g gᵀΔx)_active. Given ``factor`` (a factorisation of an earlier
+    tangent on the same constraint set: modified Newton) ev.K is not factorised and the
+    inertia is not recomputed."""
     K, c, m = ev.K, ev.c, con.n
-    factor = factorize(restriction.matrix(K), settings.solver, upper=restriction.upper)
+    fresh = factor is None
+    if fresh:
+        factor = factorize(restriction.matrix(K), settings.solver, upper=restriction.upper)
     rs = model.system_residual(ev)
     s = con.shift()
     moved = bool(np.any(s))
@@ -73,7 +79,7 @@ def linear_step(model, ev, restriction, free, con: Constraints, settings, *,
         dx = solve_rank_one(factor, c, gc, rhs)
     else:
         dx = factor(rhs)
-    modes = model.unstable_modes(factor, c, gc)
+    modes = model.unstable_modes(factor, c, gc) if fresh else None
     step = s
     restriction.put(step, dx)
     if con.slaves.size:
@@ -82,4 +88,4 @@ def linear_step(model, ev, restriction, free, con: Constraints, settings, *,
     if multipliers and con.presc.size:
         r_lin = rs + K @ step + (c * gs * (gs @ step) if c > 0.0 else 0.0)
         lam = -r_lin[con.presc]
-    return Step(model.expand(ev, step), modes, lam, restriction.key)
+    return Step(model.expand(ev, step), modes, lam, restriction.key, factor)

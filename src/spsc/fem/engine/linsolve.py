@@ -93,6 +93,7 @@ class _Pardiso:
         self.ps.set_statistical_info_off()
         self.key = None
         self.U = None
+        self.serial = 0  # the factorisation PARDISO holds now
 
     def factor(self, A, upper: bool = False) -> Factor:
         U = A if upper else sp.triu(A, format="csr")
@@ -111,10 +112,14 @@ class _Pardiso:
         self.ps.set_phase(22)
         self.ps._call_pardiso(U, np.zeros((n, 1)))
         self.U = U
+        self.serial += 1
         negative = int(self.ps.iparm[22])
-        ps = self.ps
+        ps, serial = self.ps, self.serial
 
         def solve(b):
+            if self.serial != serial:
+                # one solver per process: a later factorisation replaced this one's factors
+                raise RuntimeError("a PARDISO factor was used after a later factorisation")
             b = np.asarray(b, dtype=float)
             ps.set_phase(33)
             x = ps._call_pardiso(U, np.asfortranarray(b.reshape(n, -1)))

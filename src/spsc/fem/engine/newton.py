@@ -13,6 +13,7 @@ equilibrium.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,6 +32,9 @@ __all__ = ["Converged", "newton"]
 #: the semi-smooth strategy takes the linearised reactions until the set changed this often
 _MULTIPLIER_CHANGES = 10
 
+#: modified Newton goes on while each step shrinks the residual at least this much
+_CONTRACTION = 0.25
+
 
 @dataclass(frozen=True, eq=False)
 class Converged:
@@ -45,6 +49,13 @@ class Converged:
     evaluation: object
     unstable_modes: int | None
 
+    def with_tangent(self, model, load: Load) -> "Converged":
+        """This state with an evaluation that carries its tangent (a modified Newton
+        iteration converges on the residual alone)."""
+        if self.evaluation.K is not None:
+            return self
+        return dataclasses.replace(self, evaluation=model.evaluate(self.x, load))
+
 
 class _Newton:
     """The state of one Newton solve between iterations."""
@@ -58,6 +69,22 @@ class _Newton:
             else np.asarray(engaged)
         self.scale, self.res, self.changes = 0.0, np.inf, 0
         self.lam = self.carried = self.restriction = self.factored = self.modes = None
+        #: modified Newton: the last factorisation, the evaluation it was made from, and
+        #: whether the next iteration reuses it (``settings.modified_newton``)
+        self.factor = self.tangent_ev = None
+        self.cheap = False
+
+    def evaluate(self):
+        """The evaluation at x: the line search's, the residual alone for a modified Newton
+        step, or residual and tangent."""
+        ev, self.carried = self.carried, None
+        return ev if ev is not None else self.model.evaluate(self.x, self.load,
+                                                             tangent=not self.cheap)
+
+    def full(self, ev):
+        """ev with its tangent: modified Newton ends here."""
+        self.cheap = False
+        return ev if ev.K is not None else self.model.evaluate(self.x, self.load)
 
     def constrain(self):
         """(Constraints, free mask) of the current sets at x."""
@@ -114,14 +141,23 @@ class _Newton:
         return changed
 
     def step(self, ev, con, free, rt) -> None:
-        """The constrained Newton step and its line search; x moves."""
+        """The constrained Newton step and its line search; x moves. Without ev's tangent
+        (modified Newton) the last factorisation, on the same constraint set, is reused."""
         key = constraint_key(free, con.slaves)
-        if self.restriction is None or self.restriction.key != key:
-            self.restriction = restriction(ev.K, free, con, self.s.solver in FULL_INPUT)
         wanted = self.s.semismooth and self.changes < _MULTIPLIER_CHANGES
-        st = linear_step(self.model, ev, self.restriction, free, con, self.s,
-                         multipliers=wanted)
-        self.factored, self.modes, self.lam = st.key, st.unstable_modes, st.multipliers
+        if ev.K is None:
+            st = linear_step(self.model, self.model.reuse(ev, self.tangent_ev),
+                             self.restriction, free, con, self.s, multipliers=wanted,
+                             factor=self.factor)
+            self.lam = st.multipliers
+        else:
+            if self.restriction is None or self.restriction.key != key:
+                self.restriction = restriction(ev.K, free, con, self.s.solver in FULL_INPUT)
+            st = linear_step(self.model, ev, self.restriction, free, con, self.s,
+                             multipliers=wanted)
+            self.factored, self.modes, self.lam = st.key, st.unstable_modes, st.multipliers
+            self.factor, self.tangent_ev = st.factor, ev
+            self.cheap = con.settled and self.res <= self.s.modified_newton * self.scale
         alpha, self.carried = line_search(self.model, self.x, st.dx, free, self.load, con, rt,
                                           self.s)
         self.x += alpha * st.dx
@@ -131,6 +167,7 @@ class _Newton:
         key = constraint_key(free, con.slaves)
         modes = self.modes if self.factored == key else None
         if self.factored != key and self.s.fresh_inertia:
+            ev = self.full(ev)
             red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT)
             gc = red.take(con.condense(gas_vector(self.model, ev, con.n)))
             modes = inertia(self.model, red, ev, gc, self.s)
@@ -144,15 +181,18 @@ def newton(model, x0, load: Load, settings: Settings, active=None, engaged=None)
     nw = _Newton(model, load, settings, x0, active, engaged)
     for it in range(1, settings.max_iterations + 1):
         con, free = nw.constrain()
-        ev = nw.carried if nw.carried is not None else model.evaluate(nw.x, load)
-        nw.carried = None
+        ev = nw.evaluate()
         if not np.all(np.isfinite(ev.r)):
             raise NewtonFailure("non-finite residual")
         rt = con.condense(ev.r)
+        before = nw.res
         nw.measure(ev, rt, free)
         converged = con.settled and it > 1 and nw.res <= settings.rtol * nw.scale \
             and model.pressure_error(ev) <= 1e-3 * settings.rtol
+        if ev.K is None and not converged and nw.res > _CONTRACTION * before:
+            ev = nw.full(ev)  # the old tangent no longer contracts enough
         if nw.near(it, con, converged) and nw.update(ev):
+            ev = nw.full(ev)  # a new constraint set: a new factorisation
             if not settings.semismooth:
                 nw.carried = ev  # x is unchanged: its evaluation stands
                 continue

@@ -82,6 +82,10 @@ class Discretisation(Protocol):
     def evaluate(self, x, load: Load, *, tangent: bool = True) -> Evaluation:
         """Residual (and tangent) at x under ``load``."""
 
+    def reuse(self, ev: Evaluation, tangent_ev: Evaluation) -> Evaluation:
+        """ev (made without its tangent) completed by ``tangent_ev``'s tangent, for a
+        modified Newton step (only with ``settings.modified_newton``)."""
+
     def volume(self, x) -> float:
         """The gas volume (mm³) at x."""
 

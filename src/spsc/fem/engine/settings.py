@@ -52,6 +52,12 @@ class Settings:
     prescribed jumps s, summed over every unknown (``"full"``) or over the constrained ones
     (``"constrained"``): one number, rounded differently.
 
+    modified_newton : after a full Newton step from a residual below this fraction of the
+    force scale on a settled constraint set, the next iterations evaluate the residual alone
+    and solve with the last factorisation while each shrinks the residual at least 4× (the
+    tail of a load, where the tangent barely changes; 0: always full Newton). Needs the
+    discretisation's ``reuse``.
+
     snap_through : a press that reaches an unstable equilibrium follows the wall's jump to
     the stable one at the same plate position and goes on (:mod:`.snap`) instead of stopping
     there; the onset is located between the last stable and the first unstable increment by
@@ -76,6 +82,7 @@ class Settings:
     gas_shift: str = "full"
     snap_through: bool = False
     snap_bisections: int = 5
+    modified_newton: float = 0.0
 
     def __post_init__(self):
         for name, allowed in _CHOICES.items():

@@ -116,6 +116,9 @@ class Damped:
             K = sp.csr_matrix((data, K.indices, K.indptr), shape=K.shape)
         return dataclasses.replace(ev, r=r, K=K)
 
+    def reuse(self, ev, tangent_ev):
+        return self.model.reuse(ev, tangent_ev)
+
 
 def _settled(model, x, load) -> np.ndarray:
     """x with the discretisation's other unknowns (the wall's element pressures) at rest on
@@ -130,7 +133,7 @@ def unstable_mode(model, sol, load, settings, iterations: int = 8) -> np.ndarray
     nodal displacement of 1 (full numbering, zero on constrained unknowns)."""
     nw = _Newton(model, load, settings, sol.x, sol.active, sol.engaged)
     con, free = nw.constrain()
-    ev = sol.evaluation
+    ev = sol.with_tangent(model, load).evaluation
     red = restriction(ev.K, free, con, settings.solver in FULL_INPUT)
     factor = factorize(red.matrix(ev.K), settings.solver, upper=red.upper)
     gc = red.take(con.condense(gas_vector(model, ev, con.n)))

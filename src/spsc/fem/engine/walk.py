@@ -155,6 +155,7 @@ class _Walk:
             else:
                 t0, x0, a0, e0 = tm, solm.x, solm.active, solm.engaged
         load = load_at(t1)
+        sol1 = sol1.with_tangent(m, load)
         mode = unstable_mode(m, sol1, load, s)
         diag = np.abs(sol1.evaluation.K.diagonal()[: m.n_u])
         metric = np.maximum(diag, 1e-6 * diag.max())

@@ -11,6 +11,7 @@ counts the unstable modes directly.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -52,7 +53,8 @@ class WallSettings:
     against the load's force scale; max_iterations : Newton iterations per increment;
     min_fraction : smallest increment as a fraction of the nominal one; contact_tolerance :
     penetration that activates a node (mm); inflate_increments : pressure increments of the
-    inflation.
+    inflation; modified_newton : residual fraction below which a load's tail reuses the last
+    factorisation (:class:`~spsc.fem.engine.settings.Settings`; 0: full Newton throughout).
     """
 
     mesh_size_mm: float | None = None
@@ -64,6 +66,7 @@ class WallSettings:
     min_fraction: float = 1.0 / 64
     contact_tolerance: float = 1e-7
     inflate_increments: int = 2
+    modified_newton: float = 1e-3
 
     def __post_init__(self):
         if self.mesh_size_mm is not None:
@@ -75,6 +78,7 @@ class WallSettings:
         require("max_iterations", self.max_iterations, ge=2)
         require("min_fraction", self.min_fraction, gt=0, le=1)
         require("inflate_increments", self.inflate_increments, ge=1)
+        require("modified_newton", self.modified_newton, ge=0, lt=1)
 
     def newton_settings(self) -> Settings:
         """The engine's settings for the wall: these tolerances with the wall's own choices —
@@ -83,14 +87,15 @@ class WallSettings:
         :mod:`spsc.fem.engine.linsolve`), the admissible line
         search, the semi-smooth active set (updated from the step's multipliers; 1e-2 of the
         scale before the first; 40 changes), the running force scale, a fresh inertia at
-        convergence, the secant predictor, gᵀs over the constrained unknowns and snap-throughs
-        followed to the stable branch (:mod:`spsc.fem.engine.snap`)."""
+        convergence, the secant predictor, gᵀs over the constrained unknowns, snap-throughs
+        followed to the stable branch (:mod:`spsc.fem.engine.snap`) and modified Newton in
+        each load's tail."""
         return Settings(rtol=self.rtol, max_iterations=self.max_iterations,
                         min_fraction=self.min_fraction, contact_tolerance=self.contact_tolerance,
                         solver=_SOLVER, active_set_update=1e-2, search="admissible",
                         active_set="semismooth", max_active_changes=40, scale="running",
                         fresh_inertia=True, predictor=True, gas_shift="constrained",
-                        snap_through=True)
+                        snap_through=True, modified_newton=self.modified_newton)
 
     def profile_size(self, stadium: bool) -> float:
         """The element length along the profile (mm) for a dome or a stadium."""
@@ -247,6 +252,11 @@ class WallModel:
             r, rp = self.solid.residual(u, pc)
             g = self.part.volume_gradient(u, hessian=False)
         return _Evaluation(r - pressure * g, rp, K, G, g, c, pressure, volume)
+
+    def reuse(self, ev: "_Evaluation", tangent_ev: "_Evaluation") -> "_Evaluation":
+        """ev's residuals with ``tangent_ev``'s tangent and coupling blocks: the condensed
+        right-hand side and the pressure recovery of a modified Newton step."""
+        return dataclasses.replace(ev, K=tangent_ev.K, G=tangent_ev.G)
 
     def potential(self, x, load) -> float:
         """The total potential Π (mJ) at x under ``load`` up to a constant: the wall's stored
