@@ -159,7 +159,7 @@ class _Newton:
             self.factor, self.tangent_ev = st.factor, ev
             self.cheap = con.settled and self.res <= self.s.modified_newton * self.scale
         alpha, self.carried = line_search(self.model, self.x, st.dx, free, self.load, con, rt,
-                                          self.s)
+                                          self.s, tangent=not self.cheap)
         self.x += alpha * st.dx
 
     def converged(self, it, ev, con, free) -> Converged:

@@ -21,12 +21,12 @@ __all__ = ["line_search"]
 TRIALS = {"residual": 5, "admissible": 8}
 
 
-def _residual(model, x, step, free, load, base, con):
+def _residual(model, x, step, free, load, base, con, tangent):
     best, best_alpha, alpha = np.inf, 1.0, 1.0
     for _ in range(TRIALS["residual"]):
         xt = x + alpha * step
         try:
-            ev = model.evaluate(xt, load, tangent=alpha == 1.0)
+            ev = model.evaluate(xt, load, tangent=tangent and alpha == 1.0)
             rt = np.linalg.norm(con.condense(ev.r)[free])
         except (np.linalg.LinAlgError, *model.inadmissible):
             ev, rt = None, np.inf
@@ -47,12 +47,13 @@ def _admissible(model, x, step):
     raise NewtonFailure("every trial step inverts an element")
 
 
-def line_search(model, x, step, free, load, con, rt, settings):
-    """(α, the evaluation at x + α step if it was made with its tangent, else None) for the
-    step from x; ``rt`` is the (tie-condensed) residual at x."""
+def line_search(model, x, step, free, load, con, rt, settings, *, tangent: bool = True):
+    """(α, the evaluation at x + α step if it was made (with its tangent unless not
+    ``tangent``: a modified Newton iteration follows), else None) for the step from x; ``rt``
+    is the (tie-condensed) residual at x."""
     if not settings.line_search:
         return 1.0, None
     if settings.search == "admissible":
         return _admissible(model, x, step)
     base = np.linalg.norm(rt[free]) if con.settled else np.inf
-    return _residual(model, x, step, free, load, base, con)
+    return _residual(model, x, step, free, load, base, con, tangent)

@@ -82,7 +82,7 @@ class Settings:
     gas_shift: str = "full"
     snap_through: bool = False
     snap_bisections: int = 5
-    modified_newton: float = 0.0
+    modified_newton: float = 1e-2
 
     def __post_init__(self):
         for name, allowed in _CHOICES.items():

@@ -15,7 +15,7 @@ unknown when the displacement problem is stable.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -155,6 +155,10 @@ class FEMModel:
 
     def system_residual(self, ev: "Evaluation") -> np.ndarray:
         return ev.r
+
+    def reuse(self, ev: "Evaluation", tangent_ev: "Evaluation") -> "Evaluation":
+        """ev's residual with ``tangent_ev``'s tangent (a modified Newton step)."""
+        return replace(ev, K=tangent_ev.K)
 
     def expand(self, ev: "Evaluation", dx) -> np.ndarray:
         return dx
