@@ -102,6 +102,7 @@ KEY_OPTIONS = {
                "--stroke", "--out", "--json", "--csv", "--workers", "--scheduler", "--quiet"],
     "fit-material": ["--test", "--law", "--ogden-terms", "--range", "--strain-unit",
                      "--stress-unit", "--json", "--png", "--out", "--list-catalogue"],
+    "simulate": ["--out", "--csv", "--cache", "--quiet"],
 }
 
 

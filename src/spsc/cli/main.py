@@ -36,6 +36,7 @@ COMMANDS = {
     "design": "design",
     "mold": "mold",
     "haptic": "haptic",
+    "simulate": "simulate",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

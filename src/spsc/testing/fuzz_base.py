@@ -44,6 +44,8 @@ KINDS = {
                    "not a table with its fields)",
     "scheduler": "a Dask scheduler address of the wrong form, where nothing listens, or "
                  "where something listens that does not speak Dask",
+    "scenario": "a scenario file (spsc simulate) with an entry missing, unknown, of the wrong "
+                "type or out of range",
     "choice": "a choice option given an unknown value",
     "combination": "options that do not go together, or one missing",
     "argparse": "argparse's own mistakes: an unknown option or verb, a missing value",

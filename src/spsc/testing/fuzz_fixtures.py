@@ -200,6 +200,8 @@ def bases(f: dict[str, Path], tmp: Path) -> dict[str, tuple[str, ...]]:
         "design": ("design", "--target", "stiffness_high=6", "--model", "simplified",
                    "--out", str(tmp / "design"), "--quiet"),
         "haptic": ("haptic", "--out", out, "--parts", str(tmp / "parts")),
+        "simulate": ("simulate", str(tmp / "scenarios" / "scenario.toml"), "--out", out,
+                     "--quiet"),
     }
     for model in ("membrane", "simplified", "wall", "fem"):
         bases[f"curve-{model}"] = ("curve", "--model", model, "--type", "B", "--quiet")

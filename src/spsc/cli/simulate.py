@@ -1,0 +1,84 @@
+"""``spsc simulate``: the chamber in time — the press of a scenario file on the chamber, its
+valve, reservoir and gas, read by a pressure sensor.
+
+    spsc simulate SCENARIO.toml --out DIR [--csv] [--cache DIR] [--quiet]
+
+Writes DIR/trace.parquet (t_s, y_mm, force_N, pressure_kPa, reservoir_kPa, valve_open, ...,
+pressure_measured_kPa with a sensor), DIR/trace.csv with --csv, DIR/scenario.json (the
+scenario echoed with the code that ran it) and DIR/trace.png. The scenario's format:
+docs/guides/time.md. Exit 0 when the whole press was integrated, 1 when it stopped early (the
+trace so far is written, the reason on stderr), 2 on invalid input (one line on stderr).
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from spsc.cli.options import add_quiet_option, check_output_dir
+
+__all__ = ["register", "run"]
+
+VERB = "simulate"
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser(VERB, help="the chamber in time: press, valve, reservoir, gas "
+                              "and sensor from a scenario file", description=__doc__.split(
+                                  "\n\n")[0])
+    p.add_argument("scenario", metavar="SCENARIO.toml", help="the scenario (TOML)")
+    p.add_argument("--out", required=True, metavar="DIR", help="folder for the trace, the "
+                   "echoed scenario and the figure (created)")
+    p.add_argument("--csv", action="store_true", help="also write trace.csv")
+    p.add_argument("--cache", metavar="DIR", default=None, help="where chamber maps are kept "
+                   "(default: spsc-cache beside --out)")
+    add_quiet_option(p)
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from tqdm import tqdm
+
+    from spsc.dynamics.output import write
+    from spsc.dynamics.scenario import read_scenario
+    from spsc.dynamics.simulate import simulate
+
+    out = check_output_dir("--out", args.out)
+    scenario = read_scenario(args.scenario)
+    scenario.chamber.geometry()  # the chamber checked before any work
+    from spsc.materials import material
+
+    material(scenario.chamber.material)
+    cache = Path(args.cache) if args.cache else out.absolute().parent / "spsc-cache"
+    quiet = args.quiet
+    bars = {}
+
+    def map_progress(done, total):
+        if not quiet:
+            if "map" not in bars:
+                bars["map"] = tqdm(total=total, desc="chamber map", unit="level",
+                                   file=sys.stderr, leave=False)
+            bars["map"].update(done - bars["map"].n)
+
+    def progress(t, t_end):
+        if not quiet:
+            if "run" not in bars:
+                bars["run"] = tqdm(total=round(t_end, 6), desc="spsc simulate", unit="s",
+                                   file=sys.stderr, leave=False,
+                                   bar_format="{l_bar}{bar}| {n:.3g}/{total:.3g} s")
+            bars["run"].update(round(t, 6) - bars["run"].n)
+
+    try:
+        sim = simulate(scenario, cache_dir=cache, progress=progress, map_progress=map_progress)
+    finally:
+        for bar in bars.values():
+            bar.close()
+    files = write(sim, out, csv=args.csv)
+    if not quiet:
+        print(f"spsc simulate: {len(sim.trace)} samples in {sim.seconds['integrate']:.2f} s "
+              f"(chamber map {sim.seconds['map']:.2f} s) -> " + ", ".join(f.name for f in files),
+              file=sys.stderr)
+    if not sim.complete:
+        print(f"spsc {VERB}: {sim.message}", file=sys.stderr)
+        return 1
+    return 0

@@ -1,0 +1,100 @@
+"""What ``spsc simulate`` writes: the trace (Parquet, CSV on request), the scenario echoed with
+the code that ran it and how the run went, and a figure of the trace."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["write", "figure"]
+
+
+def _echo(sim) -> dict:
+    from importlib.metadata import PackageNotFoundError, version
+
+    from spsc.study.provenance import provenance
+
+    try:
+        release = version("spsc")
+    except PackageNotFoundError:  # pragma: no cover - run from a bare checkout
+        release = "unknown"
+
+    m = sim.chamber_map
+    return {"scenario": sim.scenario.source, "spsc": release,
+            "code": provenance().describe(), "complete": sim.complete,
+            "message": sim.message, "seconds": {k: round(v, 3) for k, v in sim.seconds.items()},
+            "samples": int(len(sim.trace)),
+            "chamber_map": {"model": sim.scenario.chamber.model,
+                            "travel_mm": list(m.y_range), "pressure_kPa": list(m.pressure_range),
+                            "levels_kPa": [float(p) for p in m.pressure_kPa],
+                            "travels": int(m.y_mm.size)},
+            "valve": {"C_dm3_s_bar": sim.scenario.valve.C, "b": sim.scenario.valve.b,
+                      "m": sim.scenario.valve.m}}
+
+
+def write(sim, out: Path, *, csv: bool = False, png: bool = True) -> list[Path]:
+    """The files of a run in ``out`` (created): trace.parquet [trace.csv] scenario.json
+    trace.png."""
+    out.mkdir(parents=True, exist_ok=True)
+    files = [out / "trace.parquet"]
+    sim.trace.to_parquet(files[0], index=False)
+    if csv:
+        files.append(out / "trace.csv")
+        sim.trace.to_csv(files[-1], index=False, float_format="%.9g")
+    files.append(out / "scenario.json")
+    files[-1].write_text(json.dumps(_echo(sim), indent=2, default=float) + "\n",
+                         encoding="utf-8")
+    if png and len(sim.trace):
+        files.append(out / "trace.png")
+        figure(sim, files[-1])
+    return files
+
+
+def _valve_shading(ax, t, is_open) -> None:
+    edges = np.flatnonzero(np.diff(np.r_[0, is_open, 0]))
+    for a, b in zip(edges[::2], edges[1::2]):
+        ax.axvspan(t[a], t[min(b, len(t) - 1)], color="0.9", lw=0)
+
+
+def figure(sim, path) -> None:
+    """Travel and force, chamber and reservoir pressure (and the sensor's reading), the gas
+    temperatures against time; the valve's open spans shaded."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    d = sim.trace
+    t = d.t_s.to_numpy()
+    fig, axes = plt.subplots(3, 1, figsize=(8, 7.5), sharex=True, constrained_layout=True)
+    for ax in axes:
+        _valve_shading(ax, t, d.valve_open.to_numpy())
+    ax = axes[0]
+    ax.plot(t, d.force_N, "C0", label="force")
+    ax.set_ylabel("plate force (N)")
+    ay = ax.twinx()
+    ay.plot(t, d.y_mm, "C7--", label="travel")
+    ay.set_ylabel("plate travel y (mm)")
+    ax.legend(loc="upper left")
+    ay.legend(loc="upper right")
+    ax = axes[1]
+    if "pressure_measured_kPa" in d:
+        ax.plot(t, d.pressure_measured_kPa, color="C1", alpha=0.35, lw=0.8, label="sensor")
+    ax.plot(t, d.pressure_kPa, "C1", label="chamber")
+    if np.isfinite(d.reservoir_kPa).any():
+        ax.plot(t, d.reservoir_kPa, "C2", label="reservoir")
+    ax.set_ylabel("gauge pressure (kPa)")
+    ax.legend(loc="best")
+    ax = axes[2]
+    ax.plot(t, d.chamber_K - 273.15, "C3", label="chamber gas")
+    if np.isfinite(d.reservoir_kPa).any():
+        ax.plot(t, d.reservoir_K - 273.15, "C4", label="reservoir gas")
+    ax.set_ylabel("temperature (°C)")
+    ax.set_xlabel("time (s); valve open: shaded")
+    ax.legend(loc="best")
+    title = "spsc simulate" + ("" if sim.complete else f" (stopped: {sim.message})")
+    axes[0].set_title(title, fontsize=10)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -1,0 +1,207 @@
+"""A time-domain scenario (``spsc simulate SCENARIO.toml``): the chamber, the circuit, the
+press and the valve events, read from TOML and checked, every malformed entry a one-line
+:class:`~spsc.core.errors.ParameterError` naming it.
+
+.. code-block:: toml
+
+    [chamber]                 # what spsc curve takes
+    type = "B"                # or all of w, h, l, t0, n1, n2, cy; footprint = "table1" | "GS1"
+    material = "tpu60a"       # catalogue name or a material file (.json)
+    model = "wall"            # the static model that maps the chamber
+    mesh_size = 0.5           # optional, mm; layers = 2
+
+    [circuit]
+    setup_kPa = 40            # chamber and reservoir filled together at rest (gauge)
+    reservoir_mm3 = 40000     # 0: no reservoir
+    valve = { C = 0.06, b = 0.528, state = "closed" }   # C dm³/(s·bar); or area_mm2 = 0.3
+    gas = { n = 1.0, thermal_time_s = inf }             # n = 1: isothermal; 1.4: air
+    sensor = { rate_Hz = 1000, noise_kPa = 0.1 }        # or preset = "elvh"
+
+    [press]
+    profile = [[0, 0], [0.5, 3], [2, 3], [2.5, 0]]      # [t_s, y_mm], piecewise linear
+
+    [[events]]
+    t = 1.0
+    valve = "open"
+
+    [output]
+    dt = 0.001                # s
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from spsc.core.errors import ParameterError, require
+
+from .gas import Gas
+from .profile import PressProfile
+from .sensor import Sensor
+from .valve import Valve, sonic_conductance
+
+__all__ = ["Scenario", "ChamberSpec", "read_scenario", "parse_scenario"]
+
+_TABLES = {"chamber", "circuit", "press", "events", "output"}
+_CHAMBER = {"type", "footprint", "material", "model", "mesh_size", "layers",
+            "w", "h", "l", "t0", "n1", "n2", "cy"}
+_CIRCUIT = {"setup_kPa", "reservoir_mm3", "valve", "gas", "sensor"}
+_VALVE = {"C", "b", "m", "area_mm2", "state"}
+_GAS = {"n", "thermal_time_s", "ambient_K"}
+_SENSOR = {"preset", "rate_Hz", "noise_kPa", "resolution_kPa", "full_scale_kPa", "seed"}
+_MODELS = ("wall",)
+
+
+@dataclass(frozen=True)
+class ChamberSpec:
+    """The chamber as ``spsc curve`` takes it: the geometry's parameters (a preset type with
+    overrides, or all seven), the material name or file, the static model and its mesh."""
+
+    params: dict
+    material: str = "tpu60a"
+    model: str = "wall"
+    mesh_size: float | None = None
+    layers: int = 2
+
+    def geometry(self):
+        from spsc.cad.geometry import PARAMS, SPSCGeometry, preset
+
+        given = {k: v for k, v in self.params.items() if k in PARAMS}
+        if "type" in self.params:
+            return preset(self.params["type"], size=self.params.get("footprint", "table1"),
+                          **given)
+        missing = [k for k in PARAMS if k not in given]
+        if missing:
+            raise ParameterError("chamber", "incomplete", "type = \"A\"..\"D\", or all seven "
+                                 "parameters (missing: " + ", ".join(missing) + ")")
+        return SPSCGeometry(**given)
+
+
+@dataclass(frozen=True)
+class Scenario:
+    chamber: ChamberSpec
+    setup_kPa: float
+    reservoir_mm3: float
+    valve: Valve
+    valve_open: bool
+    gas: Gas
+    sensor: Sensor | None
+    press: PressProfile
+    events: tuple = field(default=())  # ((t_s, opened), ...)
+    dt: float = 1e-3
+    source: dict = field(default_factory=dict, compare=False)
+
+
+def _unknown(where: str, table: dict, allowed: set) -> None:
+    extra = sorted(set(table) - allowed)
+    if extra:
+        raise ParameterError(f"{where}.{extra[0]}", table[extra[0]],
+                             "one of the keys " + ", ".join(sorted(allowed)))
+
+
+def _table(doc: dict, name: str, required: bool = True) -> dict:
+    t = doc.get(name, {} if not required else None)
+    if t is None:
+        raise ParameterError(f"[{name}]", "missing", "a table of the scenario")
+    if not isinstance(t, dict):
+        raise ParameterError(f"[{name}]", t, "a table")
+    return t
+
+
+def _valve(c: dict) -> tuple[Valve, bool]:
+    v = c.get("valve", {})
+    if not isinstance(v, dict):
+        raise ParameterError("circuit.valve", v, "an inline table {C = ..., state = ...}")
+    _unknown("circuit.valve", v, _VALVE)
+    if "C" in v and "area_mm2" in v:
+        raise ParameterError("circuit.valve", "C and area_mm2", "one of them")
+    C = v["C"] if "C" in v else sonic_conductance(v.get("area_mm2", 0.3))
+    state = v.get("state", "closed")
+    if state not in ("open", "closed"):
+        raise ParameterError("circuit.valve.state", state, "\"open\" or \"closed\"")
+    return Valve(C, v.get("b", 0.528), v.get("m", 0.5)), state == "open"
+
+
+def _sensor(c: dict) -> Sensor | None:
+    s = c.get("sensor")
+    if s is None:
+        return None
+    if not isinstance(s, dict):
+        raise ParameterError("circuit.sensor", s, "an inline table {rate_Hz = ..., ...}")
+    _unknown("circuit.sensor", s, _SENSOR)
+    rest = {k: v for k, v in s.items() if k != "preset"}
+    return Sensor.preset(s["preset"], **rest) if "preset" in s else Sensor(**rest)
+
+
+def _events(doc: dict, duration: float) -> tuple:
+    events = doc.get("events", [])
+    if not isinstance(events, list):
+        raise ParameterError("[[events]]", events, "an array of tables [[events]]")
+    out = []
+    for i, e in enumerate(events):
+        _unknown(f"events[{i}]", e, {"t", "valve"})
+        t = require(f"events[{i}].t", e.get("t"), ge=0, le=duration, unit="s, within the press")
+        if e.get("valve") not in ("open", "close"):
+            raise ParameterError(f"events[{i}].valve", e.get("valve"), "\"open\" or \"close\"")
+        out.append((t, e["valve"] == "open"))
+    return tuple(sorted(out))
+
+
+def parse_scenario(doc: dict) -> Scenario:
+    """The :class:`Scenario` of a parsed TOML document."""
+    _unknown("scenario", doc, _TABLES)
+    ch, c, press = _table(doc, "chamber"), _table(doc, "circuit"), _table(doc, "press")
+    out = _table(doc, "output", required=False)
+    _unknown("chamber", ch, _CHAMBER)
+    _unknown("circuit", c, _CIRCUIT)
+    _unknown("press", press, {"profile"})
+    _unknown("output", out, {"dt"})
+    model = ch.get("model", "wall")
+    if model not in _MODELS:
+        raise ParameterError("chamber.model", model, "wall (the static model the time "
+                             "domain maps the chamber with)")
+    mesh = ch.get("mesh_size")
+    spec = ChamberSpec({k: v for k, v in ch.items() if k in _CHAMBER - {"material", "model",
+                                                                          "mesh_size", "layers"}},
+                       str(ch.get("material", "tpu60a")), model,
+                       None if mesh is None else require("chamber.mesh_size", mesh, gt=0, le=5,
+                                                         unit="mm"),
+                       int(require("chamber.layers", ch.get("layers", 2), ge=1, le=16)))
+    g = c.get("gas", {})
+    if not isinstance(g, dict):
+        raise ParameterError("circuit.gas", g, "an inline table {n = ..., thermal_time_s = ...}")
+    _unknown("circuit.gas", g, _GAS)
+    valve, opened = _valve(c)
+    if "profile" not in press:
+        raise ParameterError("press.profile", "missing", "a list of [t_s, y_mm] pairs")
+    profile = PressProfile.of(press["profile"])
+    dt = require("output.dt", out.get("dt", 1e-3), gt=0, le=profile.duration, unit="s")
+    if profile.duration / dt > 5e6:
+        raise ParameterError("output.dt", dt, f">= {profile.duration / 5e6:.3g} s (at most "
+                             "5 million output samples)")
+    return Scenario(spec, require("circuit.setup_kPa", c.get("setup_kPa", 40.0), ge=0, le=200,
+                                  unit="kPa gauge"),
+                    require("circuit.reservoir_mm3", c.get("reservoir_mm3", 0.0), ge=0, le=1e7,
+                            unit="mm³"),
+                    valve, opened, Gas(**g), _sensor(c), profile, _events(doc,
+                                                                          profile.duration),
+                    dt, doc)
+
+
+def read_scenario(path) -> Scenario:
+    """The scenario in the TOML file ``path``."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise ParameterError("scenario", str(path), f"a readable TOML file ({exc.strerror})") \
+            from None
+    except UnicodeDecodeError:
+        raise ParameterError("scenario", str(path), "a TOML file (text, UTF-8); this one is "
+                             "binary") from None
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ParameterError("scenario", p.name, f"valid TOML ({exc})") from None
+    return parse_scenario(doc)

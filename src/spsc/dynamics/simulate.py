@@ -1,0 +1,132 @@
+"""A scenario run: the chamber map (built or read from the cache), the circuit integrated,
+the sensor read, the trace as a table.
+
+The map covers the plate travels of the press and the gauge pressures from 0 to a ceiling
+above what the closed chamber reaches at the deepest travel (the adiabatic bound when the gas
+is not isothermal); the trace stops, keeping what it computed, if the gas leaves it anyway.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .chamber_map import ChamberMap, build_map
+from .circuit import Circuit, CircuitFailure, integrate
+
+__all__ = ["Simulation", "simulate", "chamber_map_for", "COLUMNS"]
+
+#: the trace's columns, in order (``pressure_measured_kPa`` with a sensor)
+COLUMNS = ("t_s", "y_mm", "force_N", "pressure_kPa", "reservoir_kPa", "valve_open",
+           "contact_mm2", "volume_mm3", "chamber_K", "reservoir_K", "chamber_mg",
+           "reservoir_mg")
+_PA_KPA = 101.325
+
+
+@dataclass
+class Simulation:
+    """What a scenario run gives: the ``trace`` (DataFrame of :data:`COLUMNS`), the sensor's
+    samples (``measured``, or None), the map it ran on, whether it reached the end and why
+    not, the seconds of each phase."""
+
+    scenario: object
+    trace: pd.DataFrame
+    measured: pd.DataFrame | None
+    chamber_map: ChamberMap
+    complete: bool = True
+    message: str = "complete"
+    seconds: dict = field(default_factory=dict)
+
+
+def _closed_ceiling(m: ChamberMap, setup: float, y0: float, y1: float, n: float) -> float:
+    """The gauge pressure (kPa) of the chamber closed at ``setup`` and ``y0``, pressed to
+    ``y1`` adiabatically with exponent ``n`` (isothermal: 1): the highest the gas reaches."""
+    v0 = float(m.at(y0).volume(setup))
+    s = m.at(y1)
+    p = setup
+    for _ in range(60):  # fixed point (P + Pa) V(P)ⁿ = (P0 + Pa) V0ⁿ
+        p = (setup + _PA_KPA) * (v0 / float(s.volume(p))) ** n - _PA_KPA
+    return p
+
+
+def chamber_map_for(scenario, *, cache_dir=None, progress=None) -> ChamberMap:
+    """The map the scenario needs, from the cache (``cache_dir``/dynamics, keyed by the
+    chamber, the grid and the code) or built."""
+    from spsc.fem.wall.model import WallSettings
+    from spsc.materials import material
+
+    spec, sc = scenario.chamber, scenario
+    geometry, mat = spec.geometry(), material(spec.material)
+    settings = WallSettings(mesh_size_mm=spec.mesh_size, layers=spec.layers)
+    lo, hi = sc.press.extent
+    top = max(2.0 * sc.setup_kPa, sc.setup_kPa + 30.0)
+    while True:
+        m = _cached(geometry, mat, settings, sc.setup_kPa, top, max(hi, 0.0), cache_dir,
+                    progress)
+        n = 1.0 if sc.gas.isothermal else sc.gas.n
+        need = _closed_ceiling(m, sc.setup_kPa, max(lo, m.y_range[0]), max(hi, 0.0), n)
+        if need <= top:
+            return m
+        top = 1.15 * need
+
+
+def _cached(geometry, mat, settings, setup, top, y_max, cache_dir, progress) -> ChamberMap:
+    from spsc.study.keyed import KeyedFile, input_key
+
+    inputs = {"geometry": geometry.as_dict(), "material": repr(mat), "settings": repr(settings),
+              "setup_kPa": setup, "top_kPa": top, "y_max_mm": y_max}
+    if cache_dir is None:
+        return build_map(geometry, mat, setup_kPa=setup, top_kPa=top, y_max_mm=y_max,
+                         settings=settings, progress=progress)
+    key = input_key(inputs, ["spsc.dynamics.chamber_map"])
+    f = KeyedFile(Path(cache_dir) / "dynamics" / f"map-{key[:16]}.npz", key)
+    if f.valid:
+        with np.load(f.path) as d:
+            return ChamberMap.from_arrays(d)
+    m = build_map(geometry, mat, setup_kPa=setup, top_kPa=top, y_max_mm=y_max,
+                  settings=settings, progress=progress)
+    f.path.parent.mkdir(parents=True, exist_ok=True)
+    np.savez(f.path, **m.as_arrays())
+    f.mark()
+    return m
+
+
+def _frame(trace) -> pd.DataFrame:
+    return pd.DataFrame({c: getattr(trace, c) for c in COLUMNS}).astype({"valve_open": int})
+
+
+def _sample(sensor, df) -> pd.DataFrame:
+    """The sensor's samples of the trace's chamber pressure (linear between outputs)."""
+    ts = sensor.times(float(df.t_s.iloc[-1]))
+    true = np.interp(ts, df.t_s, df.pressure_kPa)
+    return pd.DataFrame({"t_s": ts, "pressure_kPa": true,
+                         "pressure_measured_kPa": sensor.read(true)})
+
+
+def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None) -> Simulation:
+    """Run ``scenario`` (:class:`~.scenario.Scenario`): ``progress(t, t_end)`` while
+    integrating, ``map_progress(done, total)`` while building the map."""
+    t0 = time.perf_counter()
+    m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress)
+    t1 = time.perf_counter()
+    circuit = Circuit(scenario.setup_kPa, scenario.reservoir_mm3, scenario.valve, scenario.gas)
+    complete, message = True, "complete"
+    try:
+        trace = integrate(m, circuit, scenario.press, scenario.events,
+                          valve_open=scenario.valve_open, dt=scenario.dt, progress=progress)
+    except CircuitFailure as exc:
+        trace, complete, message = exc.trace, False, str(exc)
+    t2 = time.perf_counter()
+    df = _frame(trace)
+    measured = None
+    if scenario.sensor is not None and len(df):
+        measured = _sample(scenario.sensor, df)
+        # each output instant holds the last sample taken (zero-order hold)
+        k = np.searchsorted(measured.t_s.to_numpy(), df.t_s.to_numpy() + 1e-12, "right") - 1
+        df["pressure_measured_kPa"] = measured.pressure_measured_kPa.to_numpy()[k]
+    return Simulation(scenario, df, measured, m, complete, message,
+                      {"map": t1 - t0, "integrate": t2 - t1})

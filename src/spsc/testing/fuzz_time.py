@@ -1,0 +1,108 @@
+"""Invalid invocations of ``spsc simulate``: a valid scenario file with one entry wrong (each
+must be refused in one line naming the entry, before the chamber is mapped), unreadable
+scenario files, output folders that cannot be written."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .fuzz_base import Case, out_dirs
+
+__all__ = ["SCENARIO", "scenario_fixture", "simulate_cases"]
+
+#: a valid scenario; ``{chamber}`` ``{circuit}`` ``{press}`` ``{events}`` ``{output}`` are the
+#: tables' extra lines, a case puts its one wrong entry in one of them
+SCENARIO = """[chamber]
+{chamber}
+[circuit]
+{circuit}
+[press]
+{press}
+{events}
+[output]
+{output}
+"""
+
+_GOOD = dict(chamber='type = "B"\nl = 0\n',
+             circuit='setup_kPa = 40\nreservoir_mm3 = 40000\nvalve = { C = 0.06, state = "closed" }\n',
+             press="profile = [[0, 0], [0.2, 3], [1, 3]]\n", events="", output="dt = 0.001\n")
+
+#: (table, its text, the name the error must contain, why)
+_WRONG = (
+    ("chamber", 'type = "E"\n', "type", "unknown chamber type"),
+    ("chamber", "t0 = -1\n", "t0", "negative wall"),
+    ("chamber", 'material = "rubber"\n', "material", "unknown material"),
+    ("chamber", 'model = "fem"\n', "chamber.model", "a model the time domain does not map"),
+    ("chamber", "mesh_size = 0\n", "chamber.mesh_size", "zero mesh size"),
+    ("chamber", "colour = 1\n", "chamber.colour", "unknown chamber key"),
+    ("circuit", "setup_kPa = -3\n", "setup_kPa", "negative setup pressure"),
+    ("circuit", 'reservoir_mm3 = "big"\n', "reservoir_mm3", "reservoir as text"),
+    ("circuit", 'valve = { C = 0.06, state = "ajar" }\n', "valve.state", "unknown valve state"),
+    ("circuit", 'valve = { C = 0, state = "open" }\n', "valve C", "zero conductance"),
+    ("circuit", "valve = { C = 0.06, area_mm2 = 0.3 }\n", "circuit.valve", "C and area"),
+    ("circuit", "valve = { C = 0.06, b = 1.2 }\n", "valve b", "b beyond 1"),
+    ("circuit", "valve = 3\n", "circuit.valve", "valve not a table"),
+    ("circuit", "gas = { n = 0.5 }\n", "gas n", "n below 1"),
+    ("circuit", "gas = { n = 1.4, thermal_time_s = -1 }\n", "thermal_time_s", "negative tau"),
+    ("circuit", "gas = { gamma = 1.4 }\n", "circuit.gas.gamma", "unknown gas key"),
+    ("circuit", 'sensor = { preset = "xyz" }\n', "sensor preset", "unknown sensor preset"),
+    ("circuit", "sensor = { rate_Hz = 0 }\n", "sensor rate_Hz", "zero sampling rate"),
+    ("circuit", "sensor = { noise_kPa = -1 }\n", "sensor noise_kPa", "negative noise"),
+    ("press", "profile = [[0, 0]]\n", "press profile", "one knot"),
+    ("press", "profile = [[0, 0], [1, 2], [0.5, 3]]\n", "press profile t_s", "time going back"),
+    ("press", "profile = [[0.1, 0], [1, 2]]\n", "press profile t_s", "not starting at 0"),
+    ("press", 'profile = "fast"\n', "press profile", "profile as text"),
+    ("press", "", "press.profile", "no profile"),
+    ("events", '[[events]]\nt = 5\nvalve = "open"\n', "events[0].t", "event after the press"),
+    ("events", '[[events]]\nt = 0.5\nvalve = "shut"\n', "events[0].valve", "unknown event"),
+    ("events", '[[events]]\nt = 0.5\nvalve = "open"\nwho = 1\n', "events[0].who",
+     "unknown event key"),
+    ("output", "dt = 0\n", "output.dt", "zero time step"),
+    ("output", "dt = 1e-9\n", "output.dt", "too many samples"),
+    ("output", "dt = 0.001\nevery = 2\n", "output.every", "unknown output key"),
+)
+
+
+def _with(good: str, wrong: str) -> str:
+    """The table ``good`` with the entries of ``wrong`` put in (replacing the same keys);
+    nothing: the table emptied."""
+    if not wrong:
+        return ""
+    keys = {line.split("=")[0].strip() for line in wrong.splitlines() if "=" in line}
+    kept = [line for line in good.splitlines() if line.split("=")[0].strip() not in keys]
+    return "\n".join(kept) + "\n" + wrong
+
+
+def scenario_fixture(tmp: Path) -> dict[str, Path]:
+    """The valid scenario and one file per wrong entry, under ``tmp``."""
+    tmp.mkdir(parents=True, exist_ok=True)
+    files = {"scenario": tmp / "scenario.toml"}
+    files["scenario"].write_text(SCENARIO.format(**_GOOD))
+    for i, (table, text, _, _) in enumerate(_WRONG):
+        p = tmp / f"scenario-wrong-{i}.toml"
+        p.write_text(SCENARIO.format(**{**_GOOD, table: _with(_GOOD[table], text)}))
+        files[f"scenario-wrong-{i}"] = p
+    (tmp / "scenario-bad.toml").write_text("[chamber\ntype = 'B'\n")
+    files["scenario-bad"] = tmp / "scenario-bad.toml"
+    return files
+
+
+def simulate_cases(f: dict, tmp: Path) -> list[Case]:
+    """spsc simulate."""
+    sc = scenario_fixture(Path(tmp) / "scenarios")
+    out = str(Path(tmp) / "out")
+    base = ("simulate", str(sc["scenario"]), "--out", out, "--quiet")
+    cases = [Case(("simulate", str(sc[f"scenario-wrong-{i}"]), "--out", out, "--quiet"),
+                  f"scenario: {why}", name, "scenario")
+             for i, (_, _, name, why) in enumerate(_WRONG)]
+    cases += [Case(("simulate", str(sc["scenario-bad"]), "--out", out), "scenario not TOML",
+                   "scenario", "input file"),
+              Case(("simulate", str(tmp / "none.toml"), "--out", out), "missing scenario",
+                   "scenario", "input file"),
+              Case(("simulate", str(f["dir"]), "--out", out), "scenario is a folder",
+                   "scenario", "input file"),
+              Case(("simulate", str(f["binary.csv"]), "--out", out), "binary scenario",
+                   "scenario", "input file"),
+              Case(("simulate", str(sc["scenario"])), "no --out", "out", "argparse")]
+    cases += out_dirs(base[:2] + ("--quiet",), "--out", f)
+    return cases

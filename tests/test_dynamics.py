@@ -1,0 +1,158 @@
+"""The circuit in time against closed forms, on chamber maps whose V(y, P) is known exactly:
+a rigid piston (V = V0 − a y) and a compliant one (V = V0 (1 + P/K) − a y), both linear, so
+the map's interpolation is exact and only the circuit is tested.
+
+* a closed adiabatic chamber follows P Vⁿ = const and T V^(n−1) = const; an isothermal one
+  P V = const;
+* the gas mass is conserved through the valve (chamber + reservoir);
+* the valve equalises the two to the pressure of their pooled gas, and at its laminar end with
+  the time constant of the linearised circuit, τ = 1/(k R T (1/C_c + 1/V_r)), C_c = V + P ∂V/∂P;
+* ISO 6358's flow function is continuous, 1 when choked, and the orifice's conductance is the
+  ideal nozzle's.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from spsc.core.errors import ParameterError
+from spsc.dynamics import Gas, Valve, sonic_conductance
+from spsc.dynamics.chamber_map import ChamberMap
+from spsc.dynamics.circuit import Circuit, CircuitFailure, integrate
+from spsc.dynamics.gas import R_AIR, T_AMBIENT
+from spsc.dynamics.profile import PressProfile
+from spsc.dynamics.valve import LAMINAR_RATIO, RHO0, T0
+
+PA_KPA = 101.325
+
+
+def linear_map(v0=3000.0, a=400.0, compliance_kPa=math.inf, setup=40.0, top=200.0):
+    """V = v0 (1 + P/K) − a y (mm³), F = a P y/1000 (N): exact under the map's interpolation."""
+    y = np.linspace(-1.0, 5.0, 25)
+    p = np.linspace(0.0, top, 9)
+    Y, P = np.meshgrid(y, p, indexing="ij")
+    V = v0 * (1.0 + P / compliance_kPa) - a * Y
+    F = a * P * np.clip(Y, 0, None) / 1000.0
+    return ChamberMap(y, p, V, F, np.zeros_like(V), setup)
+
+
+def volume(trace, v0=3000.0, a=400.0, compliance_kPa=math.inf):
+    return v0 * (1.0 + trace.pressure_kPa / compliance_kPa) - a * trace.y_mm
+
+
+@pytest.mark.parametrize("compliance", [math.inf, 300.0])
+def test_closed_adiabatic_chamber_follows_p_v_to_the_n(compliance):
+    m = linear_map(compliance_kPa=compliance)
+    circ = Circuit(40.0, 0.0, Valve(0.06), Gas(n=1.4))
+    tr = integrate(m, circ, PressProfile.of([[0, 0], [0.05, 3]]), dt=1e-3)
+    V = volume(tr, compliance_kPa=compliance)
+    assert_allclose(V, tr.volume_mm3, rtol=1e-12)
+    pv = (tr.pressure_kPa + PA_KPA) * V ** 1.4
+    # the integrator's rtol is 1e-9 per step: the invariant holds to well below 1e-6
+    assert_allclose(pv, pv[0], rtol=1e-6)
+    assert_allclose(tr.chamber_K * V ** 0.4, T_AMBIENT * V[0] ** 0.4, rtol=1e-6)
+    assert tr.pressure_kPa[-1] > 40.0 and tr.chamber_K[-1] > T_AMBIENT + 10
+
+
+def test_closed_isothermal_chamber_keeps_p_v():
+    m = linear_map(compliance_kPa=300.0)
+    tr = integrate(m, Circuit(40.0, 0.0, Valve(0.06), Gas(n=1.0)),
+                   PressProfile.of([[0, 0], [1, 4]]), dt=1e-2)
+    pv = (tr.pressure_kPa + PA_KPA) * volume(tr, compliance_kPa=300.0)
+    assert_allclose(pv, pv[0], rtol=1e-9)
+    assert_allclose(tr.chamber_K, T_AMBIENT, rtol=0)
+
+
+def test_heat_exchange_relaxes_the_gas_to_ambient():
+    m = linear_map()
+    tr = integrate(m, Circuit(40.0, 0.0, Valve(0.06), Gas(n=1.4, thermal_time_s=0.1)),
+                   PressProfile.of([[0, 0], [0.01, 3], [1.5, 3]]), dt=1e-3)
+    # after 15 time constants at rest the gas is at ambient: the isothermal pressure
+    v0, v1 = 3000.0, 3000.0 - 400.0 * 3
+    assert_allclose(tr.chamber_K[-1], T_AMBIENT, atol=1e-3)
+    assert_allclose(tr.pressure_kPa[-1] + PA_KPA, (40 + PA_KPA) * v0 / v1, rtol=1e-6)
+
+
+def _equalise(gas, compliance=math.inf, reservoir=40000.0, t_open=0.05, t_end=2.0, dt=1e-4):
+    m = linear_map(compliance_kPa=compliance)
+    circ = Circuit(40.0, reservoir, Valve(sonic_conductance(0.3)), gas)
+    prof = PressProfile.of([[0, 0], [0.02, 3], [t_end, 3]])
+    return integrate(m, circ, prof, [(t_open, True)], dt=dt)
+
+
+def test_gas_mass_is_conserved_through_the_valve():
+    tr = _equalise(Gas(n=1.4, thermal_time_s=0.2))
+    total = tr.chamber_mg + tr.reservoir_mg
+    assert_allclose(total, total[0], rtol=1e-9)
+    assert tr.chamber_mg[-1] < tr.chamber_mg[0]  # gas went to the reservoir
+
+
+@pytest.mark.parametrize("compliance", [math.inf, 300.0])
+def test_valve_equalises_to_the_pooled_gas_with_the_linearised_time_constant(compliance):
+    tr = _equalise(Gas(n=1.0), compliance=compliance)
+    # the final state: one pressure, P (V_c(P) + V_r) = m R T of the pooled gas
+    mass = (tr.chamber_mg[0] + tr.reservoir_mg[0]) * 1e-6
+    p = tr.pressure_kPa[-1]
+    vc = 3000.0 * (1 + p / compliance) - 400.0 * 3
+    assert_allclose((p * 1e3 + PA_KPA * 1e3) * (vc + 40000.0) * 1e-9, mass * R_AIR * T_AMBIENT,
+                    rtol=1e-8)
+    assert_allclose(tr.reservoir_kPa[-1], p, atol=1e-7)
+    # the laminar end: Δ(t) = Δ0 exp(−t/τ) once Δ < (1 − r_l) P
+    valve, T = Valve(sonic_conductance(0.3)), T_AMBIENT
+    pa = (p + PA_KPA) * 1e3
+    k = valve.conductance(pa, T)
+    cc = (vc + (pa * 3000.0 / compliance / 1e3 if math.isfinite(compliance) else 0.0)) * 1e-9
+    tau = 1.0 / (k * R_AIR * T * (1.0 / cc + 1.0 / 40000e-9))
+    d = (tr.pressure_kPa - tr.reservoir_kPa) * 1e3
+    window = (d < 0.5 * (1 - LAMINAR_RATIO) * pa) & (d > 1e-4 * (1 - LAMINAR_RATIO) * pa) \
+        & (tr.t_s > 0.05)
+    slope = np.polyfit(tr.t_s[window], np.log(d[window]), 1)[0]
+    assert window.sum() > 20
+    assert_allclose(-1.0 / slope, tau, rtol=0.02)
+
+
+def test_iso6358_flow_function_and_the_orifice_conversion():
+    v = Valve(0.06, b=0.4, m=0.5)
+    assert v.phi(0.1) == 1.0 == v.phi(0.4)
+    r = np.linspace(0.0, 1.0, 20001)
+    phi = np.array([v.phi(x) for x in r])
+    assert np.all(np.diff(phi) <= 1e-12) and phi[-1] == 0.0
+    assert np.max(np.abs(np.diff(phi))) < 1e-2  # continuous at b and at the laminar end
+    # choked: q = C ρ0 p1 sqrt(T0/T1)
+    assert_allclose(v.mass_flow(5e5, 1e5, T0, T0), 0.06e-8 * RHO0 * 5e5, rtol=1e-12)
+    assert v.mass_flow(1e5, 5e5, T0, T0) == -v.mass_flow(5e5, 1e5, T0, T0)
+    # an ideal nozzle: the choked flux c* p/√T with c* = 0.0404 s·√K/m for air
+    c = sonic_conductance(0.3)
+    assert_allclose(Valve(c).mass_flow(3e5, 1e5, 300.0, 300.0), 0.3e-6 * 0.040418 * 3e5
+                    / math.sqrt(300.0), rtol=1e-4)
+    assert 4.9 < 0.3 / c < 5.1  # the rule of thumb S ≈ 5 C
+
+
+def test_leaving_the_map_stops_with_the_trace_so_far():
+    m = linear_map(top=50.0)  # the press drives the closed chamber past 50 kPa
+    with pytest.raises(CircuitFailure, match="outside the map") as err:
+        integrate(m, Circuit(40.0, 0.0, Valve(0.06), Gas(n=1.0)),
+                  PressProfile.of([[0, 0], [0.5, 0.1], [1, 4]]), dt=1e-2)
+    assert len(err.value.trace.t_s) == 51  # the first piece, up to 0.5 s
+
+
+@pytest.mark.parametrize("bad, name", [
+    (dict(C=0.0), "valve C"), (dict(C=0.06, b=1.0), "valve b"), (dict(C=0.06, m=0), "valve m")])
+def test_bad_valve_is_one_error_naming_it(bad, name):
+    with pytest.raises(ParameterError, match=name):
+        Valve(**bad)
+
+
+def test_bad_gas_and_profile_are_errors_naming_them():
+    with pytest.raises(ParameterError, match="gas n"):
+        Gas(n=0.9)
+    with pytest.raises(ParameterError, match="thermal_time_s"):
+        Gas(n=1.4, thermal_time_s=-1)
+    with pytest.raises(ParameterError, match="press profile t_s"):
+        PressProfile.of([[0, 0], [1, 2], [1, 3]])
+    with pytest.raises(ParameterError, match="press profile"):
+        PressProfile.of([[0, 0]])

@@ -1,0 +1,130 @@
+"""The time domain on the wall model's chamber map (Type B dome, 40 kPa):
+
+* the quasi-static limit — a slow press with the valve closed (isothermal) is ``spsc curve
+  --model wall``'s high mode, with the valve open its low mode;
+* a fast press with the valve closed, then the valve opened: the chamber ends at the static
+  low-mode pressure of that depth (isothermal gas, mass conserved: the end state does not
+  depend on the path);
+* ``spsc simulate``: the files, and one-line errors for malformed scenarios.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+from numpy.testing import assert_allclose
+
+from spsc.cad.geometry import preset
+from spsc.cli.main import main
+from spsc.dynamics import Gas, Valve, sonic_conductance
+from spsc.dynamics.chamber_map import build_map
+from spsc.dynamics.circuit import Circuit, integrate
+from spsc.dynamics.profile import PressProfile
+from spsc.fem.wall import wall_curve
+from spsc.materials import material
+
+G = preset("B", l=0.0)
+RESERVOIR = 40000.0
+
+
+@pytest.fixture(scope="module")
+def dome():
+    mat = material("tpu60a")
+    m = build_map(G, mat, setup_kPa=40.0, top_kPa=60.0, y_max_mm=3.0, levels=7)
+    kw = dict(pressure_kPa=40.0, stroke_mm=3.0, points=13)
+    return m, wall_curve(G, mat, **kw), wall_curve(G, mat, reservoir_mm3=RESERVOIR, **kw)
+
+
+@pytest.mark.parametrize("opened", [False, True])
+def test_a_slow_press_is_the_static_curve(dome, opened):
+    m, high, low = dome
+    ref = low if opened else high
+    circ = Circuit(40.0, RESERVOIR, Valve(sonic_conductance(0.3)), Gas(n=1.0))
+    tr = integrate(m, circ, PressProfile.of([[0, 0], [100, 3]]), valve_open=opened, dt=0.25)
+    y = ref.y_mm[1:]
+    # the issue's bound is 0.5 %; the map's interpolation along P gives ~1e-5 in pressure and
+    # ~5e-4 in force (measured), so 0.5 % fails on any real error of the circuit
+    assert_allclose(np.interp(y, tr.y_mm, tr.pressure_kPa), ref.pressure_kPa[1:], rtol=5e-3)
+    assert_allclose(np.interp(y, tr.y_mm, tr.force_N), ref.force_N[1:], rtol=5e-3)
+
+
+def test_opening_the_valve_after_a_fast_press_ends_at_the_low_mode_pressure(dome):
+    m, high, low = dome
+    circ = Circuit(40.0, RESERVOIR, Valve(sonic_conductance(0.3)), Gas(n=1.0))
+    tr = integrate(m, circ, PressProfile.of([[0, 0], [0.05, 3], [1.0, 3]]),
+                   [(0.2, True)], dt=1e-3)
+    at_open = tr.pressure_kPa[np.searchsorted(tr.t_s, 0.2) - 1]
+    assert_allclose(at_open, high.pressure_kPa[-1], rtol=5e-3)  # closed: the high mode
+    assert_allclose(tr.pressure_kPa[-1], low.pressure_kPa[-1], rtol=5e-3)
+    assert_allclose(tr.force_N[-1], low.force_N[-1], rtol=5e-3)
+
+
+SCENARIO = """
+[chamber]
+type = "B"
+l = 0
+mesh_size = 1.0
+
+[circuit]
+setup_kPa = 30
+reservoir_mm3 = 20000
+valve = {{ area_mm2 = 0.3, state = "closed" }}
+gas = {{ n = 1.4, thermal_time_s = 0.3 }}
+sensor = {{ preset = "elvh", rate_Hz = 500 }}
+
+[press]
+profile = [[0, 0], [0.1, 2], [0.6, 2], [0.7, 0]]
+{extra}
+[[events]]
+t = 0.3
+valve = "open"
+
+[output]
+dt = 0.002
+"""
+
+
+def test_simulate_writes_the_trace_the_echo_and_the_figure(tmp_path, capsys):
+    f = tmp_path / "s.toml"
+    f.write_text(SCENARIO.format(extra=""))
+    out = tmp_path / "run"
+    assert main(["simulate", str(f), "--out", str(out), "--csv", "--quiet",
+                 "--cache", str(tmp_path / "cache")]) == 0
+    d = pd.read_parquet(out / "trace.parquet")
+    for c in ("t_s", "y_mm", "force_N", "pressure_kPa", "reservoir_kPa", "valve_open",
+              "pressure_measured_kPa"):
+        assert c in d
+    assert len(d) == 351 and d.valve_open.iloc[0] == 0 and d.valve_open.iloc[-1] == 1
+    assert_allclose(pd.read_csv(out / "trace.csv").pressure_kPa, d.pressure_kPa, rtol=1e-8)
+    echo = json.loads((out / "scenario.json").read_text())
+    assert echo["complete"] and echo["scenario"]["circuit"]["setup_kPa"] == 30
+    assert (out / "trace.png").stat().st_size > 10000
+    # the ELVH's 14-bit steps
+    steps = np.diff(np.unique(d.pressure_measured_kPa))
+    assert_allclose(steps.min(), 15 * 6.894757 / 13107, rtol=1e-6)
+
+
+@pytest.mark.parametrize("extra, needle", [
+    ("[bogus]\n", "scenario.bogus"),
+    ("[[events]]\nt = 0.5\nvalve = \"shut\"\n", "events[0].valve"),
+    ("[[events]]\nt = 9\nvalve = \"open\"\n", "events[0].t"),
+])
+def test_a_malformed_scenario_is_one_line_naming_the_entry(tmp_path, capsys, extra, needle):
+    f = tmp_path / "s.toml"
+    f.write_text(SCENARIO.format(extra=extra))
+    assert main(["simulate", str(f), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and needle in err and err.startswith("spsc simulate: error:")
+
+
+def test_unreadable_scenarios_are_one_line(tmp_path, capsys):
+    assert main(["simulate", str(tmp_path / "none.toml"), "--out", str(tmp_path / "o")]) == 2
+    assert "scenario" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[chamber\n")
+    assert main(["simulate", str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "valid TOML" in err and err.count("\n") == 0
