@@ -105,6 +105,15 @@ def test_simulate_writes_the_trace_the_echo_and_the_figure(tmp_path, capsys):
     # the ELVH's 14-bit steps
     steps = np.diff(np.unique(d.pressure_measured_kPa))
     assert_allclose(steps.min(), 15 * 6.894757 / 13107, rtol=1e-6)
+    # --bode on the same chamber: the map from the cache, the open valve's low mode at 0 Hz
+    # rising toward the closed chamber's
+    assert main(["simulate", str(f), "--out", str(out), "--bode", "--quiet",
+                 "--cache", str(tmp_path / "cache")]) == 0
+    b = pd.read_parquet(out / "bode.parquet")
+    summary = json.loads((out / "bode.json").read_text())["summary"]
+    assert summary["valve_open"] is False and summary["y_mm"] == 2.0  # the defaults
+    assert summary["map_seconds"] < 1.0
+    assert np.all(np.diff(b.f_Hz) > 0) and (out / "bode.png").stat().st_size > 10000
 
 
 @pytest.mark.parametrize("extra, needle", [

@@ -2,10 +2,13 @@
 valve, reservoir and gas, read by a pressure sensor.
 
     spsc simulate SCENARIO.toml --out DIR [--csv] [--cache DIR] [--quiet]
+    spsc simulate SCENARIO.toml --bode --out DIR
 
 Writes DIR/trace.parquet (t_s, y_mm, force_N, pressure_kPa, reservoir_kPa, valve_open, ...,
 pressure_measured_kPa with a sensor), DIR/trace.csv with --csv, DIR/scenario.json (the
-scenario echoed with the code that ran it) and DIR/trace.png. The scenario's format:
+scenario echoed with the code that ran it) and DIR/trace.png; with --bode instead the response
+to a small sinusoidal press about the scenario's [bode] point (DIR/bode.parquet, bode.json,
+bode.png). The scenario's format:
 docs/guides/time.md. Exit 0 when the whole press was integrated, 1 when it stopped early (the
 trace so far is written, the reason on stderr), 2 on invalid input (one line on stderr).
 """
@@ -30,6 +33,9 @@ def register(subparsers) -> None:
     p.add_argument("--out", required=True, metavar="DIR", help="folder for the trace, the "
                    "echoed scenario and the figure (created)")
     p.add_argument("--csv", action="store_true", help="also write trace.csv")
+    p.add_argument("--bode", action="store_true", help="the frequency response (dynamic "
+                   "stiffness and sensitivity) about the scenario's [bode] point instead of "
+                   "the trace")
     p.add_argument("--cache", metavar="DIR", default=None, help="where chamber maps are kept "
                    "(default: spsc-cache beside --out)")
     add_quiet_option(p)
@@ -68,6 +74,8 @@ def run(args) -> int:
                                    bar_format="{l_bar}{bar}| {n:.3g}/{total:.3g} s")
             bars["run"].update(round(t, 6) - bars["run"].n)
 
+    if args.bode:
+        return _bode(scenario, out, cache, map_progress, bars, quiet)
     try:
         sim = simulate(scenario, cache_dir=cache, progress=progress, map_progress=map_progress)
     finally:
@@ -81,4 +89,25 @@ def run(args) -> int:
     if not sim.complete:
         print(f"spsc {VERB}: {sim.message}", file=sys.stderr)
         return 1
+    return 0
+
+
+def _bode(scenario, out, cache, map_progress, bars, quiet) -> int:
+    from spsc.dynamics.output import write_bode
+    from spsc.dynamics.simulate import frequency_response
+
+    try:
+        table, summary = frequency_response(scenario, cache_dir=cache, map_progress=map_progress)
+    finally:
+        for bar in bars.values():
+            bar.close()
+    files = write_bode(table, summary, scenario, out)
+    if not quiet:
+        half = summary["sensitivity_halfway_Hz"]
+        print(f"spsc simulate --bode: stiffness {summary['stiffness_low_f_N_per_mm']:.4g} -> "
+              f"{summary['stiffness_high_f_N_per_mm']:.4g} N/mm, sensitivity "
+              f"{summary['sensitivity_low_f_kPa_per_mm']:.4g} -> "
+              f"{summary['sensitivity_high_f_kPa_per_mm']:.4g} kPa/mm"
+              + (f", halfway at {half:.3g} Hz" if half else "") + " -> "
+              + ", ".join(f.name for f in files), file=sys.stderr)
     return 0

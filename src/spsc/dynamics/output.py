@@ -98,3 +98,41 @@ def figure(sim, path) -> None:
     axes[0].set_title(title, fontsize=10)
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def write_bode(table, summary, scenario, out: Path) -> list[Path]:
+    """bode.parquet, bode.json (the summary and the scenario) and bode.png in ``out``."""
+    out.mkdir(parents=True, exist_ok=True)
+    files = [out / "bode.parquet", out / "bode.json", out / "bode.png"]
+    table.to_parquet(files[0], index=False)
+    files[1].write_text(json.dumps({"summary": summary, "scenario": scenario.source}, indent=2,
+                                   default=float) + "\n", encoding="utf-8")
+    bode_figure(table, summary, files[2])
+    return files
+
+
+def bode_figure(table, summary, path) -> None:
+    """Magnitude and phase of the dynamic stiffness and sensitivity against frequency."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    f = table.f_Hz
+    fig, axes = plt.subplots(2, 2, figsize=(9, 6), sharex=True, constrained_layout=True)
+    for col, (mag, ph, label) in enumerate((
+            ("stiffness_N_per_mm", "stiffness_phase_deg", "stiffness F̂/ŷ (N/mm)"),
+            ("sensitivity_kPa_per_mm", "sensitivity_phase_deg", "sensitivity P̂/ŷ (kPa/mm)"))):
+        axes[0, col].semilogx(f, table[mag], "C0")
+        axes[0, col].set_ylabel(label)
+        axes[1, col].semilogx(f, table[ph], "C1")
+        axes[1, col].set_ylabel("phase (°)")
+        axes[1, col].set_xlabel("frequency (Hz)")
+        if summary.get("sensitivity_halfway_Hz"):
+            for r in range(2):
+                axes[r, col].axvline(summary["sensitivity_halfway_Hz"], color="0.6", ls=":")
+    valve = "open" if summary["valve_open"] else "closed"
+    fig.suptitle(f"small press about y = {summary['y_mm']:.3g} mm, valve {valve}, "
+                 f"{summary['pressure_kPa']:.4g} kPa", fontsize=10)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -26,6 +26,13 @@ press and the valve events, read from TOML and checked, every malformed entry a 
 
     [output]
     dt = 0.001                # s
+
+    [bode]                    # spsc simulate --bode: a small sinusoidal press about y_mm
+    y_mm = 3                  # default: the profile's deepest travel
+    valve = "open"            # default: the valve's state at t = 0
+    f_min_Hz = 0.01
+    f_max_Hz = 1000
+    points = 61
 """
 
 from __future__ import annotations
@@ -43,7 +50,7 @@ from .valve import Valve, sonic_conductance
 
 __all__ = ["Scenario", "ChamberSpec", "read_scenario", "parse_scenario"]
 
-_TABLES = {"chamber", "circuit", "press", "events", "output"}
+_TABLES = {"chamber", "circuit", "press", "events", "output", "bode"}
 _CHAMBER = {"type", "footprint", "material", "model", "mesh_size", "layers",
             "w", "h", "l", "t0", "n1", "n2", "cy"}
 _CIRCUIT = {"setup_kPa", "reservoir_mm3", "valve", "gas", "sensor"}
@@ -51,6 +58,7 @@ _VALVE = {"C", "b", "m", "area_mm2", "state"}
 _GAS = {"n", "thermal_time_s", "ambient_K"}
 _SENSOR = {"preset", "rate_Hz", "noise_kPa", "resolution_kPa", "full_scale_kPa", "seed"}
 _MODELS = ("wall",)
+_BODE = {"y_mm", "valve", "f_min_Hz", "f_max_Hz", "points"}
 
 
 @dataclass(frozen=True)
@@ -90,6 +98,7 @@ class Scenario:
     press: PressProfile
     events: tuple = field(default=())  # ((t_s, opened), ...)
     dt: float = 1e-3
+    bode: dict = field(default_factory=dict)  # y_mm, valve_open, f_min_Hz, f_max_Hz, points
     source: dict = field(default_factory=dict, compare=False)
 
 
@@ -148,6 +157,21 @@ def _events(doc: dict, duration: float) -> tuple:
     return tuple(sorted(out))
 
 
+def _bode(doc: dict, profile: PressProfile, opened: bool) -> dict:
+    b = _table(doc, "bode", required=False)
+    _unknown("bode", b, _BODE)
+    lo, hi = profile.extent
+    y = require("bode.y_mm", b.get("y_mm", hi), ge=min(lo, 0.0), le=max(hi, 0.0),
+                unit="mm, within the press profile's travels")
+    if b.get("valve", "open" if opened else "closed") not in ("open", "closed"):
+        raise ParameterError("bode.valve", b.get("valve"), "\"open\" or \"closed\"")
+    f_min = require("bode.f_min_Hz", b.get("f_min_Hz", 0.01), gt=0, unit="Hz")
+    f_max = require("bode.f_max_Hz", b.get("f_max_Hz", 1000.0), gt=f_min, le=1e6, unit="Hz")
+    points = int(require("bode.points", b.get("points", 61), ge=2, le=10000))
+    return {"y_mm": y, "valve_open": b.get("valve", "open" if opened else "closed") == "open",
+            "f_min_Hz": f_min, "f_max_Hz": f_max, "points": points}
+
+
 def parse_scenario(doc: dict) -> Scenario:
     """The :class:`Scenario` of a parsed TOML document."""
     _unknown("scenario", doc, _TABLES)
@@ -186,7 +210,7 @@ def parse_scenario(doc: dict) -> Scenario:
                             unit="mm³"),
                     valve, opened, Gas(**g), _sensor(c), profile, _events(doc,
                                                                           profile.duration),
-                    dt, doc)
+                    dt, _bode(doc, profile, opened), doc)
 
 
 def read_scenario(path) -> Scenario:

@@ -130,3 +130,32 @@ def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None) -> S
         df["pressure_measured_kPa"] = measured.pressure_measured_kPa.to_numpy()[k]
     return Simulation(scenario, df, measured, m, complete, message,
                       {"map": t1 - t0, "integrate": t2 - t1})
+
+
+def frequency_response(scenario, *, cache_dir=None, map_progress=None):
+    """(the Bode table of :func:`~.frequency.bode` at the scenario's ``[bode]`` point, a
+    summary: the operating point, the low- and high-frequency limits, the frequency where the
+    sensitivity is halfway between them (in log), the map's seconds)."""
+    from .frequency import bode, linearise
+
+    t0 = time.perf_counter()
+    m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress)
+    b = scenario.bode
+    circuit = Circuit(scenario.setup_kPa, scenario.reservoir_mm3, scenario.valve, scenario.gas)
+    freqs = np.logspace(np.log10(b["f_min_Hz"]), np.log10(b["f_max_Hz"]), b["points"])
+    table = bode(m, circuit, b["y_mm"], b["valve_open"], freqs)
+    lin = linearise(m, circuit, b["y_mm"], b["valve_open"])
+    s = table.sensitivity_kPa_per_mm.to_numpy()
+    mid = np.sqrt(s[0] * s[-1])
+    cross = np.flatnonzero((s[:-1] - mid) * (s[1:] - mid) <= 0)
+    f_mid = float(np.exp(np.interp(np.log(mid), np.log(s[cross[0]:cross[0] + 2]),
+                                   np.log(freqs[cross[0]:cross[0] + 2])))) \
+        if cross.size and s[-1] != s[0] else None
+    summary = {"y_mm": b["y_mm"], "valve_open": b["valve_open"],
+               "pressure_kPa": lin["pressure_kPa"], "force_N": lin["force_N"],
+               "stiffness_low_f_N_per_mm": float(table.stiffness_N_per_mm.iloc[0]),
+               "stiffness_high_f_N_per_mm": float(table.stiffness_N_per_mm.iloc[-1]),
+               "sensitivity_low_f_kPa_per_mm": float(s[0]),
+               "sensitivity_high_f_kPa_per_mm": float(s[-1]),
+               "sensitivity_halfway_Hz": f_mid, "map_seconds": time.perf_counter() - t0}
+    return table, summary
