@@ -210,3 +210,38 @@ def test_bode_is_the_time_domain_response_to_a_small_sinusoid(monkeypatch, f_Hz)
     # profile (80 knots a period) ~2e-3 at 2 Hz (0.8 % with 40, converging with more)
     assert_allclose(abs(p_hat / y_hat), ref.sensitivity_kPa_per_mm, rtol=5e-3)
     assert abs(np.degrees(np.angle(p_hat / y_hat)) - ref.sensitivity_phase_deg) < 0.5
+
+
+def test_a_pressure_threshold_switches_the_valve_where_the_pressure_crosses_it():
+    from spsc.dynamics.circuit import Trigger
+
+    m = linear_map(compliance_kPa=300.0)
+    circ = Circuit(40.0, 40000.0, Valve(sonic_conductance(0.3)), Gas(n=1.0))
+    prof = PressProfile.of([[0, 0], [1, 3], [2, 3], [3, 0]])
+    # closed while pressed: the pressure rises through 45 kPa, the valve opens there (once);
+    # the release then drops the pooled pressure (about 42.5 kPa at 3 mm) back toward the
+    # setup's 40: below 40.5 kPa, armed at 2 s, it closes again
+    trig = (Trigger(45.0, True, True), Trigger(40.5, False, False, after_s=2.0))
+    tr = integrate(m, circ, prof, valve_open=False, dt=1e-3, triggers=trig)
+    (t1, o1, w1), (t2, o2, w2) = tr.switches
+    assert o1 and not o2 and "above 45" in w1 and "below 40.5" in w2
+    # the pressure a closed, isothermal chamber has at t1 (the profile's y): exactly 45 kPa
+    y1 = 3.0 * t1
+    v0, p = 3000.0 * (1 + 40 / 300.0), 45.0
+    v1 = 3000.0 * (1 + p / 300.0) - 400.0 * y1
+    assert_allclose((p + PA_KPA) * v1, (40 + PA_KPA) * v0, rtol=1e-7)
+    assert tr.valve_open[np.searchsorted(tr.t_s, t1) - 1] == 0
+    assert tr.valve_open[np.searchsorted(tr.t_s, t1) + 1] == 1
+    assert 2.0 < t2 < 3.0 and tr.valve_open[-1] == 0
+    # read off the 1 ms samples of a pressure falling 2.5 kPa/s (a few Pa between samples)
+    assert_allclose(np.interp(t2, tr.t_s, tr.pressure_kPa), 40.5, atol=5e-3)
+
+
+def test_a_threshold_met_when_armed_fires_at_once():
+    from spsc.dynamics.circuit import Trigger
+
+    m = linear_map()
+    tr = integrate(m, Circuit(40.0, 40000.0, Valve(0.06), Gas(n=1.0)),
+                   PressProfile.of([[0, 0], [1, 2]]), valve_open=True, dt=1e-2,
+                   triggers=(Trigger(30.0, True, False, after_s=0.5),))
+    assert [(t, o) for t, o, _ in tr.switches] == [(0.5, False)]

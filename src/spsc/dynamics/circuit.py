@@ -19,14 +19,14 @@ are constant on each piece), and the state is output every ``dt``.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
 from spsc.core.constants import P_AMB
 
-__all__ = ["Circuit", "Chamber", "integrate", "TraceArrays", "CircuitFailure"]
+__all__ = ["Circuit", "Chamber", "Trigger", "integrate", "TraceArrays", "CircuitFailure"]
 
 _PA = P_AMB * 1e6  # ambient pressure (Pa)
 _MM3 = 1e-9  # m³ per mm³
@@ -132,6 +132,8 @@ class TraceArrays:
     volume_mm3: np.ndarray
     chamber_mg: np.ndarray
     reservoir_mg: np.ndarray
+    #: the valve's switches: (t_s, opened, why)
+    switches: list = field(default_factory=list)
 
 
 def initial_state(chamber, circuit, y0: float) -> np.ndarray:
@@ -145,20 +147,28 @@ def initial_state(chamber, circuit, y0: float) -> np.ndarray:
     return np.array([gas.mass(pa, vc, t) / _MG, t, mr / _MG, t])
 
 
-def _segments(profile, events, t_end):
-    """The pieces [t0, t1] between the profile's knots and the valve events."""
+def _cuts(profile, events, triggers, t_end) -> list:
+    """The piece boundaries: the profile's knots, the valve's timed events and the instants
+    thresholds are armed."""
     cuts = set(float(t) for t in profile.t_s if t <= t_end) | {0.0, float(t_end)}
     cuts |= {float(e[0]) for e in events if 0.0 < e[0] < t_end}
-    cuts = sorted(cuts)
-    return list(zip(cuts[:-1], cuts[1:]))
+    cuts |= {float(tr.after_s) for tr in triggers if 0.0 < tr.after_s < t_end}
+    return sorted(cuts)
 
 
-def _valve_state(open0: bool, events, t: float) -> bool:
-    state = open0
-    for te, opened in sorted(events):
-        if te <= t:
-            state = opened
-    return state
+@dataclass(frozen=True)
+class Trigger:
+    """Switch the valve (``opened``) when the chamber's gauge pressure first rises above
+    (``above``) or falls below ``level_kPa``, from ``after_s`` on; once."""
+
+    level_kPa: float
+    above: bool
+    opened: bool
+    after_s: float = 0.0
+
+    def describe(self) -> str:
+        return (f"chamber pressure {'above' if self.above else 'below'} {self.level_kPa:g} kPa:"
+                f" valve {'open' if self.opened else 'closed'}")
 
 
 def _outputs(chamber, circuit, times, states):
@@ -182,51 +192,108 @@ def _outputs(chamber, circuit, times, states):
 
 
 def integrate(chamber_map, circuit, profile, events=(), *, valve_open: bool = False,
-              dt: float = 1e-3, progress=None) -> TraceArrays:
+              dt: float = 1e-3, progress=None, triggers=()) -> TraceArrays:
     """The trace of ``profile`` (:class:`~.profile.PressProfile`) on the chamber of
     ``chamber_map`` in ``circuit``, the valve ``valve_open`` at t = 0 and switched by
-    ``events`` ((t_s, opened) pairs), output every ``dt`` (s). ``progress(t, t_end)`` after
-    each piece. Raises :class:`CircuitFailure` with the trace so far (``.trace``)."""
+    ``events`` ((t_s, opened) pairs) and by pressure ``triggers`` (:class:`Trigger`, located by
+    the integrator's root finding), output every ``dt`` (s). ``progress(t, t_end)`` after each
+    piece. Raises :class:`CircuitFailure` with the trace so far (``.trace``)."""
     chamber = Chamber(chamber_map, circuit.gas)
     chamber.profile_y = profile.y
     t_end = profile.duration
     out_t = np.arange(0.0, t_end + 0.5 * dt, dt)
     out_t = out_t[out_t <= t_end + 1e-12]
     state = initial_state(chamber, circuit, float(profile.y(0.0)))
-    done_t, done_s, done_v = [], [], []
-    scale = np.array([state[0] + state[2], 1.0, state[0] + state[2], 1.0])
-    for t0, t1 in _segments(profile, events, t_end):
-        open_ = _valve_state(valve_open, events, t0)
-        ydot = profile.rate(t0, t1)
-        last = t1 >= t_end
-        want = np.clip(out_t[(out_t >= t0 - 1e-12) & ((out_t < t1 - 1e-12) | last)], t0, t1)
+    run = _Run(chamber, circuit, profile, state, valve_open, list(triggers))
+    cuts = _cuts(profile, events, triggers, t_end)
+    t0 = 0.0
+    while t0 < t_end - 1e-12:
+        t1 = next(c for c in cuts if c > t0 + 1e-12)
+        for te, opened in events:
+            if abs(te - t0) <= 1e-12:
+                run.switch(te, opened, f"at t = {te:g} s: valve {'open' if opened else 'closed'}")
+        want = np.clip(out_t[(out_t >= t0 - 1e-12) & ((out_t < t1 - 1e-12) | (t1 >= t_end))],
+                       t0, t1)
+        t0 = run.piece(t0, t1, want)
+        if progress is not None:
+            progress(t0, t_end)
+    return run.trace()
 
-        def rhs(t, s, _y0=float(profile.y(t0)), _t0=t0):
-            return _rates(chamber, circuit, s, _y0 + ydot * (t - _t0), ydot, open_)
+
+class _Run:
+    """An integration under way: the state, the valve, the pending triggers, the trace."""
+
+    def __init__(self, chamber, circuit, profile, state, valve_open, triggers):
+        self.chamber, self.circuit, self.profile = chamber, circuit, profile
+        self.state, self.open, self.pending = state, valve_open, triggers
+        self.scale = np.array([state[0] + state[2], 1.0, state[0] + state[2], 1.0])
+        self.done_t, self.done_s, self.done_v, self.switches = [], [], [], []
+
+    def switch(self, t, opened, why) -> None:
+        self.open = opened
+        self.switches.append((float(t), bool(opened), why))
+
+    def _pressure(self, t, s):
+        return self.chamber.pressure(s[0] * _MG, s[1], float(self.profile.y(t)))
+
+    def piece(self, t0, t1, want) -> float:
+        """Integrate from t0 toward t1 (outputs at ``want``); where it got to (a trigger
+        fires before t1)."""
+        ydot, y0, open_ = self.profile.rate(t0, t1), float(self.profile.y(t0)), self.open
+        armed = [tr for tr in self.pending if tr.after_s <= t0 + 1e-12]
+        for tr in armed:  # a condition already met when armed fires at once
+            p = self._pressure(t0, self.state)
+            if (p > tr.level_kPa) if tr.above else (p < tr.level_kPa):
+                self.pending.remove(tr)
+                self.switch(t0, tr.opened, f"at t = {t0:.6g} s: {tr.describe()}")
+                return t0
+
+        def rhs(t, s):
+            return _rates(self.chamber, self.circuit, s, y0 + ydot * (t - t0), ydot, open_)
+
+        def crossing(tr):
+            def f(t, s):
+                return self._pressure(t, s) - tr.level_kPa
+            f.terminal, f.direction = True, 1.0 if tr.above else -1.0
+            return f
 
         t_eval = np.append(want, t1) if not want.size or want[-1] < t1 else want
         try:
-            sol = solve_ivp(rhs, (t0, t1), state, method="LSODA", t_eval=t_eval,
-                            rtol=1e-9, atol=1e-12 * scale)
+            sol = solve_ivp(rhs, (t0, t1), self.state, method="LSODA", t_eval=t_eval,
+                            rtol=1e-9, atol=1e-12 * self.scale,
+                            events=[crossing(tr) for tr in armed] or None)
             failed = None if sol.success else sol.message
         except (ValueError, np.linalg.LinAlgError) as exc:
             failed = str(exc)
         if failed is not None:  # the trace up to here, with the state it stopped at
-            done_t.append(np.array([t0]))
-            done_s.append(state[:, None])
-            done_v.append(np.array([open_]))
-            trace = _trace(chamber, circuit, done_t, done_s, done_v)
+            self._keep(np.array([t0]), self.state[:, None], open_)
             err = CircuitFailure(f"stopped at t = {t0:.4g} s: {failed}", t0)
-            err.trace = trace
+            err.trace = self.trace()
             raise err
+        fired = [(k, ev[0]) for k, ev in enumerate(sol.t_events or []) if len(ev)]
+        if fired:
+            k, te = min(fired, key=lambda kv: kv[1])
+            keep = sol.t < te
+            self._keep(sol.t[keep], sol.y[:, keep], open_)
+            self.state = sol.y_events[k][0]
+            tr = armed[k]
+            self.pending.remove(tr)
+            self.switch(te, tr.opened, f"at t = {te:.6g} s: {tr.describe()}")
+            return float(te)
         keep = len(want)
-        done_t.append(sol.t[:keep])
-        done_s.append(sol.y[:, :keep])
-        done_v.append(np.full(keep, open_))
-        state = sol.y[:, -1]
-        if progress is not None:
-            progress(t1, t_end)
-    return _trace(chamber, circuit, done_t, done_s, done_v)
+        self._keep(sol.t[:keep], sol.y[:, :keep], open_)
+        self.state = sol.y[:, -1]
+        return t1
+
+    def _keep(self, t, y, open_) -> None:
+        self.done_t.append(t)
+        self.done_s.append(y)
+        self.done_v.append(np.full(len(t), open_))
+
+    def trace(self) -> "TraceArrays":
+        tr = _trace(self.chamber, self.circuit, self.done_t, self.done_s, self.done_v)
+        tr.switches = list(self.switches)
+        return tr
 
 
 def _trace(chamber, circuit, done_t, done_s, done_v) -> TraceArrays:

@@ -26,6 +26,8 @@ def _echo(sim) -> dict:
             "code": provenance().describe(), "complete": sim.complete,
             "message": sim.message, "seconds": {k: round(v, 3) for k, v in sim.seconds.items()},
             "samples": int(len(sim.trace)),
+            "valve_switches": [{"t_s": t, "valve": "open" if o else "closed", "why": why}
+                               for t, o, why in sim.switches],
             "chamber_map": {"model": sim.scenario.chamber.model,
                             "travel_mm": list(m.y_range), "pressure_kPa": list(m.pressure_range),
                             "levels_kPa": [float(p) for p in m.pressure_kPa],

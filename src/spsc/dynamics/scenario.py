@@ -24,6 +24,11 @@ press and the valve events, read from TOML and checked, every malformed entry a 
     t = 1.0
     valve = "open"
 
+    [[events]]                # or on a threshold of the chamber's gauge pressure, once
+    pressure_above_kPa = 45   # or pressure_below_kPa
+    valve = "close"
+    after_s = 1.5             # armed from then on (default 0)
+
     [output]
     dt = 0.001                # s
 
@@ -97,6 +102,7 @@ class Scenario:
     sensor: Sensor | None
     press: PressProfile
     events: tuple = field(default=())  # ((t_s, opened), ...)
+    triggers: tuple = field(default=())  # (Trigger, ...)
     dt: float = 1e-3
     bode: dict = field(default_factory=dict)  # y_mm, valve_open, f_min_Hz, f_max_Hz, points
     source: dict = field(default_factory=dict, compare=False)
@@ -143,18 +149,37 @@ def _sensor(c: dict) -> Sensor | None:
     return Sensor.preset(s["preset"], **rest) if "preset" in s else Sensor(**rest)
 
 
-def _events(doc: dict, duration: float) -> tuple:
+def _events(doc: dict, duration: float) -> tuple[tuple, tuple]:
+    """(timed events ((t_s, opened), ...), pressure triggers (:class:`~.circuit.Trigger`))."""
+    from .circuit import Trigger
+
     events = doc.get("events", [])
     if not isinstance(events, list):
         raise ParameterError("[[events]]", events, "an array of tables [[events]]")
-    out = []
+    timed, triggers = [], []
     for i, e in enumerate(events):
-        _unknown(f"events[{i}]", e, {"t", "valve"})
-        t = require(f"events[{i}].t", e.get("t"), ge=0, le=duration, unit="s, within the press")
+        _unknown(f"events[{i}]", e, {"t", "valve", "pressure_above_kPa", "pressure_below_kPa",
+                                     "after_s"})
         if e.get("valve") not in ("open", "close"):
             raise ParameterError(f"events[{i}].valve", e.get("valve"), "\"open\" or \"close\"")
-        out.append((t, e["valve"] == "open"))
-    return tuple(sorted(out))
+        when = [k for k in ("t", "pressure_above_kPa", "pressure_below_kPa") if k in e]
+        if len(when) != 1:
+            raise ParameterError(f"events[{i}]", ", ".join(when) or "no time or threshold",
+                                 "one of t, pressure_above_kPa, pressure_below_kPa")
+        opened = e["valve"] == "open"
+        if when[0] == "t":
+            if "after_s" in e:
+                raise ParameterError(f"events[{i}].after_s", e["after_s"],
+                                     "only with a pressure threshold")
+            t = require(f"events[{i}].t", e["t"], ge=0, le=duration, unit="s, within the press")
+            timed.append((t, opened))
+        else:
+            level = require(f"events[{i}].{when[0]}", e[when[0]], ge=-100, le=1000,
+                            unit="kPa gauge")
+            after = require(f"events[{i}].after_s", e.get("after_s", 0.0), ge=0, le=duration,
+                            unit="s, within the press")
+            triggers.append(Trigger(level, when[0] == "pressure_above_kPa", opened, after))
+    return tuple(sorted(timed)), tuple(triggers)
 
 
 def _bode(doc: dict, profile: PressProfile, opened: bool) -> dict:
@@ -208,9 +233,8 @@ def parse_scenario(doc: dict) -> Scenario:
                                   unit="kPa gauge"),
                     require("circuit.reservoir_mm3", c.get("reservoir_mm3", 0.0), ge=0, le=1e7,
                             unit="mm³"),
-                    valve, opened, Gas(**g), _sensor(c), profile, _events(doc,
-                                                                          profile.duration),
-                    dt, _bode(doc, profile, opened), doc)
+                    valve, opened, Gas(**g), _sensor(c), profile,
+                    *_events(doc, profile.duration), dt, _bode(doc, profile, opened), doc)
 
 
 def read_scenario(path) -> Scenario:

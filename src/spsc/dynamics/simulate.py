@@ -40,6 +40,7 @@ class Simulation:
     complete: bool = True
     message: str = "complete"
     seconds: dict = field(default_factory=dict)
+    switches: list = field(default_factory=list)  # the valve's: (t_s, opened, why)
 
 
 def _closed_ceiling(m: ChamberMap, setup: float, y0: float, y1: float, n: float) -> float:
@@ -117,7 +118,8 @@ def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None) -> S
     complete, message = True, "complete"
     try:
         trace = integrate(m, circuit, scenario.press, scenario.events,
-                          valve_open=scenario.valve_open, dt=scenario.dt, progress=progress)
+                          valve_open=scenario.valve_open, dt=scenario.dt, progress=progress,
+                          triggers=scenario.triggers)
     except CircuitFailure as exc:
         trace, complete, message = exc.trace, False, str(exc)
     t2 = time.perf_counter()
@@ -129,7 +131,7 @@ def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None) -> S
         k = np.searchsorted(measured.t_s.to_numpy(), df.t_s.to_numpy() + 1e-12, "right") - 1
         df["pressure_measured_kPa"] = measured.pressure_measured_kPa.to_numpy()[k]
     return Simulation(scenario, df, measured, m, complete, message,
-                      {"map": t1 - t0, "integrate": t2 - t1})
+                      {"map": t1 - t0, "integrate": t2 - t1}, list(trace.switches))
 
 
 def frequency_response(scenario, *, cache_dir=None, map_progress=None):

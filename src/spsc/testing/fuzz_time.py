@@ -21,11 +21,13 @@ SCENARIO = """[chamber]
 {events}
 [output]
 {output}
+{bode}
 """
 
 _GOOD = dict(chamber='type = "B"\nl = 0\n',
              circuit='setup_kPa = 40\nreservoir_mm3 = 40000\nvalve = { C = 0.06, state = "closed" }\n',
-             press="profile = [[0, 0], [0.2, 3], [1, 3]]\n", events="", output="dt = 0.001\n")
+             press="profile = [[0, 0], [0.2, 3], [1, 3]]\n", events="", output="dt = 0.001\n",
+             bode="")
 
 #: (table, its text, the name the error must contain, why)
 _WRONG = (
@@ -57,6 +59,18 @@ _WRONG = (
     ("events", '[[events]]\nt = 0.5\nvalve = "shut"\n', "events[0].valve", "unknown event"),
     ("events", '[[events]]\nt = 0.5\nvalve = "open"\nwho = 1\n', "events[0].who",
      "unknown event key"),
+    ("events", '[[events]]\nt = 0.5\npressure_above_kPa = 45\nvalve = "open"\n', "events[0]",
+     "a time and a threshold"),
+    ("events", '[[events]]\nvalve = "open"\n', "events[0]", "no time or threshold"),
+    ("events", '[[events]]\nt = 0.5\nafter_s = 0.2\nvalve = "open"\n', "events[0].after_s",
+     "arming a timed event"),
+    ("events", '[[events]]\npressure_below_kPa = "low"\nvalve = "open"\n',
+     "events[0].pressure_below_kPa", "threshold as text"),
+    ("events", '[[events]]\npressure_above_kPa = 45\nafter_s = 9\nvalve = "open"\n',
+     "events[0].after_s", "armed after the press"),
+    ("bode", "[bode]\ny_mm = 9\n", "bode.y_mm", "a Bode point beyond the press"),
+    ("bode", "[bode]\nf_min_Hz = 10\nf_max_Hz = 1\n", "bode.f_max_Hz", "frequencies reversed"),
+    ("bode", '[bode]\nvalve = "half"\n', "bode.valve", "unknown Bode valve"),
     ("output", "dt = 0\n", "output.dt", "zero time step"),
     ("output", "dt = 1e-9\n", "output.dt", "too many samples"),
     ("output", "dt = 0.001\nevery = 2\n", "output.every", "unknown output key"),
