@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from spsc.core.gaslaw import GasLaw
 
-__all__ = ["Inflate", "CloseValve", "Press", "Load", "load_steps"]
+__all__ = ["Inflate", "CloseValve", "Press", "Cycle", "Load", "load_steps"]
 
 
 @dataclass(frozen=True)
@@ -67,13 +67,49 @@ class Press:
 
 
 @dataclass(frozen=True)
+class Cycle:
+    """Move the plate in time: travel ``travels`` (mm from first contact, any order: down and
+    back up) at the instants ``times`` (s, increasing from 0), piecewise linear between them;
+    each instant after the first is a recorded point (the load parameter t is the time). For a
+    wall with a rate-dependent material (:mod:`spsc.fem.viscous`) the time is the load's."""
+
+    times: tuple
+    travels: tuple
+
+    def __post_init__(self):
+        from spsc.core.errors import ParameterError
+
+        t = tuple(float(v) for v in self.times)
+        if len(t) < 2 or len(t) != len(self.travels) or t[0] != 0.0 or \
+                any(b <= a for a, b in zip(t, t[1:])):
+            raise ParameterError("cycle times", t, "two or more, from 0, increasing (s), one "
+                                 "per travel")
+        object.__setattr__(self, "times", t)
+        object.__setattr__(self, "travels", tuple(float(v) for v in self.travels))
+
+    @property
+    def increments(self) -> int:
+        return len(self.times) - 1
+
+    def targets(self) -> list:
+        return list(self.times[1:])
+
+    def travel_at(self, t: float) -> float:
+        import numpy as np
+
+        return float(np.interp(t, self.times, self.travels))
+
+
+@dataclass(frozen=True)
 class Load:
     """Cavity gauge pressure ``pressure`` (MPa) unless ``gas`` is given; rigid plate at height
-    ``plate`` (mm, None: no plate)."""
+    ``plate`` (mm, None: no plate); ``time`` (s) of a :class:`Cycle`'s load, None for a load
+    at rest (a rate-dependent material is then relaxed)."""
 
     pressure: float = 0.0
     gas: GasLaw | None = None
     plate: float | None = None
+    time: float | None = None
 
 
 def load_steps(load, inflate_increments: int = 4) -> list:

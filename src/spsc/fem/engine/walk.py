@@ -23,7 +23,7 @@ from .active_set import first_contact, plate_force
 from .newton import newton
 from .result import NewtonFailure, Record, Result, Stop
 from .snap import PUSH_MM, Jump, relax, unstable_mode
-from .steps import CloseValve, Inflate, Load, Press
+from .steps import CloseValve, Cycle, Inflate, Load, Press
 
 __all__ = ["solve", "record"]
 
@@ -84,6 +84,10 @@ class _Walk:
                 else load.plate
             return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t)), "press",
                     step.targets())
+        if isinstance(step, Cycle):
+            z0 = first_contact(self.model, self.x) if load.plate is None else load.plate
+            return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t), t),
+                    "press", step.targets())
         raise TypeError(f"unknown step {step!r}")
 
     def solve_one(self, trial, t_new, history):
@@ -126,6 +130,8 @@ class _Walk:
                     trial, history = load_at(t_new), []  # no secant across the jump
             self.x, self.active, self.engaged, t, self.load = (sol.x, sol.active, sol.engaged,
                                                                t_new, trial)
+            if hasattr(self.model, "commit"):  # a rate-dependent material closes its step
+                self.model.commit(sol.x, trial)
             self.iterations += sol.iterations
             history.append((t, sol.x))
             dt = min(nominal, 2 * dt)

@@ -25,6 +25,7 @@ from ..engine.linsolve import available_solvers
 from ..engine.settings import Settings
 from ..engine.steps import Load
 from ..material import NearlyIncompressible
+from ..viscous import ViscousLaw
 from .section import section_mesh
 from .section_solid import InvertedSection, section_solid
 from .swept import SweptWall, sweep_stations
@@ -167,10 +168,13 @@ class WallModel:
 
     def __init__(self, geometry: SPSCGeometry, material: Material,
                  settings: WallSettings | None = None, *, base: str = "clamped",
-                 stadium: bool | None = None):
+                 stadium: bool | None = None, prony=None):
         self.geometry, self.material = geometry, material
         self.settings = settings = settings or WallSettings()
         law = NearlyIncompressible(material, settings.bulk_ratio)
+        #: the rate-dependent law (:mod:`spsc.fem.viscous`) with ``prony`` terms, else None
+        self.viscous = None if prony is None else ViscousLaw(law, prony)
+        law = self.viscous or law
         self.stadium = stadium = geometry.l > 0 if stadium is None else bool(stadium)
         self.mesh_size_mm = settings.profile_size(stadium)
         section = section_mesh(geometry, size=self.mesh_size_mm, layers=settings.layers,
@@ -236,6 +240,8 @@ class WallModel:
         K_int − p H (N/mm) and the blocks G; g = ∂V/∂u (mm²), c = −dp/dV (MPa/mm³)."""
         if not isinstance(load, Load):
             load = Load(pressure=load)
+        if self.viscous is not None:
+            self.viscous.set_time(load.time)
         volume = self.volume(x)
         if load.gas is None:
             pressure, c = float(load.pressure), 0.0
@@ -252,6 +258,12 @@ class WallModel:
             r, rp = self.solid.residual(u, pc)
             g = self.part.volume_gradient(u, hessian=False)
         return _Evaluation(r - pressure * g, rp, K, G, g, c, pressure, volume)
+
+    def commit(self, x, load) -> None:
+        """Close a converged step of a rate-dependent wall (its internal variables)."""
+        if self.viscous is not None:
+            self.viscous.set_time(load.time)
+            self.viscous.commit(self.solid.deformation(self.displacements(x)))
 
     def reuse(self, ev: "_Evaluation", tangent_ev: "_Evaluation") -> "_Evaluation":
         """ev's residuals with ``tangent_ev``'s tangent and coupling blocks: the condensed
