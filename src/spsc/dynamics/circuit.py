@@ -83,6 +83,9 @@ class Chamber:
             p -= step
             if abs(step) < 1e-12 * (abs(p) + 1.0):
                 break
+        else:
+            raise ValueError(f"no chamber pressure with P V(y, P) = m R T at y = {y:.4g} mm "
+                             f"(Newton at {p:.4g} kPa after 50 steps)")
         if not (self.p_lo - 1e-6 <= p <= self.p_hi + 1e-6):
             raise ValueError(f"chamber pressure {p:.4g} kPa outside the map's "
                              f"[{self.p_lo:.3g}, {self.p_hi:.3g}] kPa")
