@@ -21,44 +21,11 @@ law; Δt = 0 the instantaneous one.
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
-
 import numpy as np
 
-from spsc.core.errors import ParameterError, require
+from spsc.materials.prony import Prony
 
 __all__ = ["Prony", "ViscousLaw"]
-
-
-@dataclass(frozen=True)
-class Prony:
-    """Prony terms ``((beta_i, tau_i_s), ...)``: β_i ≥ 0 the term's stiffness relative to the
-    relaxed law, τ_i > 0 its relaxation time (s)."""
-
-    terms: tuple
-
-    def __post_init__(self):
-        terms = tuple((float(b), float(t)) for b, t in self.terms)
-        if not terms:
-            raise ParameterError("prony", "no terms", "at least one (beta, tau_s) pair")
-        for i, (b, t) in enumerate(terms):
-            require(f"prony beta_{i + 1}", b, ge=0, le=1e3)
-            require(f"prony tau_{i + 1}", t, gt=0, le=1e9, unit="s")
-        object.__setattr__(self, "terms", terms)
-
-    def relaxation(self, t):
-        """g(t) = 1 + Σ β_i e^{−t/τ_i}: the isochoric stress after a step, over the relaxed."""
-        t = np.asarray(t, float)
-        return 1.0 + sum(b * np.exp(-t / tau) for b, tau in self.terms)
-
-    def factors(self, dt: float | None):
-        """(a_i, b_i) arrays of a step Δt (s; None or inf: fully relaxed)."""
-        if dt is None or math.isinf(dt):
-            return np.zeros(len(self.terms)), np.zeros(len(self.terms))
-        beta = np.array([b for b, _ in self.terms])
-        tau = np.array([t for _, t in self.terms])
-        return np.exp(-dt / tau), beta * np.exp(-dt / (2 * tau))
 
 
 class ViscousLaw:

@@ -1,0 +1,124 @@
+"""The Prony series of a viscoelastic material, and its fit to a relaxation test.
+
+g(t) = 1 + Σ_i β_i e^{−t/τ_i} is the isochoric stress of a strain held from t = 0 over the
+relaxed (long-term) one: the hyperelastic law is the relaxed response, β_i the share each term
+adds at once, τ_i its relaxation time (s). The wall model solves with it
+(:mod:`spsc.fem.viscous`).
+
+:func:`fit_relaxation` fits a relaxation test, stress (or modulus) against time, by the classic
+method: relaxation times fixed on a logarithmic grid across the data (two a decade), the
+amplitudes by non-negative least squares (so every term dissipates), the relaxed level with
+them; terms with a zero amplitude are dropped; then amplitudes and times are refined together
+by least squares in their logarithms (positive), kept if the residual falls. The amplitudes of neighbouring times trade off
+(the inverse problem is ill-posed): what is determined, and checked, is the curve g(t).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import nnls
+
+from spsc.core.errors import ParameterError, require
+
+__all__ = ["Prony", "PronyFit", "fit_relaxation"]
+
+
+@dataclass(frozen=True)
+class Prony:
+    """Prony terms ``((beta_i, tau_i_s), ...)``: β_i ≥ 0 the term's stiffness relative to the
+    relaxed law, τ_i > 0 its relaxation time (s)."""
+
+    terms: tuple
+
+    def __post_init__(self):
+        terms = tuple((float(b), float(t)) for b, t in self.terms)
+        if not terms:
+            raise ParameterError("prony", "no terms", "at least one (beta, tau_s) pair")
+        for i, (b, t) in enumerate(terms):
+            require(f"prony beta_{i + 1}", b, ge=0, le=1e3)
+            require(f"prony tau_{i + 1}", t, gt=0, le=1e9, unit="s")
+        object.__setattr__(self, "terms", terms)
+
+    def relaxation(self, t):
+        """g(t) = 1 + Σ β_i e^{−t/τ_i}: the isochoric stress after a step, over the relaxed."""
+        t = np.asarray(t, float)
+        return 1.0 + sum(b * np.exp(-t / tau) for b, tau in self.terms)
+
+    def factors(self, dt: float | None):
+        """(a_i, b_i) arrays of a step Δt (s; None or inf: fully relaxed)."""
+        if dt is None or math.isinf(dt):
+            return np.zeros(len(self.terms)), np.zeros(len(self.terms))
+        beta = np.array([b for b, _ in self.terms])
+        tau = np.array([t for _, t in self.terms])
+        return np.exp(-dt / tau), beta * np.exp(-dt / (2 * tau))
+
+
+@dataclass(frozen=True)
+class PronyFit:
+    """The fitted series, the relaxed level (the data's unit), the RMS of the residual relative
+    to the relaxed level, and the relaxation times tried."""
+
+    prony: Prony
+    relaxed: float
+    rms_relative: float
+    taus_tried: tuple
+
+
+def fit_relaxation(t_s, value, *, per_decade: int = 2) -> PronyFit:
+    """Fit ``value``(t) = relaxed · g(t) to a relaxation test (``t_s`` in s, > 0, increasing;
+    ``value`` stress or modulus, any unit, positive)."""
+    t = np.asarray(t_s, float)
+    y = np.asarray(value, float)
+    if t.ndim != 1 or t.size != y.size or t.size < 4:
+        raise ParameterError("relaxation data", f"{t.size} points", "at least 4 (t, value) "
+                             "pairs")
+    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(y))) or np.any(t <= 0) \
+            or np.any(np.diff(t) <= 0):
+        raise ParameterError("relaxation time", "not increasing or not > 0",
+                             "times > 0 s, increasing")
+    if np.any(y <= 0):
+        raise ParameterError("relaxation value", float(y.min()), "> 0 (stress or modulus)")
+    lo, hi = math.floor(math.log10(t[0])) - 1, math.ceil(math.log10(t[-1]))
+    taus = 10.0 ** np.arange(lo, hi + 1e-9, 1.0 / per_decade)
+    taus = taus[taus <= t[-1] * (1 + 1e-12)]  # longer ones would trade with the relaxed level
+    # y = c0 + Σ c_i e^{−t/τ_i}, every c ≥ 0: c0 the relaxed level, β_i = c_i/c0
+    basis = np.column_stack([np.ones_like(t)] + [np.exp(-t / tau) for tau in taus])
+    scale = y.max()
+    c, _ = nnls(basis, y / scale)
+    c *= scale
+    if c[0] <= 0:
+        raise ParameterError("relaxation data", "no relaxed level",
+                             "a test long enough to show the relaxed stress")
+    keep = c[1:] > 1e-8 * c[0]  # the rest do not show in the data
+    c0, ci, ti = _polish(t, y / scale, c[0] / scale, c[1:][keep] / scale, taus[keep])
+    c0, ci = c0 * scale, ci * scale
+    terms = tuple((float(a / c0), float(tau)) for a, tau in zip(ci, ti))
+    prony = Prony(terms or ((0.0, float(taus[0])),))
+    model = c0 + sum(a * np.exp(-t / tau) for a, tau in zip(ci, ti))
+    rms = float(np.sqrt(np.mean((model - y) ** 2)) / c0)
+    return PronyFit(prony, float(c0), rms, tuple(float(v) for v in taus))
+
+
+def _polish(t, y, c0, c, taus):
+    """The grid's amplitudes and times refined together by least squares (in logs: they stay
+    positive), kept only if the residual falls."""
+    from scipy.optimize import least_squares
+
+    if not len(c):
+        return c0, c, taus
+    n = len(c)
+
+    def residual(z):
+        a, tau = np.exp(z[1:n + 1]), np.exp(z[n + 1:])
+        return np.exp(z[0]) + np.exp(-t[:, None] / tau) @ a - y
+
+    z0 = np.log(np.concatenate([[c0], np.maximum(c, 1e-300), taus]))
+    sol = least_squares(residual, z0, method="trf", x_scale="jac", max_nfev=200 * (2 * n + 1))
+    if np.sum(sol.fun ** 2) >= np.sum(residual(z0) ** 2):
+        return c0, c, taus
+    z = sol.x
+    order = np.argsort(z[n + 1:])
+    return float(np.exp(z[0])), np.exp(z[1:n + 1])[order], np.exp(z[n + 1:])[order]
