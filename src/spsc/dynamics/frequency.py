@@ -23,11 +23,10 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .circuit import Chamber, _rates, initial_state
+from .circuit import _MG, _PA, Chamber, _rates, initial_state
 
 __all__ = ["operating_point", "linearise", "bode"]
 
-_MG = 1e-6
 
 
 def operating_point(chamber_map, circuit, y0: float, valve_open: bool) -> np.ndarray:
@@ -44,11 +43,11 @@ def operating_point(chamber_map, circuit, y0: float, valve_open: bool) -> np.nda
     vr = circuit.reservoir_mm3 * 1e-9
     for _ in range(60):  # P (V_c(P) + V_r) = m R T
         v = float(s.volume(p)) * 1e-9
-        f = (p * 1e3 + 101325.0) * (v + vr) - total * circuit.gas.R * t
-        df = (v + vr) * 1e3 + (p * 1e3 + 101325.0) * float(s.volume(p, 1)) * 1e-9
+        f = (p * 1e3 + _PA) * (v + vr) - total * circuit.gas.R * t
+        df = (v + vr) * 1e3 + (p * 1e3 + _PA) * float(s.volume(p, 1)) * 1e-9
         p -= f / df
     v = float(s.volume(p)) * 1e-9
-    mc = (p * 1e3 + 101325.0) * v / (circuit.gas.R * t)
+    mc = (p * 1e3 + _PA) * v / (circuit.gas.R * t)
     return np.array([mc / _MG, t, total / _MG - mc / _MG, t])
 
 

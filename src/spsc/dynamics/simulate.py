@@ -15,6 +15,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from spsc.core.constants import P_AMB
+
 from .chamber_map import ChamberMap, build_map
 from .circuit import Circuit, CircuitFailure, integrate
 
@@ -24,7 +26,7 @@ __all__ = ["Simulation", "simulate", "chamber_map_for", "COLUMNS"]
 COLUMNS = ("t_s", "y_mm", "force_N", "pressure_kPa", "reservoir_kPa", "valve_open",
            "contact_mm2", "volume_mm3", "chamber_K", "reservoir_K", "chamber_mg",
            "reservoir_mg")
-_PA_KPA = 101.325
+_PA_KPA = P_AMB * 1e3  # kPa
 
 
 @dataclass

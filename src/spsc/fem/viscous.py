@@ -38,7 +38,7 @@ class ViscousLaw:
     def __init__(self, base, prony: Prony):
         self.base, self.prony = base, prony
         self.kappa, self.mu, self.material = base.kappa, base.mu, base.material
-        self.t_committed = None
+        self.t_committed = self._t = None
         self.Q = self.S_prev = None
         self._step(None)
 
