@@ -137,7 +137,13 @@ def test_leaving_the_map_stops_with_the_trace_so_far():
     with pytest.raises(CircuitFailure, match="outside the map") as err:
         integrate(m, Circuit(40.0, 0.0, Valve(0.06), Gas(n=1.0)),
                   PressProfile.of([[0, 0], [0.5, 0.1], [1, 4]]), dt=1e-2)
-    assert len(err.value.trace.t_s) == 51  # the first piece, up to 0.5 s
+    # 50 kPa at (40 + Pa) 3000 / (3000 − 400 y) = 50 + Pa: y = 0.4956 mm, t = 0.5507 s; the
+    # trace is kept to there (outputs every 10 ms and where it stopped, to 1 µs)
+    y = 3000.0 * (1.0 - (40.0 + PA_KPA) / (50.0 + PA_KPA)) / 400.0
+    t = 0.5 + (y - 0.1) / (3.9 / 0.5)
+    assert_allclose(err.value.time_s, t, atol=2e-6)
+    tr = err.value.trace
+    assert len(tr.t_s) == 57 and tr.pressure_kPa.max() <= 50.0 + 1e-6
 
 
 @pytest.mark.parametrize("bad, name", [

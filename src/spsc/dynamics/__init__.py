@@ -2,7 +2,7 @@
 the gas in each with its energy balance, a pressure sensor) driven by a press profile, on the
 quasi-static chamber map of a static model (:mod:`.chamber_map`).
 
-:func:`~spsc.dynamics.circuit.simulate` integrates a :class:`~spsc.dynamics.scenario.Scenario`
+:func:`~spsc.dynamics.simulate.simulate` integrates a :class:`~spsc.dynamics.scenario.Scenario`
 (``spsc simulate SCENARIO.toml``) into a trace.
 """
 

@@ -31,12 +31,14 @@ __all__ = ["ChamberMap", "Slice", "build_map", "pressure_levels"]
 
 @dataclass(frozen=True, eq=False)
 class Slice:
-    """The map at one plate travel y: V, ∂V/∂y, F, A as functions of the gauge pressure."""
+    """The map at one plate travel y: V, ∂V/∂y, F, A, ∂F/∂y as functions of the gauge
+    pressure."""
 
     volume: CubicSpline  # mm³ of kPa
     dvolume_dy: CubicSpline  # mm³/mm of kPa
     force: CubicSpline  # N of kPa
     area: CubicSpline  # mm² of kPa
+    dforce_dy: CubicSpline  # N/mm of kPa
 
 
 @dataclass(frozen=True, eq=False)
@@ -56,6 +58,7 @@ class ChamberMap:
         object.__setattr__(self, "_v", PchipInterpolator(y, self.volume_mm3, axis=0))
         object.__setattr__(self, "_dv", self._v.derivative())
         object.__setattr__(self, "_f", PchipInterpolator(y, self.force_N, axis=0))
+        object.__setattr__(self, "_df", self._f.derivative())
         object.__setattr__(self, "_a", PchipInterpolator(y, self.area_mm2, axis=0))
 
     @property
@@ -70,7 +73,8 @@ class ChamberMap:
         """The map at travel ``y`` (mm, within :attr:`y_range`)."""
         p = self.pressure_kPa
         return Slice(CubicSpline(p, self._v(y)), CubicSpline(p, self._dv(y)),
-                     CubicSpline(p, self._f(y)), CubicSpline(p, self._a(y)))
+                     CubicSpline(p, self._f(y)), CubicSpline(p, self._a(y)),
+                     CubicSpline(p, self._df(y)))
 
     def as_arrays(self) -> dict:
         return {"y_mm": self.y_mm, "pressure_kPa": self.pressure_kPa,

@@ -11,7 +11,9 @@ linear system in (Ṗ, Ṫ)
     P ∂V/∂P Ṗ + m c_v Ṫ = E + Q − P ∂V/∂y ẏ
 
 (q the mass flow in, E its enthalpy term, Q the heat from the wall). The isothermal gas keeps
-T = T_a and needs only dm/dt = q. The valve's flow is ISO 6358 (:mod:`.valve`). The ODE is
+T = T_a and needs only dm/dt = q. Under a force-controlled press (:class:`~.profile.ForceProfile`)
+the travel is where the gas carries the force (:meth:`~.chamber.Chamber.travel`) and ẏ joins
+(Ṗ, Ṫ) as a third unknown with F_P Ṗ + F_y ẏ = Ḟ. The valve's flow is ISO 6358 (:mod:`.valve`). The ODE is
 integrated by LSODA between the profile's knots and the valve events (so ẏ and the valve state
 are constant on each piece), and the state is output every ``dt``.
 """
@@ -26,7 +28,9 @@ from scipy.integrate import solve_ivp
 
 from spsc.core.constants import P_AMB
 
-__all__ = ["Circuit", "Chamber", "Trigger", "integrate", "TraceArrays", "CircuitFailure"]
+from .chamber import Chamber
+
+__all__ = ["Circuit", "Trigger", "integrate", "TraceArrays", "CircuitFailure"]
 
 _PA = P_AMB * 1e6  # ambient pressure (Pa)
 _MM3 = 1e-9  # m³ per mm³
@@ -54,47 +58,10 @@ class Circuit:
     gas: object
 
 
-class Chamber:
-    """The chamber's gas on ``chamber_map``: its pressure from mass, temperature and travel."""
-
-    def __init__(self, chamber_map, gas):
-        self.map, self.gas = chamber_map, gas
-        self.p_lo, self.p_hi = chamber_map.pressure_range
-        self.y_lo, self.y_hi = chamber_map.y_range
-        self._y, self._slice, self._p = None, None, chamber_map.setup_kPa
-
-    def slice(self, y: float):
-        if y != self._y:
-            if not (self.y_lo - 1e-9 <= y <= self.y_hi + 1e-9):
-                raise ValueError(f"plate travel {y:.4g} mm outside the map's "
-                                 f"[{self.y_lo:.3g}, {self.y_hi:.3g}] mm")
-            self._y, self._slice = y, self.map.at(min(max(y, self.y_lo), self.y_hi))
-        return self._slice
-
-    def pressure(self, m: float, t: float, y: float) -> float:
-        """The gauge pressure (kPa) with P V(y, P) = m R T, by Newton from the last one."""
-        s, target = self.slice(y), m * self.gas.R * t
-        p = self._p
-        for _ in range(50):
-            v = float(s.volume(p)) * _MM3
-            f = (p * _KPA + _PA) * v - target
-            df = v * _KPA + (p * _KPA + _PA) * float(s.volume(p, 1)) * _MM3
-            step = f / df
-            p -= step
-            if abs(step) < 1e-12 * (abs(p) + 1.0):
-                break
-        else:
-            raise ValueError(f"no chamber pressure with P V(y, P) = m R T at y = {y:.4g} mm "
-                             f"(Newton at {p:.4g} kPa after 50 steps)")
-        if not (self.p_lo - 1e-6 <= p <= self.p_hi + 1e-6):
-            raise ValueError(f"chamber pressure {p:.4g} kPa outside the map's "
-                             f"[{self.p_lo:.3g}, {self.p_hi:.3g}] kPa")
-        self._p = p
-        return p
-
-
-def _rates(chamber, circuit, state, y, ydot, open_):
-    """d(state)/dt for state (m_c mg, T_c K, m_r mg, T_r K)."""
+def _rates(chamber, circuit, state, y, ydot, open_, fdot=None):
+    """d(state)/dt for state (m_c mg, T_c K, m_r mg, T_r K) at travel ``y`` (mm) moving at
+    ``ydot`` (mm/s); under a force-controlled press (``fdot``: Ḟ N/s) ẏ is the third unknown
+    of the energy balance, with F_P Ṗ + F_y ẏ = Ḟ."""
     gas, valve = circuit.gas, circuit.valve
     mc, tc, mr, tr = state[0] * _MG, state[1], state[2] * _MG, state[3]
     p = chamber.pressure(mc, tc, y)
@@ -102,20 +69,26 @@ def _rates(chamber, circuit, state, y, ydot, open_):
     pa = p * _KPA + _PA
     v = float(s.volume(p)) * _MM3
     vp = float(s.volume(p, 1)) * _MM3 / _KPA  # m³/Pa
-    vy = float(s.dvolume_dy(p)) * _MM3 * 1e3 * ydot * 1e-3  # ∂V/∂y ẏ (m³/s)
     vr = circuit.reservoir_mm3 * _MM3
     q = 0.0
     if open_ and vr > 0:
         q = valve.mass_flow(gas.pressure(mr, vr, tr), pa, tr, tc)  # reservoir -> chamber
     if gas.isothermal:
         return np.array([q / _MG, 0.0, -q / _MG, 0.0])
-    A = np.array([[v + pa * vp, -mc * gas.R], [pa * vp, mc * gas.cv]])
-    b = np.array([gas.R * tc * q - pa * vy,
-                  gas.enthalpy_in(q, tc, tr) + gas.heat(mc, tc) - pa * vy])
-    _, tc_dot = np.linalg.solve(A, b)
     tr_dot = 0.0
     if vr > 0:
         tr_dot = (gas.enthalpy_in(-q, tr, tc) + gas.heat(mr, tr)) / (mr * gas.cv)
+    vy = float(s.dvolume_dy(p)) * _MM3 * 1e3  # ∂V/∂y (m³/m)
+    rhs = [gas.R * tc * q, gas.enthalpy_in(q, tc, tr) + gas.heat(mc, tc)]
+    if fdot is None:
+        A = np.array([[v + pa * vp, -mc * gas.R], [pa * vp, mc * gas.cv]])
+        b = np.array(rhs) - pa * vy * ydot * 1e-3
+    else:  # unknowns Ṗ (Pa/s), Ṫ (K/s), ẏ (m/s)
+        f_p, f_y = float(s.force(p, 1)) / _KPA, float(s.dforce_dy(p)) * 1e3  # N/Pa, N/m
+        A = np.array([[v + pa * vp, -mc * gas.R, pa * vy], [pa * vp, mc * gas.cv, pa * vy],
+                      [f_p, 0.0, f_y]])
+        b = np.array(rhs + [fdot])
+    tc_dot = np.linalg.solve(A, b)[1]
     return np.array([q / _MG, tc_dot, -q / _MG, tr_dot])
 
 
@@ -141,7 +114,7 @@ class TraceArrays:
 
 def initial_state(chamber, circuit, y0: float) -> np.ndarray:
     """Chamber and reservoir at rest at the setup pressure and ambient temperature, the
-    plate at ``y0``."""
+    plate at ``y0`` (mm)."""
     gas = circuit.gas
     t = gas.ambient_K
     pa = circuit.setup_kPa * _KPA + _PA
@@ -174,15 +147,15 @@ class Trigger:
                 f" valve {'open' if self.opened else 'closed'}")
 
 
-def _outputs(chamber, circuit, times, states):
+def _outputs(chamber, circuit, profile, times, states):
     """The trace's columns at ``times`` from the states (4, n)."""
     gas, vr = circuit.gas, circuit.reservoir_mm3 * _MM3
     n = len(times)
     y = np.empty(n)
     cols = {k: np.empty(n) for k in ("force", "p", "pr", "area", "volume")}
     for i, t in enumerate(times):
-        y[i] = chamber.profile_y(t)
         mc, tc, mr, tr = states[0, i] * _MG, states[1, i], states[2, i] * _MG, states[3, i]
+        y[i] = profile.travel(t, chamber, mc, tc)
         p = chamber.pressure(mc, tc, y[i])
         s = chamber.slice(y[i])
         # F ≥ 0, A ≥ 0: the spline along P rings where some levels touch the plate and
@@ -196,17 +169,19 @@ def _outputs(chamber, circuit, times, states):
 
 def integrate(chamber_map, circuit, profile, events=(), *, valve_open: bool = False,
               dt: float = 1e-3, progress=None, triggers=()) -> TraceArrays:
-    """The trace of ``profile`` (:class:`~.profile.PressProfile`) on the chamber of
-    ``chamber_map`` in ``circuit``, the valve ``valve_open`` at t = 0 and switched by
+    """The trace of ``profile`` (:class:`~.profile.PressProfile`, or
+    :class:`~.profile.ForceProfile`: the plate goes where the chamber carries the force) on
+    the chamber of ``chamber_map`` in ``circuit``, the valve ``valve_open`` at t = 0 and switched by
     ``events`` ((t_s, opened) pairs) and by pressure ``triggers`` (:class:`Trigger`, located by
     the integrator's root finding), output every ``dt`` (s). ``progress(t, t_end)`` after each
     piece. Raises :class:`CircuitFailure` with the trace so far (``.trace``)."""
     chamber = Chamber(chamber_map, circuit.gas)
-    chamber.profile_y = profile.y
     t_end = profile.duration
     out_t = np.arange(0.0, t_end + 0.5 * dt, dt)
     out_t = out_t[out_t <= t_end + 1e-12]
-    state = initial_state(chamber, circuit, float(profile.y(0.0)))
+    y0 = float(profile.y(0.0)) if hasattr(profile, "y") else \
+        chamber.travel_at_pressure(circuit.setup_kPa, float(profile.force(0.0)))
+    state = initial_state(chamber, circuit, y0)
     run = _Run(chamber, circuit, profile, state, valve_open, list(triggers))
     cuts = _cuts(profile, events, triggers, t_end)
     t0 = 0.0
@@ -223,6 +198,10 @@ def integrate(chamber_map, circuit, profile, events=(), *, valve_open: bool = Fa
     return run.trace()
 
 
+class _Stopped(Exception):
+    """A piece's integration failed (the message says why)."""
+
+
 class _Run:
     """An integration under way: the state, the valve, the pending triggers, the trace."""
 
@@ -237,12 +216,27 @@ class _Run:
         self.switches.append((float(t), bool(opened), why))
 
     def _pressure(self, t, s):
-        return self.chamber.pressure(s[0] * _MG, s[1], float(self.profile.y(t)))
+        y = self.profile.travel(t, self.chamber, s[0] * _MG, s[1])
+        return self.chamber.pressure(s[0] * _MG, s[1], y)
 
     def piece(self, t0, t1, want) -> float:
         """Integrate from t0 toward t1 (outputs at ``want``); where it got to (a trigger
-        fires before t1)."""
-        ydot, y0, open_ = self.profile.rate(t0, t1), float(self.profile.y(t0)), self.open
+        fires before t1). Where the integration fails, the halves of the piece, down to 1 µs:
+        the trace is kept up to where it fails, and :class:`CircuitFailure` says when."""
+        try:
+            return self._piece(t0, t1, want)
+        except _Stopped as exc:
+            if t1 - t0 <= 1e-6:
+                self._keep(np.array([t0]), self.state[:, None], self.open)
+                err = CircuitFailure(f"stopped at t = {t0:.6g} s: {exc}", t0)
+                err.trace = self.trace()
+                raise err from None
+        mid = 0.5 * (t0 + t1)
+        got = self.piece(t0, mid, want[want < mid])
+        return got if got < mid else self.piece(mid, t1, want[want >= mid])
+
+    def _piece(self, t0, t1, want) -> float:
+        rate, open_ = self.profile.rate(t0, t1), self.open
         armed = [tr for tr in self.pending if tr.after_s <= t0 + 1e-12]
         for tr in armed:  # a condition already met when armed fires at once
             p = self._pressure(t0, self.state)
@@ -251,8 +245,15 @@ class _Run:
                 self.switch(t0, tr.opened, f"at t = {t0:.6g} s: {tr.describe()}")
                 return t0
 
-        def rhs(t, s):
-            return _rates(self.chamber, self.circuit, s, y0 + ydot * (t - t0), ydot, open_)
+        if hasattr(self.profile, "y"):
+            y0 = float(self.profile.y(t0))
+
+            def rhs(t, s):
+                return _rates(self.chamber, self.circuit, s, y0 + rate * (t - t0), rate, open_)
+        else:
+            def rhs(t, s):
+                y = self.profile.travel(t, self.chamber, s[0] * _MG, s[1])
+                return _rates(self.chamber, self.circuit, s, y, None, open_, fdot=rate)
 
         def crossing(tr):
             def f(t, s):
@@ -268,11 +269,8 @@ class _Run:
             failed = None if sol.success else sol.message
         except (ValueError, np.linalg.LinAlgError) as exc:
             failed = str(exc)
-        if failed is not None:  # the trace up to here, with the state it stopped at
-            self._keep(np.array([t0]), self.state[:, None], open_)
-            err = CircuitFailure(f"stopped at t = {t0:.4g} s: {failed}", t0)
-            err.trace = self.trace()
-            raise err
+        if failed is not None:
+            raise _Stopped(failed)
         fired = [(k, ev[0]) for k, ev in enumerate(sol.t_events or []) if len(ev)]
         if fired:
             k, te = min(fired, key=lambda kv: kv[1])
@@ -294,17 +292,17 @@ class _Run:
         self.done_v.append(np.full(len(t), open_))
 
     def trace(self) -> "TraceArrays":
-        tr = _trace(self.chamber, self.circuit, self.done_t, self.done_s, self.done_v)
+        tr = _trace(self.chamber, self.circuit, self.profile, self.done_t, self.done_s, self.done_v)
         tr.switches = list(self.switches)
         return tr
 
 
-def _trace(chamber, circuit, done_t, done_s, done_v) -> TraceArrays:
+def _trace(chamber, circuit, profile, done_t, done_s, done_v) -> TraceArrays:
     if not done_t:
         z = np.zeros(0)
         return TraceArrays(*(z for _ in range(12)))
     t = np.concatenate(done_t)
     s = np.concatenate(done_s, axis=1)
-    y, c = _outputs(chamber, circuit, t, s)
+    y, c = _outputs(chamber, circuit, profile, t, s)
     return TraceArrays(t, y, c["force"], c["p"], c["pr"], np.concatenate(done_v),
                        s[1], s[3], c["area"], c["volume"], s[0], s[2])

@@ -23,7 +23,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .circuit import _MG, _PA, Chamber, _rates, initial_state
+from .chamber import Chamber
+from .circuit import _MG, _PA, _rates, initial_state
 
 __all__ = ["operating_point", "linearise", "bode"]
 

@@ -1,4 +1,5 @@
-"""The press: the plate travel y(t) as a piecewise-linear profile of (t, y) knots."""
+"""The press: the plate travel y(t) (:class:`PressProfile`) or the plate force F(t)
+(:class:`ForceProfile`) as a piecewise-linear profile of knots."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 
-__all__ = ["PressProfile"]
+__all__ = ["PressProfile", "ForceProfile"]
 
 
 @dataclass(frozen=True)
@@ -26,9 +27,7 @@ class PressProfile:
                                  "at least two [t_s, y_mm] pairs")
         if not (np.all(np.isfinite(t)) and np.all(np.isfinite(y))):
             raise ParameterError("press profile", "non-finite value", "finite t_s and y_mm")
-        if t[0] != 0.0 or np.any(np.diff(t) <= 0):
-            raise ParameterError("press profile t_s", list(map(float, t)),
-                                 "starting at 0 and strictly increasing (s)")
+        _check_times("press profile t_s", t)
 
     @classmethod
     def of(cls, pairs) -> "PressProfile":
@@ -52,3 +51,68 @@ class PressProfile:
     @property
     def extent(self) -> tuple[float, float]:
         return float(min(self.y_mm)), float(max(self.y_mm))
+
+    def travel(self, t: float, chamber, m_kg: float, t_K: float) -> float:
+        """The plate travel (mm) at ``t``: the profile's (the gas does not move it)."""
+        return float(self.y(t))
+
+
+def _check_times(name: str, t: np.ndarray) -> None:
+    if t[0] != 0.0 or np.any(np.diff(t) <= 0):
+        raise ParameterError(name, list(map(float, t)), "starting at 0 and strictly "
+                             "increasing (s)")
+
+
+@dataclass(frozen=True)
+class ForceProfile:
+    """A force-controlled press: knots ``t_s`` (s, from 0, strictly increasing) and the plate
+    force ``force_N`` (N, ≥ 0; the plate rests on the chamber with at least
+    :data:`~.chamber.FORCE_FLOOR_N`); the plate goes where the chamber carries the force,
+    at most ``max_travel_mm`` deep (the extent of the chamber's map)."""
+
+    t_s: tuple
+    force_N: tuple
+    max_travel_mm: float = 4.0
+
+    def __post_init__(self):
+        t, f = np.asarray(self.t_s, float), np.asarray(self.force_N, float)
+        if t.size < 2 or t.size != f.size:
+            raise ParameterError("press force", f"{t.size} knots",
+                                 "at least two [t_s, force_N] pairs")
+        if not (np.all(np.isfinite(t)) and np.all(np.isfinite(f))):
+            raise ParameterError("press force", "non-finite value", "finite t_s and force_N")
+        _check_times("press force t_s", t)
+        if np.any(f < 0):
+            raise ParameterError("press force force_N", float(f.min()), ">= 0 N (the plate "
+                                 "only pushes)")
+        if not (0 < self.max_travel_mm <= 50):
+            raise ParameterError("press.max_travel_mm", self.max_travel_mm, "in (0, 50] mm")
+
+    @classmethod
+    def of(cls, pairs, max_travel_mm: float = 4.0) -> "ForceProfile":
+        try:
+            t, f = zip(*[(float(a), float(b)) for a, b in pairs])
+        except (TypeError, ValueError):
+            raise ParameterError("press force", pairs, "a list of [t_s, force_N] pairs") \
+                from None
+        return cls(t, f, float(max_travel_mm))
+
+    @property
+    def duration(self) -> float:
+        return float(self.t_s[-1])
+
+    def force(self, t):
+        return np.interp(t, self.t_s, self.force_N)
+
+    def rate(self, t0: float, t1: float) -> float:
+        """Ḟ (N/s) on a segment [t0, t1] between knots."""
+        return float((self.force(t1) - self.force(t0)) / (t1 - t0))
+
+    @property
+    def extent(self) -> tuple[float, float]:
+        """The travels the chamber's map must cover (mm)."""
+        return 0.0, float(self.max_travel_mm)
+
+    def travel(self, t: float, chamber, m_kg: float, t_K: float) -> float:
+        """The plate travel (mm) at which the gas (``m_kg`` at ``t_K``) carries the force."""
+        return chamber.travel(m_kg, t_K, float(self.force(t)))

@@ -19,6 +19,9 @@ press and the valve events, read from TOML and checked, every malformed entry a 
 
     [press]
     profile = [[0, 0], [0.5, 3], [2, 3], [2.5, 0]]      # [t_s, y_mm], piecewise linear
+    # or a force-controlled press: the plate goes where the chamber carries the force
+    # force = [[0, 0], [0.5, 10], [2, 10]]              # [t_s, force_N]
+    # max_travel_mm = 4                                 # the map's depth (default 4 mm)
 
     [[events]]
     t = 1.0
@@ -49,7 +52,7 @@ from pathlib import Path
 from spsc.core.errors import ParameterError, require
 
 from .gas import Gas
-from .profile import PressProfile
+from .profile import ForceProfile, PressProfile
 from .sensor import Sensor
 from .valve import Valve, sonic_conductance
 
@@ -100,7 +103,7 @@ class Scenario:
     valve_open: bool
     gas: Gas
     sensor: Sensor | None
-    press: PressProfile
+    press: PressProfile | ForceProfile
     events: tuple = field(default=())  # ((t_s, opened), ...)
     triggers: tuple = field(default=())  # (Trigger, ...)
     dt: float = 1e-3
@@ -197,6 +200,22 @@ def _bode(doc: dict, profile: PressProfile, opened: bool) -> dict:
             "f_min_Hz": f_min, "f_max_Hz": f_max, "points": points}
 
 
+def _press(press: dict) -> PressProfile | ForceProfile:
+    given = [k for k in ("profile", "force") if k in press]
+    if len(given) != 1:
+        raise ParameterError("press", " and ".join(given) or "no profile",
+                             "a travel profile = [[t_s, y_mm], ...] or a force = "
+                             "[[t_s, force_N], ...], one of them")
+    if given[0] == "profile":
+        if "max_travel_mm" in press:
+            raise ParameterError("press.max_travel_mm", press["max_travel_mm"],
+                                 "only with a force-controlled press (force = ...)")
+        return PressProfile.of(press["profile"])
+    depth = require("press.max_travel_mm", press.get("max_travel_mm", 4.0), gt=0, le=50,
+                    unit="mm")
+    return ForceProfile.of(press["force"], depth)
+
+
 def parse_scenario(doc: dict) -> Scenario:
     """The :class:`Scenario` of a parsed TOML document."""
     _unknown("scenario", doc, _TABLES)
@@ -204,7 +223,7 @@ def parse_scenario(doc: dict) -> Scenario:
     out = _table(doc, "output", required=False)
     _unknown("chamber", ch, _CHAMBER)
     _unknown("circuit", c, _CIRCUIT)
-    _unknown("press", press, {"profile"})
+    _unknown("press", press, {"profile", "force", "max_travel_mm"})
     _unknown("output", out, {"dt"})
     model = ch.get("model", "wall")
     if model not in _MODELS:
@@ -222,9 +241,7 @@ def parse_scenario(doc: dict) -> Scenario:
         raise ParameterError("circuit.gas", g, "an inline table {n = ..., thermal_time_s = ...}")
     _unknown("circuit.gas", g, _GAS)
     valve, opened = _valve(c)
-    if "profile" not in press:
-        raise ParameterError("press.profile", "missing", "a list of [t_s, y_mm] pairs")
-    profile = PressProfile.of(press["profile"])
+    profile = _press(press)
     dt = require("output.dt", out.get("dt", 1e-3), gt=0, le=profile.duration, unit="s")
     if profile.duration / dt > 5e6:
         raise ParameterError("output.dt", dt, f">= {profile.duration / 5e6:.3g} s (at most "

@@ -1,0 +1,119 @@
+"""The chamber's gas on its quasi-static map: the pressure of a gas mass at a plate travel, and
+the plate travel at which a plate force is carried (the force-controlled press).
+
+At a travel y the gauge pressure P is the root of (P + Pₐ) V(y, P) = m R T (the ideal gas in
+the chamber's cavity, :mod:`.chamber_map`). Under a prescribed plate force F the travel is
+the root of F(y, P(y)) = F with P(y) that root: g(y) = F(y, P(y)) − F increases with y where
+the plate touches, with
+
+    g'(y) = ∂F/∂y + ∂F/∂P dP/dy,    dP/dy = −(P + Pₐ) ∂V/∂y / (V + (P + Pₐ) ∂V/∂P)
+
+(the gas law differentiated at fixed m R T), so a Newton iteration safeguarded by bisection
+finds it. A force of zero leaves the plate anywhere above the chamber: the force-controlled
+press carries at least :data:`FORCE_FLOOR_N`, the plate resting on the chamber.
+"""
+
+from __future__ import annotations
+
+from spsc.core.constants import P_AMB
+
+__all__ = ["Chamber", "FORCE_FLOOR_N"]
+
+_PA_KPA = P_AMB * 1e3  # ambient pressure (kPa)
+_PA = P_AMB * 1e6  # (Pa)
+_MM3 = 1e-9  # m³ per mm³
+_KPA = 1e3  # Pa per kPa
+
+#: the least plate force of a force-controlled press (N): the plate resting on the chamber
+FORCE_FLOOR_N = 1e-3
+
+
+class Chamber:
+    """The chamber's gas on ``chamber_map``: its pressure from mass, temperature and travel;
+    the travel that carries a plate force."""
+
+    def __init__(self, chamber_map, gas):
+        self.map, self.gas = chamber_map, gas
+        self.p_lo, self.p_hi = chamber_map.pressure_range
+        self.y_lo, self.y_hi = chamber_map.y_range
+        self._y, self._slice, self._p = None, None, chamber_map.setup_kPa
+        self._y_force = None  # the last travel found for a force (the next one's start)
+
+    def slice(self, y: float):
+        if y != self._y:
+            if not (self.y_lo - 1e-9 <= y <= self.y_hi + 1e-9):
+                raise ValueError(f"plate travel {y:.4g} mm outside the map's "
+                                 f"[{self.y_lo:.3g}, {self.y_hi:.3g}] mm")
+            self._y, self._slice = y, self.map.at(min(max(y, self.y_lo), self.y_hi))
+        return self._slice
+
+    def pressure(self, m: float, t: float, y: float) -> float:
+        """The gauge pressure (kPa) with P V(y, P) = m R T (m kg, t K, y mm), by Newton from
+        the last one."""
+        s, target = self.slice(y), m * self.gas.R * t
+        p = self._p
+        for _ in range(50):
+            v = float(s.volume(p)) * _MM3
+            f = (p * _KPA + _PA) * v - target
+            df = v * _KPA + (p * _KPA + _PA) * float(s.volume(p, 1)) * _MM3
+            step = f / df
+            p -= step
+            if abs(step) < 1e-12 * (abs(p) + 1.0):
+                break
+        else:
+            raise ValueError(f"no chamber pressure with P V(y, P) = m R T at y = {y:.4g} mm "
+                             f"(Newton at {p:.4g} kPa after 50 steps)")
+        if not (self.p_lo - 1e-6 <= p <= self.p_hi + 1e-6):
+            raise ValueError(f"chamber pressure {p:.4g} kPa outside the map's "
+                             f"[{self.p_lo:.3g}, {self.p_hi:.3g}] kPa")
+        self._p = p
+        return p
+
+    def _gap(self, m: float, t: float, y: float, force: float) -> tuple[float, float]:
+        """g(y) = F(y, P(y)) − force (N) and g'(y) (N/mm), the module's equations."""
+        p = self.pressure(m, t, y)
+        s = self._slice
+        pa = p + _PA_KPA
+        dp_dy = -pa * float(s.dvolume_dy(p)) / (float(s.volume(p)) + pa * float(s.volume(p, 1)))
+        g = float(s.force(p)) - force
+        return g, float(s.dforce_dy(p)) + float(s.force(p, 1)) * dp_dy
+
+    def travel_at_pressure(self, p: float, force: float) -> float:
+        """The plate travel (mm) at which the chamber held at ``p`` (kPa gauge) carries
+        ``force`` (N, at least :data:`FORCE_FLOOR_N`): bisection on F(y, p), increasing in y
+        where the plate touches."""
+        force = max(force, FORCE_FLOOR_N)
+        lo, hi = self.y_lo, self.y_hi
+        if float(self.map.at(hi).force(p)) < force:
+            raise ValueError(f"a plate force of {force:.4g} N needs a travel beyond the map's "
+                             f"{hi:.3g} mm; raise press.max_travel_mm")
+        while hi - lo > 1e-12 * max(1.0, abs(hi)):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if float(self.map.at(mid).force(p)) < force else (lo, mid)
+        return 0.5 * (lo + hi)
+
+    def travel(self, m: float, t: float, force: float) -> float:
+        """The plate travel (mm) at which the gas mass ``m`` (kg) at ``t`` (K) carries the
+        plate force ``force`` (N, at least :data:`FORCE_FLOOR_N`): safeguarded Newton."""
+        force = max(force, FORCE_FLOOR_N)
+        lo, hi = self.y_lo, self.y_hi
+        y = min(max(self._y_force if self._y_force is not None else 0.0, lo), hi)
+        tol = 1e-10 * force
+        for _ in range(200):
+            g, dg = self._gap(m, t, y, force)
+            if abs(g) <= tol:
+                self._y_force = y
+                return y
+            lo, hi = (y, hi) if g < 0 else (lo, y)
+            nxt = y - g / dg if dg > 0 else None
+            if nxt is None or not (lo < nxt < hi):
+                nxt = 0.5 * (lo + hi)
+            if hi - lo < 1e-12:
+                break
+            y = nxt
+        if g < 0 and y >= self.y_hi - 1e-9:
+            raise ValueError(f"a plate force of {force:.4g} N needs a travel beyond the map's "
+                             f"{self.y_hi:.3g} mm (it carries {g + force:.4g} N there); raise "
+                             "press.max_travel_mm")
+        raise ValueError(f"no plate travel carries {force:.4g} N (at {y:.4g} mm the force is "
+                         f"off by {g:.3g} N)")
