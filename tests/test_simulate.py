@@ -137,3 +137,23 @@ def test_unreadable_scenarios_are_one_line(tmp_path, capsys):
     assert main(["simulate", str(bad), "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err.strip()
     assert "valid TOML" in err and err.count("\n") == 0
+
+
+def test_simulate_with_continuous_stiffness_reports_the_step(tmp_path):
+    text = SCENARIO.format(extra="").split("[[events]]")[0] + (
+        "[stiffness]\ntarget = [[0.15, 2.0], [0.3, 2.4]]\nreservoir_mm3 = [5000, 40000]\n"
+        "actuator_time_s = 0.02\n\n[output]\ndt = 0.002\n")
+    f = tmp_path / "s.toml"
+    f.write_text(text.replace('gas = { n = 1.4, thermal_time_s = 0.3 }', 'gas = { n = 1.0 }'))
+    out = tmp_path / "run"
+    assert main(["simulate", str(f), "--out", str(out), "--quiet",
+                 "--cache", str(tmp_path / "cache")]) == 0
+    d = pd.read_parquet(out / "trace.parquet")
+    assert {"reservoir_volume_mm3", "stiffness_N_per_mm", "target_N_per_mm"} <= set(d)
+    assert d.valve_open.all()
+    steps = json.loads((out / "scenario.json").read_text())["stiffness_steps"]
+    assert [s["t_s"] for s in steps] == [0.3]
+    # isothermal gas, 0.3 s = 15 lags after the step, the plate held: on target
+    held = d[(d.t_s > 0.55) & (d.t_s < 0.6)]
+    assert_allclose(held.stiffness_N_per_mm, 2.4, rtol=1e-3)
+    assert 0.0 < steps[0]["rise_s"] < 0.1

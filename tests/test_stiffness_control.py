@@ -78,7 +78,7 @@ def test_step_metrics_of_a_first_order_lag():
 
 
 @pytest.mark.parametrize("kw, name", [
-    (dict(target=((0.5, 3.0),)), "stiffness.target t_s"),
+    (dict(target=((-0.5, 3.0),)), "stiffness.target t_s"),
     (dict(target=((0.0, -3.0),)), "stiffness.target"),
     (dict(target=((0.0, 3.0),), reservoir_mm3=(0.0, 100.0)), "stiffness.reservoir_mm3"),
     (dict(target=((0.0, 3.0),), actuator_time_s=0.0), "stiffness.actuator_time_s"),

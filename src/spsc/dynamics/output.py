@@ -33,7 +33,8 @@ def _echo(sim) -> dict:
                             "levels_kPa": [float(p) for p in m.pressure_kPa],
                             "travels": int(m.y_mm.size)},
             "valve": {"C_dm3_s_bar": sim.scenario.valve.C, "b": sim.scenario.valve.b,
-                      "m": sim.scenario.valve.m}}
+                      "m": sim.scenario.valve.m},
+            **({"stiffness_steps": sim.stiffness_steps} if sim.stiffness_steps else {})}
 
 
 def write(sim, out: Path, *, csv: bool = False, png: bool = True) -> list[Path]:
@@ -60,6 +61,17 @@ def _valve_shading(ax, t, is_open) -> None:
         ax.axvspan(t[a], t[min(b, len(t) - 1)], color="0.9", lw=0)
 
 
+def _stiffness_panel(ax, t, d) -> None:
+    ax.step(t, d.target_N_per_mm, "k--", where="post", lw=1, label="target")
+    ax.plot(t, d.stiffness_N_per_mm, "C0", label="stiffness (quasi-static)")
+    ax.set_ylabel("stiffness (N/mm)")
+    ax.legend(loc="upper left")
+    av = ax.twinx()
+    av.plot(t, d.reservoir_volume_mm3 / 1e3, "C7:", label="reservoir")
+    av.set_ylabel("reservoir volume (cm³)")
+    av.legend(loc="lower right")
+
+
 def figure(sim, path) -> None:
     """Travel and force, chamber and reservoir pressure (and the sensor's reading), the gas
     temperatures against time; the valve's open spans shaded."""
@@ -70,7 +82,9 @@ def figure(sim, path) -> None:
 
     d = sim.trace
     t = d.t_s.to_numpy()
-    fig, axes = plt.subplots(3, 1, figsize=(8, 7.5), sharex=True, constrained_layout=True)
+    control = "stiffness_N_per_mm" in d
+    fig, axes = plt.subplots(3 + control, 1, figsize=(8, 7.5 + 2.5 * control), sharex=True,
+                             constrained_layout=True)
     for ax in axes:
         _valve_shading(ax, t, d.valve_open.to_numpy())
     ax = axes[0]
@@ -89,12 +103,14 @@ def figure(sim, path) -> None:
         ax.plot(t, d.reservoir_kPa, "C2", label="reservoir")
     ax.set_ylabel("gauge pressure (kPa)")
     ax.legend(loc="best")
+    if control:
+        _stiffness_panel(axes[3], t, d)
     ax = axes[2]
     ax.plot(t, d.chamber_K - 273.15, "C3", label="chamber gas")
     if np.isfinite(d.reservoir_kPa).any():
         ax.plot(t, d.reservoir_K - 273.15, "C4", label="reservoir gas")
     ax.set_ylabel("temperature (°C)")
-    ax.set_xlabel("time (s); valve open: shaded")
+    axes[-1].set_xlabel("time (s); valve open: shaded")
     ax.legend(loc="best")
     title = "spsc simulate" + ("" if sim.complete else f" (stopped: {sim.message})")
     axes[0].set_title(title, fontsize=10)

@@ -35,6 +35,11 @@ press and the valve events, read from TOML and checked, every malformed entry a 
     [output]
     dt = 0.001                # s
 
+    [stiffness]               # continuous stiffness: the reservoir a piston, the valve open
+    target = [[0, 3.2], [1.0, 3.8]]   # [t_s, N/mm], each held from its instant on
+    reservoir_mm3 = [1000, 40000]     # the piston's stroke; it starts at circuit.reservoir_mm3
+    actuator_time_s = 0.05            # its first-order lag; rate_mm3_s = its top speed
+
     [bode]                    # spsc simulate --bode: a small sinusoidal press about y_mm
     y_mm = 3                  # default: the profile's deepest travel
     valve = "open"            # default: the valve's state at t = 0
@@ -58,7 +63,7 @@ from .valve import Valve, sonic_conductance
 
 __all__ = ["Scenario", "ChamberSpec", "read_scenario", "parse_scenario"]
 
-_TABLES = {"chamber", "circuit", "press", "events", "output", "bode"}
+_TABLES = {"chamber", "circuit", "press", "events", "output", "bode", "stiffness"}
 _CHAMBER = {"type", "footprint", "material", "model", "mesh_size", "layers",
             "w", "h", "l", "t0", "n1", "n2", "cy"}
 _CIRCUIT = {"setup_kPa", "reservoir_mm3", "valve", "gas", "sensor"}
@@ -108,6 +113,7 @@ class Scenario:
     triggers: tuple = field(default=())  # (Trigger, ...)
     dt: float = 1e-3
     bode: dict = field(default_factory=dict)  # y_mm, valve_open, f_min_Hz, f_max_Hz, points
+    stiffness: object = None  # a StiffnessControl: the reservoir a piston, the valve open
     source: dict = field(default_factory=dict, compare=False)
 
 
@@ -216,6 +222,38 @@ def _press(press: dict) -> PressProfile | ForceProfile:
     return ForceProfile.of(press["force"], depth)
 
 
+def _stiffness(doc: dict, press, reservoir: float, timed, triggers):
+    from .stiffness import StiffnessControl
+
+    st = doc.get("stiffness")
+    if st is None:
+        return None
+    if not isinstance(st, dict):
+        raise ParameterError("[stiffness]", st, "a table")
+    _unknown("stiffness", st, {"target", "reservoir_mm3", "actuator_time_s", "rate_mm3_s"})
+    if not isinstance(press, PressProfile):
+        raise ParameterError("[stiffness]", "with a force press", "a travel profile (press."
+                             "profile): the controller is for a press of known travel")
+    if timed or triggers:
+        raise ParameterError("[[events]]", "with [stiffness]", "none: the valve stays open "
+                             "while the piston controls the stiffness")
+    try:
+        target = tuple((float(t), float(k)) for t, k in st.get("target", []))
+    except (TypeError, ValueError):
+        raise ParameterError("stiffness.target", st.get("target"),
+                             "a list of [t_s, N_per_mm] pairs") from None
+    stroke = st.get("reservoir_mm3", [1000.0, 40000.0])
+    if not (isinstance(stroke, list) and len(stroke) == 2):
+        raise ParameterError("stiffness.reservoir_mm3", stroke, "[min, max] (mm³)")
+    ctl = StiffnessControl(target, (float(stroke[0]), float(stroke[1])),
+                           float(st.get("actuator_time_s", 0.05)),
+                           float(st.get("rate_mm3_s", float("inf"))))
+    if not (stroke[0] <= reservoir <= stroke[1]):
+        raise ParameterError("circuit.reservoir_mm3", reservoir, f"within the piston's stroke "
+                             f"[{stroke[0]:g}, {stroke[1]:g}] mm³ (where it starts)")
+    return ctl
+
+
 def parse_scenario(doc: dict) -> Scenario:
     """The :class:`Scenario` of a parsed TOML document."""
     _unknown("scenario", doc, _TABLES)
@@ -246,12 +284,14 @@ def parse_scenario(doc: dict) -> Scenario:
     if profile.duration / dt > 5e6:
         raise ParameterError("output.dt", dt, f">= {profile.duration / 5e6:.3g} s (at most "
                              "5 million output samples)")
+    reservoir = require("circuit.reservoir_mm3", c.get("reservoir_mm3", 0.0), ge=0, le=1e7,
+                        unit="mm³")
+    timed, triggers = _events(doc, profile.duration)
+    control = _stiffness(doc, profile, reservoir, timed, triggers)
     return Scenario(spec, require("circuit.setup_kPa", c.get("setup_kPa", 40.0), ge=0, le=200,
-                                  unit="kPa gauge"),
-                    require("circuit.reservoir_mm3", c.get("reservoir_mm3", 0.0), ge=0, le=1e7,
-                            unit="mm³"),
-                    valve, opened, Gas(**g), _sensor(c), profile,
-                    *_events(doc, profile.duration), dt, _bode(doc, profile, opened), doc)
+                                  unit="kPa gauge"), reservoir,
+                    valve, opened or control is not None, Gas(**g), _sensor(c), profile,
+                    timed, triggers, dt, _bode(doc, profile, opened), control, doc)
 
 
 def read_scenario(path) -> Scenario:

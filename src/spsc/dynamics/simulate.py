@@ -43,6 +43,7 @@ class Simulation:
     message: str = "complete"
     seconds: dict = field(default_factory=dict)
     switches: list = field(default_factory=list)  # the valve's: (t_s, opened, why)
+    stiffness_steps: list = field(default_factory=list)  # step_metrics of each target step
 
 
 def _closed_ceiling(m: ChamberMap, setup: float, y0: float, y1: float, n: float) -> float:
@@ -53,6 +54,26 @@ def _closed_ceiling(m: ChamberMap, setup: float, y0: float, y1: float, n: float)
     p = setup
     for _ in range(60):  # fixed point (P + Pa) V(P)ⁿ = (P0 + Pa) V0ⁿ
         p = (setup + _PA_KPA) * (v0 / float(s.volume(p))) ** n - _PA_KPA
+    return p
+
+
+def _piston_ceiling(m: ChamberMap, sc, y0: float, y1: float, n: float) -> float:
+    """The gauge pressure (kPa) of the pooled gas at the deepest travel ``y1`` with the piston
+    at the smallest volume the controller asks for there (its set points, :mod:`.stiffness`),
+    compressed adiabatically with exponent ``n`` from the setup at ``y0``."""
+    from .chamber import Chamber
+    from .stiffness import set_point
+
+    ch = Chamber(m, sc.gas)
+    t = sc.gas.ambient_K
+    v0 = float(m.at(y0).volume(sc.setup_kPa)) + sc.reservoir_mm3
+    mass = (sc.setup_kPa + _PA_KPA) * 1e3 * v0 * 1e-9 / (sc.gas.R * t) * 1e6  # mg
+    want = [set_point(ch, y1, mass, t, k, sc.stiffness.reservoir_mm3)
+            for _, k in sc.stiffness.target]
+    v_r = min([v for v in want if v == v] + [sc.reservoir_mm3])
+    p = sc.setup_kPa
+    for _ in range(60):  # (P + Pa)(V(P) + V_r)ⁿ = (P0 + Pa) V0ⁿ
+        p = (sc.setup_kPa + _PA_KPA) * (v0 / (float(m.at(y1).volume(p)) + v_r)) ** n - _PA_KPA
     return p
 
 
@@ -72,6 +93,8 @@ def chamber_map_for(scenario, *, cache_dir=None, progress=None) -> ChamberMap:
                     progress)
         n = 1.0 if sc.gas.isothermal else sc.gas.n
         need = _closed_ceiling(m, sc.setup_kPa, max(lo, m.y_range[0]), max(hi, 0.0), n)
+        if sc.stiffness is not None:
+            need = max(need, _piston_ceiling(m, sc, max(lo, m.y_range[0]), max(hi, 0.0), n))
         if need <= top:
             return m
         top = 1.15 * need
@@ -117,15 +140,19 @@ def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None) -> S
     m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress)
     t1 = time.perf_counter()
     circuit = Circuit(scenario.setup_kPa, scenario.reservoir_mm3, scenario.valve, scenario.gas)
-    complete, message = True, "complete"
-    try:
-        trace = integrate(m, circuit, scenario.press, scenario.events,
-                          valve_open=scenario.valve_open, dt=scenario.dt, progress=progress,
-                          triggers=scenario.triggers)
-    except CircuitFailure as exc:
-        trace, complete, message = exc.trace, False, str(exc)
+    complete, message, switches, steps = True, "complete", [], []
+    if scenario.stiffness is not None:
+        df, stopped, steps = _controlled(m, circuit, scenario, progress)
+        complete, message = stopped is None, stopped or "complete"
+    else:
+        try:
+            trace = integrate(m, circuit, scenario.press, scenario.events,
+                              valve_open=scenario.valve_open, dt=scenario.dt, progress=progress,
+                              triggers=scenario.triggers)
+        except CircuitFailure as exc:
+            trace, complete, message = exc.trace, False, str(exc)
+        df, switches = _frame(trace), list(trace.switches)
     t2 = time.perf_counter()
-    df = _frame(trace)
     measured = None
     if scenario.sensor is not None and len(df):
         measured = _sample(scenario.sensor, df)
@@ -133,7 +160,24 @@ def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None) -> S
         k = np.searchsorted(measured.t_s.to_numpy(), df.t_s.to_numpy() + 1e-12, "right") - 1
         df["pressure_measured_kPa"] = measured.pressure_measured_kPa.to_numpy()[k]
     return Simulation(scenario, df, measured, m, complete, message,
-                      {"map": t1 - t0, "integrate": t2 - t1}, list(trace.switches))
+                      {"map": t1 - t0, "integrate": t2 - t1}, switches, steps)
+
+
+def _controlled(m, circuit, scenario, progress):
+    """(the trace, why it stopped or None, the step metrics of each target change) of a
+    scenario with continuous stiffness control."""
+    from .stiffness import integrate_controlled, step_metrics
+
+    df, stopped = integrate_controlled(m, circuit, scenario.press, scenario.stiffness,
+                                       dt=scenario.dt, progress=progress)
+    steps = []
+    for t_step, k in scenario.stiffness.target[1:]:
+        if len(df) and df.t_s.iloc[-1] > t_step:
+            upto = df.t_s.to_numpy() < min([t for t, _ in scenario.stiffness.target
+                                            if t > t_step] + [np.inf])
+            steps.append({"t_s": t_step, "target_N_per_mm": k,
+                          **step_metrics(df.t_s[upto], df.stiffness_N_per_mm[upto], t_step)})
+    return df, stopped, steps
 
 
 def frequency_response(scenario, *, cache_dir=None, map_progress=None):

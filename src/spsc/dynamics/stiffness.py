@@ -47,9 +47,10 @@ _PA_KPA = P_AMB * 1e3
 
 @dataclass(frozen=True)
 class StiffnessControl:
-    """``target`` ((t_s, k N/mm), ...): the target stiffness, held from each instant on;
-    ``reservoir_mm3`` (min, max) the piston's stroke; ``actuator_time_s`` its lag;
-    ``rate_mm3_s`` its top speed."""
+    """``target`` ((t_s, k N/mm), ...): the target stiffness, held from each instant on (before
+    the first, the piston holds: a target makes sense once the plate presses); ``reservoir_mm3``
+    (min, max) the piston's stroke; ``actuator_time_s`` its lag; ``rate_mm3_s`` its top
+    speed."""
 
     target: tuple
     reservoir_mm3: tuple = (1000.0, 40000.0)
@@ -66,15 +67,15 @@ class StiffnessControl:
             raise ParameterError("stiffness.rate_mm3_s", self.rate_mm3_s, "> 0 mm³/s (inf: "
                                  "no limit)")
         t = [float(a) for a, _ in self.target]
-        if not t or t[0] != 0.0 or any(b <= a for a, b in zip(t, t[1:])):
-            raise ParameterError("stiffness.target t_s", t, "starting at 0 and strictly "
-                                 "increasing (s)")
+        if not t or t[0] < 0.0 or any(b <= a for a, b in zip(t, t[1:])):
+            raise ParameterError("stiffness.target t_s", t, ">= 0 and strictly increasing "
+                                 "(s)")
         for _, k in self.target:
             require("stiffness.target", k, gt=0, le=1e4, unit="N/mm")
 
     def at(self, t: float) -> float:
-        """The target (N/mm) at ``t``: the last one set."""
-        k = self.target[0][1]
+        """The target (N/mm) at ``t``: the last one set (nan before the first)."""
+        k = math.nan
         for ts, kk in self.target:
             if ts <= t + 1e-12:
                 k = kk
@@ -121,16 +122,32 @@ def pooled_pressure(chamber, y: float, mass_mg: float, t_K: float, v_r: float) -
     raise ValueError(f"no pooled pressure at y = {y:.4g} mm, V_r = {v_r:.4g} mm³")
 
 
+def _within_map(chamber, y, mass_mg, t_K, stroke) -> tuple[float, float]:
+    """The piston's stroke cut to the volumes whose pooled pressure stays within the map's
+    pressures, with 2 % of them to spare for the gas's transients."""
+    p_lo, p_hi = chamber.p_lo, chamber.p_hi
+    spare = 0.02 * (p_hi - p_lo)
+    s, mrt = chamber.slice(y), mass_mg * _MG * chamber.gas.R * t_K / 1e-6  # kPa·mm³
+
+    def volume_at(p):
+        return mrt / (p + _PA_KPA) - float(s.volume(p))
+
+    return max(stroke[0], volume_at(p_hi - spare)), min(stroke[1], volume_at(p_lo + spare))
+
+
 def set_point(chamber, y: float, mass_mg: float, t_K: float, k: float, stroke) -> float:
-    """The reservoir volume (mm³, within ``stroke``) at which the pooled gas at rest gives the
-    stiffness ``k`` (N/mm): eq. (1) = k with P the pooled pressure of that volume (so the set
-    point does not move as the piston compresses the gas); nan where the plate does not
-    touch."""
+    """The reservoir volume (mm³, within ``stroke`` and the map's pressures) at which the
+    pooled gas at rest gives the stiffness ``k`` (N/mm): eq. (1) = k with P the pooled
+    pressure of that volume (so the set point does not move as the piston compresses the
+    gas); the nearest end where no volume does; nan where the plate does not touch or there
+    is no target."""
     def gap(v_r):
         return stiffness(chamber, y, pooled_pressure(chamber, y, mass_mg, t_K, v_r), v_r) - k
 
-    lo, hi = stroke
-    _, _, vy, fp, _ = _slopes(chamber, y, pooled_pressure(chamber, y, mass_mg, t_K, lo))
+    if math.isnan(k):
+        return math.nan
+    lo, hi = _within_map(chamber, y, mass_mg, t_K, stroke)
+    _, _, vy, fp, _ = _slopes(chamber, y, pooled_pressure(chamber, y, mass_mg, t_K, hi))
     if fp * vy >= -1e-12:
         return math.nan
     if gap(lo) <= 0:  # even the smallest volume is softer than k
@@ -178,7 +195,8 @@ def integrate_controlled(chamber_map, circuit, profile, control, *, dt=1e-3,
     scale = np.array([x[0] + x[2], 1.0, x[0] + x[2], 1.0, control.reservoir_mm3[1]])
     for t0, t1 in zip(cuts, cuts[1:]):
         rate, y0 = profile.rate(t0, t1), float(profile.y(t0))
-        want = out_t[(out_t >= t0 - 1e-12) & ((out_t < t1 - 1e-12) | (t1 >= t_end))]
+        want = np.clip(out_t[(out_t >= t0 - 1e-12) & ((out_t < t1 - 1e-12) | (t1 >= t_end))],
+                       t0, t1)
         try:
             sol = solve_ivp(lambda t, s: _rates_controlled(chamber, circuit, control, memo, s, t,
                                                            y0 + rate * (t - t0), rate),
