@@ -313,3 +313,37 @@ def test_resolution_is_the_rounding_of_the_numbers_as_written(tmp_path):
     (k,), _ = read_tests([kpa])
     assert resolution_MPa([k])["uniaxial"] == pytest.approx(np.sqrt((1e-6 + 1e-8) / 12),
                                                             rel=1e-9)
+
+
+def test_relaxation_test_writes_prony_terms_into_the_material_file(tmp_path, capsys):
+    """A relaxation test made from two known terms: the material file carries terms whose
+    g(t) is the data's (the fit's own bound: the terms trade off, the curve does not), and
+    spsc.materials.viscosity reads them back with their source."""
+    from spsc.materials import viscosity
+    from spsc.materials.prony import Prony
+
+    true = Prony(((0.8, 0.05), (0.4, 2.0)))
+    t = np.logspace(-3, 2, 60)
+    relax = _csv(tmp_path, "relax.csv", "t_s,stress_MPa\n" + "".join(
+        f"{a:.9g},{0.7 * g:.9g}\n" for a, g in zip(t, true.relaxation(t))))
+    lam = np.linspace(1.0, 3.0, 41)
+    data = _csv(tmp_path, "nh.csv", "stretch,stress_MPa\n" + "".join(
+        f"{a:.4f},{b:.6f}\n" for a, b in zip(lam, NH.stress("uniaxial", lam, [0.5]))))
+    out = tmp_path / "visco.material.json"
+    rc, stdout, _ = _run(["fit-material", data, "--relaxation", relax, "--out", out], capsys)
+    assert rc == 0 and "prony (relax.csv, 60 points)" in stdout
+    rec = json.loads(out.read_text())
+    assert rec["prony"]["data"]["points"] == 60 and "relax.csv" in rec["prony"]["source"]
+    prony, source = viscosity(str(out))
+    np.testing.assert_allclose(prony.relaxation(t), true.relaxation(t), rtol=1e-4)
+    assert "relax.csv" in source
+    cat, why = viscosity("tpu60a")
+    assert cat.terms == ((0.646, 1.0),) and "3.8 N" in why
+    assert viscosity("elastic50a")[0] is None
+
+
+def test_a_bad_relaxation_file_is_one_line(tmp_path, capsys):
+    data = _csv(tmp_path, "nh.csv", "stretch,stress_MPa\n1.0,0\n1.5,0.5\n2.0,1.0\n2.5,1.5\n")
+    bad = _csv(tmp_path, "relax.csv", "time,a,b\n1,2,3\n")
+    rc, _, err = _run(["fit-material", data, "--relaxation", bad], capsys)
+    assert rc == 2 and "--relaxation" in err and "t_s" in err and len(err.splitlines()) == 1

@@ -6,7 +6,12 @@ statistics and Drucker stability, a figure, and a material file every model take
         [--law neo-hookean|mooney-rivlin|yeoh|ogden|all] [--ogden-terms N] [--range LMIN:LMAX]
         [--strain-unit -|%|stretch] [--stress-unit MPa|kPa|Pa|psi|kgf/cm2]
         [--weighting relative|absolute] [--name NAME] [--json F] [--png F] [--out MATERIAL.json]
+        [--relaxation RELAX.csv]
     spsc fit-material --list-catalogue
+
+``--relaxation`` fits a Prony series (the wall's viscoelasticity, :mod:`spsc.materials.prony`)
+to a relaxation test — a CSV of t_s and the stress or modulus of a held strain — and writes its
+terms into the material file beside the hyperelastic law (the relaxed response).
 
 Several files (or a file with a ``test`` column) fit jointly: one set of constants, every test
 in the residual. Exit 0; 1 when the law written is not Drucker-stable over its own data, has no
@@ -59,6 +64,8 @@ def register(subparsers) -> None:
                    "file's stem, else the first data file's)")
     p.add_argument("--list-catalogue", action="store_true",
                    help="list the catalogue materials (law, constants, provenance) and exit")
+    p.add_argument("--relaxation", metavar="RELAX.csv", default=None, help="a relaxation test "
+                   "(t_s and stress or modulus): fit Prony terms into the material file")
     g = p.add_argument_group("outputs (checked before any work)")
     g.add_argument("--json", metavar="FILE", help="every law's fit, statistics and stability")
     g.add_argument("--png", metavar="FILE", help="data against every law, one panel per test")
@@ -160,6 +167,7 @@ def run(args) -> int:
     from spsc.materials.fit import choose, fit_laws
 
     tests, notes, laws, rng, terms = prepare(args)
+    prony = _relaxation(args.relaxation)
     for line in notes:
         print(f"spsc {VERB}: read {line}", file=sys.stderr)
     fits = fit_laws(laws, tests, weighting=args.weighting, ogden_terms=terms)
@@ -178,8 +186,22 @@ def run(args) -> int:
     print(f"material file law: {why}")
     from spsc.materials.fit_report import write_outputs
 
-    write_outputs(args, tests, fits, chosen, why, rng, notes)
+    write_outputs(args, tests, fits, chosen, why, rng, notes, prony=prony)
     return _verdict(fits, chosen)
+
+
+def _relaxation(path):
+    """The ``prony`` entry of the relaxation test at ``path`` (None without one), printed."""
+    if path is None:
+        return None
+    from spsc.materials.prony import fit_relaxation, prony_record, read_relaxation
+
+    t, v, data = read_relaxation(path)
+    fit = fit_relaxation(t, v)
+    terms = ", ".join(f"beta {b:.4g} tau {tau:.4g} s" for b, tau in fit.prony.terms)
+    print(f"prony ({data['file']}, {data['points']} points): {terms}; relaxed level "
+          f"{fit.relaxed:.4g}, rms {fit.rms_relative:.2%} of it")
+    return prony_record(fit, data)
 
 
 def _verdict(fits, chosen) -> int:

@@ -6,7 +6,7 @@ Below both ``membrane`` and ``fem``: a law is written once and every solver uses
 (:mod:`.fit`, :mod:`.fit_laws`, :mod:`.data`, :mod:`.drucker`) is imported on demand.
 """
 
-from .catalogue import CATALOGUE, material
+from .catalogue import CATALOGUE, PRONY, material, viscosity
 from .file import LAW_CONSTANTS, load_material, material_record, read_material_file
 from .law import (PROVENANCES, Material, mooney_rivlin, neo_hookean, polynomial_d2W,
                   polynomial_dW, polynomial_energy, yeoh)
@@ -15,6 +15,7 @@ __all__ = [
     "CATALOGUE",
     "LAW_CONSTANTS",
     "Material",
+    "PRONY",
     "PROVENANCES",
     "load_material",
     "material",
@@ -25,5 +26,6 @@ __all__ = [
     "polynomial_dW",
     "polynomial_energy",
     "read_material_file",
+    "viscosity",
     "yeoh",
 ]

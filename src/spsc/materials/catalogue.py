@@ -6,8 +6,9 @@ from __future__ import annotations
 from spsc.core.errors import ParameterError
 from .file import load_material
 from .law import Material, neo_hookean, yeoh
+from .prony import Prony
 
-__all__ = ["CATALOGUE", "material"]
+__all__ = ["CATALOGUE", "PRONY", "material", "viscosity"]
 
 
 def _shore_a_to_youngs(shore_a: float) -> float:
@@ -49,3 +50,33 @@ def material(name) -> Material:
         raise ParameterError("material", name, "one of " + ", ".join(CATALOGUE)
                              + ", or a material file (.json) from spsc fit-material")
     return CATALOGUE[key]
+
+
+#: Prony terms of the catalogue's materials, with where they come from (the hyperelastic law
+#: above is the relaxed response)
+PRONY: dict[str, tuple[Prony, str]] = {
+    "tpu60a": (Prony(((0.646, 1.0),)), "CALIBRATED: one term, tau = 1 s assumed, beta fitted "
+               "so the wall model's squeeze-release of the Table 1 Type B (6 mm at 1 mm/s, "
+               "open chamber) dissipates the paper's measured 3.8 N hysteresis (sec. 3.1); "
+               "bench/bench_hysteresis.py. No relaxation test of TPU 60A used."),
+}
+
+
+def viscosity(name) -> tuple[Prony | None, str]:
+    """(the Prony terms of ``name``, where they come from): the catalogue's, or the ``prony``
+    entry of a material file; (None, why) where the material has none (elastic)."""
+    text = str(name).strip()
+    if text.lower().endswith(".json"):
+        from pathlib import Path
+
+        from .file import read_material_file
+        from .prony import prony_from_record
+
+        record = read_material_file(text)
+        if "prony" not in record:
+            return None, f"{Path(text).name} has no prony entry (spsc fit-material --relaxation)"
+        return prony_from_record(record["prony"], Path(text).name), \
+            str(record["prony"].get("source", ""))
+    material(text)  # a catalogue name, or the one-line error
+    got = PRONY.get(text.lower())
+    return (got[0], got[1]) if got else (None, f"the catalogue has no Prony terms for {text}")

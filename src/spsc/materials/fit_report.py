@@ -72,12 +72,14 @@ def fit_report(fits: dict, tests, *, chosen, why: str, rng, weighting: str, note
                               "path": None if material_path is None else str(material_path)}}
 
 
-def write_outputs(args, tests, fits, chosen, why, rng, notes) -> None:
-    """Write what the options ask for (their paths were checked before the fit)."""
+def write_outputs(args, tests, fits, chosen, why, rng, notes, prony=None) -> None:
+    """Write what the options ask for (their paths were checked before the fit); ``prony``
+    the material file's Prony entry (:func:`~.prony.prony_record`) or None."""
     if args.out is not None and chosen is not None:
         name = args.name or Path(args.out).stem
-        write_json(args.out, material_file_record(chosen, tests, name=name, rng=rng,
-                                                  weighting=args.weighting, why=why))
+        record = material_file_record(chosen, tests, name=name, rng=rng,
+                                      weighting=args.weighting, why=why)
+        write_json(args.out, record if prony is None else dict(record, prony=prony))
         use = (f"use it as --material {args.out}" if chosen.name != "ogden" else
                "a record of the fit: the models take neo-hookean, mooney-rivlin or yeoh")
         print(f"material file {args.out} ({chosen.name}, name {name!r}): {use}")

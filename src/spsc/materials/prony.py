@@ -23,7 +23,8 @@ from scipy.optimize import nnls
 
 from spsc.core.errors import ParameterError, require
 
-__all__ = ["Prony", "PronyFit", "fit_relaxation"]
+__all__ = ["Prony", "PronyFit", "fit_relaxation", "read_relaxation", "prony_record",
+           "prony_from_record"]
 
 
 @dataclass(frozen=True)
@@ -122,3 +123,51 @@ def _polish(t, y, c0, c, taus):
     z = sol.x
     order = np.argsort(z[n + 1:])
     return float(np.exp(z[0])), np.exp(z[1:n + 1])[order], np.exp(z[n + 1:])[order]
+
+
+def read_relaxation(path) -> tuple[np.ndarray, np.ndarray, dict]:
+    """(t_s, value, the file's record) of a relaxation test: a CSV with a time column ``t_s``
+    (s) and one value column (stress or modulus, any unit: the fit is relative); one-line
+    :class:`ParameterError` naming the file otherwise."""
+    import hashlib
+    from pathlib import Path
+
+    import pandas as pd
+
+    p = Path(path)
+    try:
+        raw = p.read_bytes()
+        df = pd.read_csv(p, comment="#")
+    except (OSError, ValueError) as exc:
+        raise ParameterError("--relaxation", str(path), f"a readable CSV with t_s and a stress "
+                             f"or modulus column ({str(exc).splitlines()[0]})") from None
+    values = [c for c in df.columns if c != "t_s"]
+    if "t_s" not in df.columns or len(values) != 1:
+        raise ParameterError("--relaxation", p.name, "a CSV with the columns t_s and one value "
+                             f"(stress or modulus); it has {', '.join(map(str, df.columns))}")
+    t = pd.to_numeric(df["t_s"], errors="coerce").to_numpy(float)
+    v = pd.to_numeric(df[values[0]], errors="coerce").to_numpy(float)
+    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(v))):
+        raise ParameterError("--relaxation", p.name, "numbers in every row (a row is empty or "
+                             "not a number)")
+    return t, v, {"file": p.name, "sha256": hashlib.sha256(raw).hexdigest(),
+                  "column": str(values[0]), "points": int(t.size)}
+
+
+def prony_record(fit: PronyFit, data: dict, source: str = "") -> dict:
+    """The ``prony`` entry of a material file: the terms, where they come from, the fit."""
+    return {"terms": [list(t) for t in fit.prony.terms],
+            "source": source or f"fitted by spsc fit-material to the relaxation test "
+                                f"{data['file']}",
+            "fit": {"rms_relative": fit.rms_relative, "relaxed": fit.relaxed,
+                    "taus_tried_s": list(fit.taus_tried)}, "data": data}
+
+
+def prony_from_record(record: dict, fname: str = "") -> Prony:
+    """The :class:`Prony` of a material file's ``prony`` entry (one-line error naming it)."""
+    where = f"material {fname}: prony" if fname else "prony"
+    terms = record.get("terms") if isinstance(record, dict) else None
+    try:
+        return Prony(tuple((float(b), float(t)) for b, t in terms))
+    except (TypeError, ValueError):
+        raise ParameterError(where, terms, "a list of [beta, tau_s] pairs") from None
