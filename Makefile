@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem gate test test-slow test-all docs bench bench-mold bench-compare bench-wall bench-material bench-sweep bench-time bench-hysteresis clean
+.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-all docs bench bench-mold bench-compare bench-wall bench-material bench-sweep bench-time bench-hysteresis clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -25,6 +25,7 @@ help:
 	@echo "make fingertip                                                   -> build/fingertip/"
 	@echo "make fingertip-fem [FT_MESH=2]                                 -> build/fingertip/fem/"
 	@echo "make haptic-fem                                                -> build/haptic-fem/ (the motor's cost)"
+	@echo "make time-study                                                -> build/time-study/ (trace, Bode, hysteresis)"
 	@echo "make test | make test-slow | make test-all | make docs | make gate | make bench | make report [QUICK=1]"
 
 $(STAMP): pyproject.toml
@@ -57,6 +58,11 @@ fingertip-fem: $(STAMP)
 # three curves, 10–15 min; reused when they exist)
 haptic-fem: $(STAMP)
 	$(BIN)/spsc haptic --out build/haptic-fem
+
+# the chamber in time for the report: the press-hold-switch trace, its Bode plot, the
+# squeeze-release hysteresis of Types A-D (about 3 min); spsc report shows build/time-study
+time-study: $(STAMP)
+	$(BIN)/spsc simulate examples/press-hold-switch.toml --study --out build/time-study --cache build/cache
 
 # the printability gate on every preset and the mold gate on every type (run by CI)
 gate: $(STAMP)

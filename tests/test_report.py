@@ -407,3 +407,39 @@ def test_mold_section(tmp_path):
     assert "core_volume" in broken["Type B, core scaled by 0.98"]
     assert broken["Type D split horizontally (--parting z)"] == ["pull_upper"]
     assert "undercut" in section
+
+
+def test_the_time_study_gets_its_own_section(tmp_path):
+    """The report shows the study ``make time-study`` wrote (the switch under load, the
+    hysteresis per type against the paper, the Bode limits, the copied figures), and says how
+    to make it when there is none."""
+    study = tmp_path / "time"
+    for rel in ("trace/trace.png", "bode/bode.png", "hysteresis.png"):
+        (study / rel).parent.mkdir(parents=True, exist_ok=True)
+        (study / rel).write_bytes(b"\x89PNG\r\n\x1a\nfake")
+    summary = {
+        "scenario": {"chamber": {"type": "B"}, "circuit": {
+            "setup_kPa": 40, "reservoir_mm3": 40000, "gas": {"n": 1.4, "thermal_time_s": 0.5}}},
+        "complete": True, "material": "tpu60a", "prony_source": "CALIBRATED: on B",
+        "switches": [{"t_s": 1.0, "valve": "open", "y_mm": 3.0, "pressure_before_kPa": 46.554,
+                      "pressure_after_kPa": 40.709, "rise_ms": 8.0, "settle_2pct_ms": 12.0}],
+        "hysteresis": [{"type": t, "hysteresis_N": h, "at_mm": 4.5, "dissipated_mJ": 10.0,
+                        "paper_N": p, "error_pct": 100 * (h / p - 1), "complete": True}
+                       for t, h, p in (("A", 4.9, 8.1), ("B", 3.8, 3.8))],
+        "cycle": {"stroke_mm": 6.0, "speed_mm_s": 1.0},
+        "bode": {"y_mm": 3.0, "valve_open": True, "stiffness_low_f_N_per_mm": 3.01,
+                 "stiffness_high_f_N_per_mm": 4.45, "sensitivity_low_f_kPa_per_mm": 0.44,
+                 "sensitivity_high_f_kPa_per_mm": 5.2, "sensitivity_halfway_Hz": 50.3}}
+    (study / "summary.json").write_text(json.dumps(summary), encoding="utf-8")
+    page = build_report(SMALL, {}, tmp_path / "r", source=CLEAN,
+                        time_study=study).read_text(encoding="utf-8")
+    section = " ".join(page[page.index("The chamber in time"):].split())
+    assert "46.55" in section and "40.71" in section and "CALIBRATED: on B" in section
+    assert "−40 %" in section or "-40 %" in section  # A: 4.9 against 8.1
+    assert "halfway (in log) at 50.3 Hz" in section
+    for name in ("trace", "bode", "hysteresis"):
+        assert f'src="time/{name}.png"' in section
+        assert (tmp_path / "r" / "time" / f"{name}.png").exists()
+    none = build_report(SMALL, {}, tmp_path / "n", source=CLEAN,
+                        time_study=tmp_path / "nothing").read_text(encoding="utf-8")
+    assert "make time-study" in none

@@ -61,6 +61,9 @@ def register(subparsers) -> None:
     p.add_argument("--haptic", metavar="DIR", default=None,
                    help="the haptic chamber's study to show (make haptic-fem's "
                    "build/haptic-fem, the default when it exists)")
+    p.add_argument("--time", metavar="DIR", default=None,
+                   help="the time-domain study to show (make time-study's build/time-study, "
+                   "the default when it exists)")
     p.add_argument("--types", help="subset of the types, e.g. BD (default ABCD)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     d = p.add_argument_group("where the runs are computed (Dask; no cluster is started when "
@@ -107,6 +110,9 @@ def run(args) -> int:
     if args.haptic is not None and not (Path(args.haptic) / "summary.json").is_file():
         raise ParameterError("haptic", args.haptic, "a folder holding the haptic chamber's "
                              "study summary.json (make haptic-fem writes build/haptic-fem)")
+    if args.time is not None and not (Path(args.time) / "summary.json").is_file():
+        raise ParameterError("time", args.time, "a folder holding the time-domain study's "
+                             "summary.json (make time-study writes build/time-study)")
     study = quick_study() if args.quick else full_study()
     if args.no_fem:
         study = study.replace(fem=False)
@@ -131,7 +137,8 @@ def run(args) -> int:
                         fig_cache=cache.root / "figures", source=source,
                         wall_seconds=time.perf_counter() - t0, bench=bench,
                         executor=executor, sweep=sweep, fingertip=_fingertip(args),
-                        molds=tuple(study.types), haptic=_haptic(args))
+                        molds=tuple(study.types), haptic=_haptic(args),
+                        time_study=_time(args))
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
@@ -149,6 +156,12 @@ def _haptic(args):
     from spsc.report.haptic import DEFAULT_DIR
 
     return DEFAULT_DIR if args.haptic is None else args.haptic
+
+
+def _time(args):
+    from spsc.report.time import DEFAULT_DIR
+
+    return DEFAULT_DIR if args.time is None else args.time
 
 
 def _fingertip(args):

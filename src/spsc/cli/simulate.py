@@ -19,6 +19,7 @@ import sys
 from pathlib import Path
 
 from spsc.cli.options import add_quiet_option, check_output_dir
+from spsc.core.errors import ParameterError
 
 __all__ = ["register", "run"]
 
@@ -36,6 +37,12 @@ def register(subparsers) -> None:
     p.add_argument("--bode", action="store_true", help="the frequency response (dynamic "
                    "stiffness and sensitivity) about the scenario's [bode] point instead of "
                    "the trace")
+    p.add_argument("--study", action="store_true", help="the report's time-domain study: "
+                   "the trace, the Bode plot and the squeeze-release hysteresis of --types with "
+                   "the material's Prony terms (about 3 min; DIR/summary.json, what spsc report "
+                   "--time shows)")
+    p.add_argument("--types", default="ABCD", metavar="ABCD", help="with --study: the Table 1 "
+                   "types whose hysteresis is computed (default ABCD)")
     p.add_argument("--cache", metavar="DIR", default=None, help="where chamber maps are kept "
                    "(default: spsc-cache beside --out)")
     add_quiet_option(p)
@@ -76,6 +83,8 @@ def run(args) -> int:
 
     if args.bode:
         return _bode(scenario, out, cache, map_progress, bars, quiet)
+    if args.study:
+        return _study(scenario, out, cache, args.types, quiet)
     try:
         sim = simulate(scenario, cache_dir=cache, progress=progress, map_progress=map_progress)
     finally:
@@ -111,3 +120,36 @@ def _bode(scenario, out, cache, map_progress, bars, quiet) -> int:
               + (f", halfway at {half:.3g} Hz" if half else "") + " -> "
               + ", ".join(f.name for f in files), file=sys.stderr)
     return 0
+
+
+def _study(scenario, out, cache, types, quiet) -> int:
+    from tqdm import tqdm
+
+    from spsc.studies.time import run_time_study
+
+    types = str(types).upper()
+    if not types or any(t not in "ABCD" for t in types) or len(set(types)) != len(types):
+        raise ParameterError("--types", types, "letters of ABCD, each once")
+    bar = None
+
+    def progress(what, done, total):
+        nonlocal bar
+        if quiet:
+            return
+        if bar is None:
+            bar = tqdm(total=total, desc="hysteresis cycles", unit="type", file=sys.stderr,
+                       leave=False)
+        bar.update(done - bar.n)
+
+    if not quiet:
+        print(f"spsc {VERB} --study: the trace, the Bode plot, then {len(types)} squeeze-release "
+              "cycles (about 40 s each)", file=sys.stderr)
+    try:
+        summary = run_time_study(scenario, out, cache_dir=cache, types=types, progress=progress)
+    finally:
+        if bar is not None:
+            bar.close()
+    if not quiet:
+        rows = ", ".join(f"{r['type']} {r['hysteresis_N']:.2f} N" for r in summary["hysteresis"])
+        print(f"spsc {VERB} --study: hysteresis {rows} -> {out}/summary.json", file=sys.stderr)
+    return 0 if summary["complete"] and all(r["complete"] for r in summary["hysteresis"]) else 1
