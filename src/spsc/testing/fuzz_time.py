@@ -71,6 +71,15 @@ _WRONG = (
     ("bode", "[bode]\ny_mm = 9\n", "bode.y_mm", "a Bode point beyond the press"),
     ("bode", "[bode]\nf_min_Hz = 10\nf_max_Hz = 1\n", "bode.f_max_Hz", "frequencies reversed"),
     ("bode", '[bode]\nvalve = "half"\n', "bode.valve", "unknown Bode valve"),
+    ("press", "force = [[0, 1], [1, 2]]\n", "press", "a travel and a force press"),
+    ("press", "max_travel_mm = 3\n", "press.max_travel_mm", "a depth for a travel press"),
+    ("bode", "[stiffness]\ntarget = [[0, -1]]\n", "stiffness.target", "negative stiffness"),
+    ("bode", "[stiffness]\ntarget = [[0, 3]]\nreservoir_mm3 = [100, 50]\n",
+     "stiffness.reservoir_mm3", "the piston's stroke reversed"),
+    ("bode", "[stiffness]\ntarget = [[0, 3]]\nreservoir_mm3 = [1000, 20000]\n",
+     "circuit.reservoir_mm3", "the piston starting outside its stroke"),
+    ("bode", "[stiffness]\ntarget = [[0, 3]]\nspeed = 1\n", "stiffness.speed",
+     "unknown stiffness key"),
     ("output", "dt = 0\n", "output.dt", "zero time step"),
     ("output", "dt = 1e-9\n", "output.dt", "too many samples"),
     ("output", "dt = 0.001\nevery = 2\n", "output.every", "unknown output key"),
@@ -117,6 +126,8 @@ def simulate_cases(f: dict, tmp: Path) -> list[Case]:
                    "scenario", "input file"),
               Case(("simulate", str(f["binary.csv"]), "--out", out), "binary scenario",
                    "scenario", "input file"),
-              Case(("simulate", str(sc["scenario"])), "no --out", "out", "argparse")]
+              Case(("simulate", str(sc["scenario"])), "no --out", "out", "argparse"),
+              Case(base + ("--study", "--types", "E"), "a study of an unknown type", "--types",
+                   "choice")]
     cases += out_dirs(base[:2] + ("--quiet",), "--out", f)
     return cases
