@@ -80,18 +80,28 @@ def register(subparsers) -> None:
     p.set_defaults(func=run)
 
 
-def _chamber(args):
-    """The dense map of the chamber the arguments name, with a progress bar."""
-    from tqdm import tqdm
-
+def _check_chamber(args):
+    """The chamber, its material, setup and the wall model's mesh, checked (the limits of
+    ``spsc curve``) before any work: the geometry."""
+    from spsc.core.loadcase import check_load
     from spsc.materials import material
-    from spsc.sensing import DenseMap
-    from spsc.sensing.chamber import chamber_map
+    from spsc.models.wall import wall_size_check
 
     geometry = geometry_from_args(args)
     material(args.material)
-    require("pressure", args.pressure, ge=0, le=200, unit="kPa gauge")
-    require("reservoir", args.reservoir, ge=0, le=1e7, unit="mm³")
+    check_load(geometry, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
+               stroke_mm=args.stroke, points=2, polytropic_n=1.0)
+    wall_size_check(VERB, geometry, args.mesh_size, 2, 2, force=False, quiet=True, points=2)
+    return geometry
+
+
+def _chamber(args, geometry):
+    """The dense map of the chamber, built or from the cache, with a progress bar."""
+    from tqdm import tqdm
+
+    from spsc.sensing import DenseMap
+    from spsc.sensing.chamber import chamber_map
+
     out = Path(args.out) if args.out else Path.cwd() / "spsc-sense"
     cache = Path(args.cache) if args.cache else out.absolute().parent / "spsc-cache"
     bar = tqdm(desc="chamber map", unit="level", disable=bool(args.quiet), file=sys.stderr,
@@ -114,6 +124,7 @@ def _params(args, noise: float, rate_Hz: float):
     from spsc.sensing import EstimatorParams, SenseParams
     from spsc.sensing.detectors import ComplianceParams, ContactParams
 
+    require("smoothing", args.smoothing, ge=0, le=10, unit="s")
     est = EstimatorParams(args.pressure, args.reservoir, noise, args.model_error,
                           smoothing_s=args.smoothing, valve_open=args.valve == "open")
     comp = (ComplianceParams(args.stiff_mm_per_deg) if args.stiff_mm_per_deg is not None
@@ -181,10 +192,11 @@ def _batch(args) -> int:
     from spsc.sensing import SenseStream
     from spsc.sensing.log import read_log
 
+    geometry = _check_chamber(args)
     log = read_log(args.log, args.pressure_column)
     loop = _haptic_loop(args)
-    dense = _chamber(args)
-    stream = SenseStream(dense, _params(args, _noise(args, log), log.rate_Hz))
+    params = _params(args, _noise(args, log), log.rate_Hz)
+    stream = SenseStream(_chamber(args, geometry), params)
     n = len(log)
     v, fsr, ang = log.valve_open, log.fsr, log.angle_deg
     states, joints, commands = [], [], []
@@ -241,12 +253,14 @@ def _follow(args) -> int:
     from spsc.sensing import SenseStream
     from spsc.sensing.log import LineReader
 
+    geometry = _check_chamber(args)
+    loop = _haptic_loop(args)
+    params = _params(args, _noise(args), 1000.0)
     header = sys.stdin.readline()
     if not header.strip():
         raise ParameterError("standard input", "empty", "a CSV header line, then samples")
     reader = LineReader(header, args.pressure_column)
-    loop = _haptic_loop(args)
-    stream = SenseStream(_chamber(args), _params(args, _noise(args), 1000.0))
+    stream = SenseStream(_chamber(args, geometry), params)
     states, pressures, joints, commands = [], [], [], []
     for line in sys.stdin:
         sample = reader.sample(line)

@@ -134,6 +134,10 @@ class Estimator:
         conserved). What it did, for the event."""
         if opened == self.open:
             return {}
+        if opened and self.params.reservoir_mm3 <= 0:
+            from spsc.core.errors import ParameterError
+            raise ParameterError(f"valve_open (at t = {t_s:g} s)", 1, "0 without a reservoir "
+                                 "(reservoir_mm3 = 0)")
         y = self.y if y_mm is None else y_mm
         if opened:
             before = self.table.rest_kPa
