@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.dynamics import Sensor
+from spsc.dynamics.circuit import CircuitFailure
 from spsc.sensing import DenseMap, EstimatorParams, SenseParams, SenseStream
 from spsc.sensing.chamber import chamber_map
 from spsc.sensing.detectors import ComplianceParams, ContactParams
@@ -38,32 +39,41 @@ WINDOW = {"contact": (-0.02, 0.4), "release": (-0.15, 0.3), "slip": (-0.02, 0.2)
           "switch": (-0.01, 0.05), "stiff_object": (-0.1, 1.5), "soft_object": (-0.1, 1.5)}
 
 
-def scenarios(m, rng, n):
-    """About ``n`` trials: presses, switches under load, slips and partial releases, grasps
-    of stiff and soft objects; the mode drawn for each."""
-    out = []
-    kinds = ["press"] * 12 + ["switch"] * 3 + ["slip"] * 3 + ["partial"] * 3 + ["grasp"] * 4
-    for i in range(n):
-        kind = kinds[i % len(kinds)]
-        seed = int(rng.integers(1 << 30))
-        opened = bool(rng.integers(2)) and kind != "switch"
-        depth = float(rng.uniform(1.0, 2.8))
-        if kind == "press":
-            t = st.press(m, depth_mm=depth, speed_mm_s=float(rng.choice([5, 10, 20, 50])),
-                         hold_s=float(rng.uniform(0.2, 0.6)), valve_open=opened, seed=seed)
-        elif kind == "switch":
-            t = st.press(m, depth_mm=depth, speed_mm_s=10.0, hold_s=0.8, seed=seed,
-                         switches=[(0.3 + (depth + 0.3) / 10.0 + 0.4, True)])
-        elif kind in ("slip", "partial"):
-            t = st.slip_press(m, depth_mm=depth, slip=kind == "slip", valve_open=opened,
-                              seed=seed)
-        else:
-            share = float(rng.uniform(0.7, 1.0) if i % 2 else rng.uniform(0.15, 0.35))
-            t = st.grasp(m, share=share, lever_mm_per_deg=LEVER, valve_open=opened, seed=seed)
-        t.meta["mode"] = "low" if opened else "high"
-        t.meta["scenario"] = kind
-        out.append(t)
+def scenarios(m, rng, n, failed):
+    """``n`` trials: presses, switches under load, slips and partial releases, grasps of stiff
+    and soft objects; the mode drawn for each. A draw the circuit cannot integrate is counted
+    in ``failed`` and drawn again."""
+    out, i = [], 0
+    while len(out) < n:
+        try:
+            out.append(_scenario(m, rng, i))
+        except CircuitFailure as exc:
+            failed.append(str(exc))
+        i += 1
     return out
+
+
+def _scenario(m, rng, i):
+    kinds = ["press"] * 12 + ["switch"] * 3 + ["slip"] * 3 + ["partial"] * 3 + ["grasp"] * 4
+    kind = kinds[i % len(kinds)]
+    seed = int(rng.integers(1 << 30))
+    opened = bool(rng.integers(2)) and kind != "switch"
+    depth = float(rng.uniform(1.0, 2.8))
+    if kind == "press":
+        t = st.press(m, depth_mm=depth, speed_mm_s=float(rng.choice([5, 10, 20, 50])),
+                     hold_s=float(rng.uniform(0.2, 0.6)), valve_open=opened, seed=seed)
+    elif kind == "switch":
+        t = st.press(m, depth_mm=depth, speed_mm_s=10.0, hold_s=0.8, seed=seed,
+                     switches=[(0.3 + (depth + 0.3) / 10.0 + 0.4, True)])
+    elif kind in ("slip", "partial"):
+        t = st.slip_press(m, depth_mm=depth, slip=kind == "slip", valve_open=opened,
+                          seed=seed)
+    else:
+        share = float(rng.uniform(0.7, 1.0) if i % 2 else rng.uniform(0.15, 0.35))
+        t = st.grasp(m, share=share, lever_mm_per_deg=LEVER, valve_open=opened, seed=seed)
+    t.meta["mode"] = "low" if opened else "high"
+    t.meta["scenario"] = kind
+    return t
 
 
 def run_stream(dense, trial, method, *, valve=True):
@@ -148,14 +158,14 @@ def main():
     args = ap.parse_args()
     rng = np.random.default_rng(29)
     res = {m: {"counts": {}, "lat": {}, "quiet_events": 0} for m in ("cusum", "threshold")}
-    inferred, acc, samples, seconds, t_map = {}, {}, 0, 0.0, {}
+    inferred, acc, samples, seconds, t_map, failed = {}, {}, 0, 0.0, {}, []
     for typ in args.types:
         t0 = time.perf_counter()
         m = chamber_map({"type": typ}, setup_kPa=SETUP, reservoir_mm3=RES, stroke_mm=STROKE,
                         mesh_size=1.0, cache_dir=args.cache)
         dense = DenseMap(m)
         t_map[typ] = time.perf_counter() - t0
-        trials = scenarios(m, rng, args.per_type)
+        trials = scenarios(m, rng, args.per_type, failed)
         for trial in trials:
             trial.meta["type"] = typ
             for method in ("cusum", "threshold"):
@@ -172,7 +182,9 @@ def main():
         for method in res:
             res[method]["quiet_events"] += quiet(dense, method, args.quiet_s,
                                                  int(rng.integers(1 << 30)))
-        print(f"Type {typ}: {len(trials)} scenarios (map {t_map[typ]:.1f} s)", flush=True)
+        print(f"Type {typ}: {len(trials)} scenarios (map {t_map[typ]:.1f} s); draws the "
+              f"circuit could not integrate so far: {len(failed)}"
+              + (f" (last: {failed[-1]})" if failed else ""), flush=True)
     report(args, res, inferred, acc, samples, seconds, len(args.types) * args.per_type)
 
 
