@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-all docs bench bench-mold bench-compare bench-wall bench-material bench-sweep bench-time bench-hysteresis clean
+.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-all docs bench bench-mold bench-compare bench-wall bench-material bench-sweep bench-time bench-sense bench-hysteresis clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -115,6 +115,11 @@ bench-wall: $(STAMP)
 
 bench-time: $(STAMP)
 	$(BIN)/python bench/bench_time.py
+
+# the chamber as a sensor (issue 29): 200 generated scenarios on Types A-D (about 10 min; the
+# chamber maps are built once into build/cache)
+bench-sense: $(STAMP)
+	$(BIN)/python bench/bench_sense.py
 
 bench-hysteresis: $(STAMP)
 	$(BIN)/python bench/bench_hysteresis.py

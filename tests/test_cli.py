@@ -103,6 +103,9 @@ KEY_OPTIONS = {
     "fit-material": ["--test", "--law", "--ogden-terms", "--range", "--strain-unit",
                      "--stress-unit", "--json", "--png", "--out", "--list-catalogue"],
     "simulate": ["--out", "--csv", "--cache", "--quiet"],
+    "sense": ["--out", "--type", "--material", "--pressure", "--reservoir", "--noise",
+              "--model-error", "--detector", "--follow", "--haptic-calibrate", "--haptic",
+              "--cache", "--quiet"],
 }
 
 

@@ -16,7 +16,8 @@ ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src" / "spsc"
 #: The layers, lowest first: a package may import only the packages before it (and itself).
 #: ``testing`` (what tests and benchmarks share) sits on top and nothing in spsc imports it.
-LAYERS = ("core", "cad", "materials", "membrane", "fem", "models", "study", "dynamics", "sweep",
+LAYERS = ("core", "cad", "materials", "membrane", "fem", "models", "study", "dynamics", "sensing",
+          "sweep",
           "design", "studies", "report", "cli", "testing")
 MAX_MODULE_LINES = 400
 MAX_FUNCTION_LINES = 60

@@ -37,6 +37,7 @@ COMMANDS = {
     "mold": "mold",
     "haptic": "haptic",
     "simulate": "simulate",
+    "sense": "sense",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

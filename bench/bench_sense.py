@@ -1,0 +1,239 @@
+"""The chamber as a sensor (issue 29), over generated scenarios on Types A–D (Table 1, 40 kPa,
+the paper's 40 cm³ reservoir, the ELVH's noise at 1 kHz):
+
+* contact onset latency (median, 95th percentile) from the true first contact, per mode and
+  contact detector (the paper's thresholds, the CUSUM);
+* precision, recall and F1 of contact, release, slip, switch (from the valve column and
+  inferred from P) and stiff/soft objects;
+* false events per minute of quiet signal (the chamber at rest, read by the sensor);
+* force error per type and mode over the holds (the trace's true force against the estimate);
+* streaming samples per second on one core.
+
+The traces run on the same chamber maps the estimator reads (1 mm wall mesh: the map's own
+accuracy against the 3D FEM is docs/theory/wall.md's, not what is measured here), built once
+into ``--cache`` (default build/cache).
+
+    python bench/bench_sense.py [--per-type 50] [--types ABCD] [--json F] [--cache DIR]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from spsc.dynamics import Sensor
+from spsc.dynamics.circuit import CircuitFailure
+from spsc.sensing import DenseMap, EstimatorParams, SenseParams, SenseStream
+from spsc.sensing.chamber import chamber_map
+from spsc.sensing.detectors import ComplianceParams, ContactParams
+from spsc.testing import sense_traces as st
+
+RES, SETUP, STROKE = 40000.0, 40.0, 3.0
+LEVER = 0.12  # mm of the chamber's travel per degree of closure on a rigid object
+#: the windows a detection must fall in after (before) the true event, s
+WINDOW = {"contact": (-0.02, 0.4), "release": (-0.15, 0.3), "slip": (-0.02, 0.2),
+          "switch": (-0.01, 0.05), "stiff_object": (-0.1, 1.5), "soft_object": (-0.1, 1.5)}
+
+
+def scenarios(m, rng, n, failed):
+    """``n`` trials: presses, switches under load, slips and partial releases, grasps of stiff
+    and soft objects; the mode drawn for each. A draw the circuit cannot integrate is counted
+    in ``failed`` and drawn again."""
+    out, i = [], 0
+    while len(out) < n:
+        try:
+            out.append(_scenario(m, rng, i))
+        except CircuitFailure as exc:
+            failed.append(str(exc))
+        i += 1
+    return out
+
+
+def _scenario(m, rng, i):
+    kinds = ["press"] * 12 + ["switch"] * 3 + ["slip"] * 3 + ["partial"] * 3 + ["grasp"] * 4
+    kind = kinds[i % len(kinds)]
+    seed = int(rng.integers(1 << 30))
+    opened = bool(rng.integers(2)) and kind != "switch"
+    depth = float(rng.uniform(1.0, 2.8))
+    if kind == "press":
+        t = st.press(m, depth_mm=depth, speed_mm_s=float(rng.choice([5, 10, 20, 50])),
+                     hold_s=float(rng.uniform(0.2, 0.6)), valve_open=opened, seed=seed)
+    elif kind == "switch":
+        t = st.press(m, depth_mm=depth, speed_mm_s=10.0, hold_s=0.8, seed=seed,
+                     switches=[(0.3 + (depth + 0.3) / 10.0 + 0.4, True)])
+    elif kind in ("slip", "partial"):
+        t = st.slip_press(m, depth_mm=depth, slip=kind == "slip", valve_open=opened,
+                          seed=seed)
+    else:
+        share = float(rng.uniform(0.7, 1.0) if i % 2 else rng.uniform(0.15, 0.35))
+        t = st.grasp(m, share=share, lever_mm_per_deg=LEVER, valve_open=opened, seed=seed)
+    t.meta["mode"] = "low" if opened else "high"
+    t.meta["scenario"] = kind
+    return t
+
+
+def run_stream(dense, trial, method, *, valve=True):
+    prm = SenseParams(EstimatorParams(SETUP, RES, trial.meta["noise_kPa"], 0.05,
+                                      valve_open=trial.meta["valve_open"]),
+                      ContactParams(method=method),
+                      compliance=ComplianceParams(stiff_mm_per_deg=0.5 * LEVER))
+    s = SenseStream(dense, prm)
+    log = trial.log
+    fsr = [c for c in log if c.startswith("fsr_")]
+    F = log[fsr].to_numpy() if fsr else None
+    a = log.angle_deg.to_numpy() if "angle_deg" in log else None
+    v = log.valve_open.to_numpy() if valve else None
+    rows = list(zip(log.t_s.tolist(), log.pressure_kPa.tolist()))
+    t0 = time.perf_counter()
+    states = [s.push(t, p, None if v is None else v[i], None if F is None else F[i],
+                     None if a is None else a[i])[0] for i, (t, p) in enumerate(rows)]
+    return s, states, time.perf_counter() - t0
+
+
+def match(true, got, counts, latencies, mode):
+    """Count true positives, false negatives and false positives per kind."""
+    used = set()
+    for e in true:
+        lo, hi = WINDOW[e["kind"]]
+        hit = next((k for k, g in enumerate(got) if k not in used and g["kind"] == e["kind"]
+                    and lo <= g["t_s"] - e["t_s"] <= hi), None)
+        c = counts.setdefault(e["kind"], [0, 0, 0])
+        if hit is None:
+            c[1] += 1
+        else:
+            used.add(hit)
+            c[0] += 1
+            if e["kind"] == "contact":
+                latencies.setdefault(mode, []).append(got[hit]["t_s"] - e["t_s"])
+    for k, g in enumerate(got):
+        if k not in used:
+            counts.setdefault(g["kind"], [0, 0, 0])[2] += 1
+
+
+def force_errors(trial, states, acc):
+    true = trial.truth.force_N.to_numpy()
+    f = np.array([s.force_N for s in states])
+    band = np.array([s.force_hi_N - s.force_N for s in states])
+    t = trial.truth.t_s.to_numpy()
+    hold = true > 0.5 * true.max()
+    for e in trial.events:
+        if e["kind"] == "switch":
+            hold &= ~((t >= e["t_s"]) & (t < e["t_s"] + 0.05))
+    key = (trial.meta["type"], "low" if trial.meta["valve_open"] else "high")
+    a = acc.setdefault(key, {"rel": [], "within": [], "bias": []})
+    a["rel"] += list(np.abs(f - true)[hold] / true[hold])
+    a["within"] += list(np.abs(f - true)[hold] <= np.maximum(0.05 * true[hold], band[hold]))
+    a["bias"].append(float(np.mean((f - true)[hold] / true[hold])))
+
+
+def quiet(dense, method, seconds, seed):
+    t = np.arange(int(seconds * 1000)) * 1e-3
+    p = Sensor.preset("elvh", seed=seed).read(np.full(t.size, SETUP))
+    prm = SenseParams(EstimatorParams(SETUP, RES, Sensor.preset("elvh").noise_kPa, 0.05),
+                      ContactParams(method=method))
+    s = SenseStream(dense, prm)
+    for a, b in zip(t.tolist(), p.tolist()):
+        s.push(a, b, 0)
+    return len(s.events)
+
+
+def prf(c):
+    tp, fn, fp = c
+    p = tp / (tp + fp) if tp + fp else float("nan")
+    r = tp / (tp + fn) if tp + fn else float("nan")
+    return p, r, 2 * p * r / (p + r) if p + r else float("nan")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--per-type", type=int, default=50)
+    ap.add_argument("--types", default="ABCD")
+    ap.add_argument("--quiet-s", type=float, default=120.0)
+    ap.add_argument("--cache", default="build/cache")
+    ap.add_argument("--json", default="build/bench-sense.json")
+    args = ap.parse_args()
+    rng = np.random.default_rng(29)
+    res = {m: {"counts": {}, "lat": {}, "quiet_events": 0} for m in ("cusum", "threshold")}
+    inferred, acc, samples, seconds, t_map, failed = {}, {}, 0, 0.0, {}, []
+    for typ in args.types:
+        t0 = time.perf_counter()
+        m = chamber_map({"type": typ}, setup_kPa=SETUP, reservoir_mm3=RES, stroke_mm=STROKE,
+                        mesh_size=1.0, cache_dir=args.cache)
+        dense = DenseMap(m)
+        t_map[typ] = time.perf_counter() - t0
+        trials = scenarios(m, rng, args.per_type, failed)
+        for trial in trials:
+            trial.meta["type"] = typ
+            for method in ("cusum", "threshold"):
+                s, states, dt = run_stream(dense, trial, method)
+                match(trial.events, s.events, res[method]["counts"], res[method]["lat"],
+                      trial.meta["mode"])
+                if method == "cusum":
+                    force_errors(trial, states, acc)
+                    samples, seconds = samples + len(states), seconds + dt
+            if trial.meta["scenario"] == "switch":
+                s, _, _ = run_stream(dense, trial, "cusum", valve=False)
+                match([e for e in trial.events if e["kind"] == "switch"],
+                      [e for e in s.events if e["kind"] == "switch"], inferred, {}, "")
+        for method in res:
+            res[method]["quiet_events"] += quiet(dense, method, args.quiet_s,
+                                                 int(rng.integers(1 << 30)))
+        print(f"Type {typ}: {len(trials)} scenarios (map {t_map[typ]:.1f} s); draws the "
+              f"circuit could not integrate so far: {len(failed)}"
+              + (f" (last: {failed[-1]})" if failed else ""), flush=True)
+    report(args, res, inferred, acc, samples, seconds, len(args.types) * args.per_type)
+
+
+def report(args, res, inferred, acc, samples, seconds, n):
+    out = {"scenarios": n, "streaming_samples_per_s": samples / seconds, "detectors": {}}
+    print(f"\n{n} scenarios, Types {args.types}, 1 kHz, ELVH noise (σ 0.086 kPa), "
+          f"reservoir {RES:g} mm³, setup {SETUP:g} kPa")
+    quiet_min = len(args.types) * args.quiet_s / 60.0
+    for method, r in res.items():
+        print(f"\n== contact detector: {method}")
+        for mode, lat in sorted(r["lat"].items()):
+            lat_ms = 1e3 * np.array(lat)
+            print(f"contact latency, {mode} mode: median {np.median(lat_ms):.1f} ms, 95th "
+                  f"percentile {np.percentile(lat_ms, 95):.1f} ms ({lat_ms.size} contacts)")
+        print(f"{'event':14s} {'TP':>4s} {'FN':>4s} {'FP':>4s} {'precision':>9s} "
+              f"{'recall':>6s} {'F1':>5s}")
+        d = {}
+        for kind, c in sorted(r["counts"].items()):
+            p, rc, f1 = prf(c)
+            d[kind] = {"tp": c[0], "fn": c[1], "fp": c[2], "precision": p, "recall": rc,
+                       "f1": f1}
+            print(f"{kind:14s} {c[0]:4d} {c[1]:4d} {c[2]:4d} {p:9.3f} {rc:6.3f} {f1:5.3f}")
+        fpm = r["quiet_events"] / quiet_min
+        print(f"false events in quiet signal: {r['quiet_events']} in {quiet_min:.0f} min "
+              f"({fpm:.3g}/min)")
+        out["detectors"][method] = {"events": d, "false_per_min": fpm, "latency_ms": {
+            mode: {"median": float(np.median(v) * 1e3),
+                   "p95": float(np.percentile(v, 95) * 1e3)} for mode, v in r["lat"].items()}}
+    if inferred:
+        p, rc, f1 = prf(inferred["switch"])
+        print(f"\nswitch inferred from P (no valve column): precision {p:.3f} recall {rc:.3f} "
+              f"F1 {f1:.3f} ({inferred['switch']})")
+        out["switch_inferred"] = {"precision": p, "recall": rc, "f1": f1}
+    print(f"\nforce over the holds (true F > half its peak), estimate against the trace:")
+    print(f"{'type':4s} {'mode':4s} {'median |e|/F':>12s} {'95th pct':>9s} {'mean bias':>9s} "
+          f"{'within max(5 %, band)':>22s}")
+    out["force"] = {}
+    for (typ, mode), a in sorted(acc.items()):
+        rel = np.array(a["rel"])
+        row = {"median": float(np.median(rel)), "p95": float(np.percentile(rel, 95)),
+               "bias": float(np.mean(a["bias"])), "within": float(np.mean(a["within"]))}
+        out["force"][f"{typ}-{mode}"] = row
+        print(f"{typ:4s} {mode:4s} {100 * row['median']:11.2f}% {100 * row['p95']:8.2f}% "
+              f"{100 * row['bias']:8.2f}% {100 * row['within']:21.1f}%")
+    print(f"\nstreaming: {samples} samples in {seconds:.2f} s = {samples / seconds:,.0f} "
+          "samples/s on one core (estimator + CUSUM + slip + compliance)")
+    Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+    Path(args.json).write_text(json.dumps(out, indent=2, default=float) + "\n")
+
+
+if __name__ == "__main__":
+    main()

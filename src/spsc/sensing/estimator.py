@@ -1,0 +1,234 @@
+"""Force and depth from the chamber's pressure: the inverse of the chamber's quasi-static map for
+the current mode and gas content, carried across valve switches, with its uncertainty.
+
+The physics (the paper's eq. 2 with n = 1, its static tests' isothermal gas; sec. 2.1's two
+modes):
+
+* high mode (valve closed): the chamber's gas is conserved, P_abs V(y, P) = c_c;
+* low mode (valve open, equalised): the chamber's and the reservoir's together,
+  P_abs (V(y, P) + V_r) = c_c + c_r.
+
+So from P and the current content the travel y follows, then F(y, P): one table P -> (y, F)
+per content (:class:`~spsc.sensing.table.ForceTable`), rebuilt only when the content changes.
+Across a switch the chamber's gas is conserved: opening pools c_c with the reservoir's gas at
+its last known pressure (c_r = P_r,abs V_r); closing keeps the chamber's c_c = P_abs V(y, P)
+of that instant (and the reservoir keeps P). While the valve equalises after an opening the
+chamber is not at the pooled pressure yet: the travel is held (the plate does not move in the
+valve's milliseconds) and F = F(y_held, P) follows the chamber's own pressure, until P reaches
+the pooled table's pressure at that travel. While nothing touches the chamber its rest pressure
+is tracked by a slow filter (temperature, leaks) and the content re-based on it.
+
+The pressure is smoothed by an α-β filter (constant rate: a steady press is followed without
+lag). Uncertainty (a 95 % band): the sensor's noise σ_P through the filter and dF/dP of the
+table, and the model's stated relative error e_m (a 95 % half-width, explicit: the paper states
+no model-versus-bench error; the wall model is within 2.7 % of the 3D FEM, docs/theory/wall.md,
+and a material's calibration adds its own),
+
+    ΔF = √((1.96 σ_f dF/dP)² + (e_m F)²),   σ_f² = σ_P² (2α² + 2β − 3αβ)/(α (4 − 2α − β)),
+
+α = 1 − exp(−Δt/τ_s), β = α²/(2 − α).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+
+from spsc.core.errors import require
+
+from .table import PA_KPA, DenseMap
+
+__all__ = ["EstimatorParams", "Estimator", "Estimate", "Z95"]
+
+#: the two-sided 95 % quantile of the normal distribution
+Z95 = 1.959964
+
+
+@dataclass(frozen=True)
+class EstimatorParams:
+    """``setup_kPa`` the gauge pressure chamber and reservoir were filled to at rest,
+    ``reservoir_mm3`` V_r, ``noise_kPa`` the sensor's σ_P, ``model_error`` e_m (relative, 95 %
+    half-width of the model's force), ``smoothing_s`` τ_s of the α-β filter on P,
+    ``rest_time_s`` the rest filter's time constant, ``drift_step_kPa`` how far the tracked
+    rest moves before the content is re-based, ``settle_max_s`` the longest wait for the
+    valve to equalise after an opening, ``valve_open`` the valve at the start."""
+
+    setup_kPa: float
+    reservoir_mm3: float
+    noise_kPa: float
+    model_error: float
+    smoothing_s: float = 0.005
+    rest_time_s: float = 2.0
+    drift_step_kPa: float = 0.01
+    settle_max_s: float = 0.5
+    valve_open: bool = False
+
+    def __post_init__(self):
+        require("setup_kPa", self.setup_kPa, ge=0, le=1000, unit="kPa gauge")
+        require("reservoir_mm3", self.reservoir_mm3, ge=0, le=1e8, unit="mm³")
+        require("noise_kPa", self.noise_kPa, gt=0, le=100, unit="kPa, the sensor's σ")
+        require("model_error", self.model_error, ge=0, lt=1, unit="relative, 95 %")
+        require("smoothing_s", self.smoothing_s, ge=0, le=10, unit="s")
+        require("rest_time_s", self.rest_time_s, gt=0, le=1e4, unit="s")
+        require("drift_step_kPa", self.drift_step_kPa, gt=0, le=100, unit="kPa")
+        require("settle_max_s", self.settle_max_s, gt=0, le=100, unit="s")
+        if self.valve_open and self.reservoir_mm3 <= 0:
+            from spsc.core.errors import ParameterError
+            raise ParameterError("valve_open", True, "False without a reservoir "
+                                 "(reservoir_mm3 = 0)")
+
+
+class Estimate(NamedTuple):
+    """One sample's estimate: force (N) with its 95 % band, depth y (mm), the filtered
+    pressure (kPa), whether P was inside the table, whether the valve is still settling."""
+
+    force_N: float
+    force_lo_N: float
+    force_hi_N: float
+    depth_mm: float
+    pressure_kPa: float
+    in_map: bool
+    settling: bool
+
+
+class Estimator:
+    """The streaming estimator on ``dense`` (:class:`~.table.DenseMap`): :meth:`update` per
+    sample, :meth:`switch` at a valve switch, :meth:`track_rest` while not in contact."""
+
+    def __init__(self, dense: DenseMap, params: EstimatorParams):
+        self.dense, self.params = dense, params
+        self.open = bool(params.valve_open)
+        self.p_res = params.setup_kPa  # the reservoir's last known pressure
+        self.c_ch = dense.rest_content(params.setup_kPa)
+        self._rebuild()
+        self.p_s = self.t = None
+        self.a, self.b, self.v = 1.0, 0.0, 0.0
+        self.noise_half = 0.0  # the last sample's band from the noise alone (N)
+        self.y = self.table.y[0]
+        self.settle = None  # (t of the opening, held travel, pooled pressure, tolerance)
+        self.rest = None
+
+    # -- the content ---------------------------------------------------------------------
+    def _rebuild(self) -> None:
+        vr = self.params.reservoir_mm3
+        pooled = self.dense.table(self.c_ch + (self.p_res + PA_KPA) * vr, vr) if vr > 0 \
+            else None
+        # closed, the pooled table is what an opening would give (the switch inferred from P)
+        self.table, self.pooled = (pooled, None) if self.open else \
+            (self.dense.table(self.c_ch), pooled)
+
+    @property
+    def rest_kPa(self) -> float:
+        """The pressure of the current content with nothing touching."""
+        return self.table.rest_kPa
+
+    def pooled_pressure(self, y_mm: float) -> float | None:
+        """The pressure the closed chamber would equalise to at ``y_mm`` if the valve opened
+        now (None when open or without a reservoir)."""
+        return None if self.pooled is None else self.pooled.pressure_at(y_mm)
+
+    def switch(self, t_s: float, opened: bool, p_kPa: float, y_mm: float | None = None) -> dict:
+        """The valve switched at ``t_s`` with the chamber at ``p_kPa`` (and the travel
+        ``y_mm``, default the last estimate): the content carried over (the chamber's gas
+        conserved). What it did, for the event."""
+        if opened == self.open:
+            return {}
+        if opened and self.params.reservoir_mm3 <= 0:
+            from spsc.core.errors import ParameterError
+            raise ParameterError(f"valve_open (at t = {t_s:g} s)", 1, "0 without a reservoir "
+                                 "(reservoir_mm3 = 0)")
+        y = self.y if y_mm is None else y_mm
+        if opened:
+            before = self.table.rest_kPa
+            self.open = True
+            self._rebuild()
+            p_eq = self.table.pressure_at(y)
+            # within a σ of the pooled pressure the table's reading differs from the held
+            # travel's by no more than its own noise: no jump at the hand-over
+            tol = max(self.sigma_kPa, 0.005 * abs(p_kPa - p_eq))
+            self.settle = (t_s, y, p_eq, tol, self.noise_half)
+            self.v = 0.0  # the valve's step is not the press's rate
+            return {"valve": "open", "held_depth_mm": y, "pooled_kPa": float(p_eq),
+                    "rest_before_kPa": before, "rest_after_kPa": self.table.rest_kPa}
+        p = p_kPa if self.p_s is None else self.p_s
+        self.c_ch = self.dense.content(p, y)
+        self.p_res = p
+        self.open, self.settle = False, None
+        self._rebuild()
+        return {"valve": "closed", "depth_mm": y, "reservoir_kPa": p,
+                "rest_after_kPa": self.table.rest_kPa}
+
+    def track_rest(self, p_kPa: float) -> bool:
+        """A sample with nothing touching: the slow rest filter, and the content re-based
+        when it has drifted ``drift_step_kPa``; True if it was."""
+        if self.settle is not None or self.t is None:
+            return False
+        prm = self.params
+        if self.rest is None:
+            self.rest = self.table.rest_kPa
+        self.rest += (1.0 - math.exp(-self._dt / prm.rest_time_s)) * (p_kPa - self.rest)
+        if abs(self.rest - self.table.rest_kPa) < prm.drift_step_kPa:
+            return False
+        self.c_ch = self.dense.rest_content(self.rest)
+        if self.open:
+            self.p_res = self.rest
+        self._rebuild()
+        return True
+
+    def leave_rest(self) -> None:
+        """Contact began: the rest filter stops (and starts again from the table's rest)."""
+        self.rest = None
+
+    # -- one sample ----------------------------------------------------------------------
+    @property
+    def sigma_kPa(self) -> float:
+        """σ of the filtered pressure (kPa): the α-β filter's steady state,
+        σ_f² = σ_P² (2α² + 2β − 3αβ)/(α (4 − 2α − β))."""
+        a, b = self.a, self.b
+        return self.params.noise_kPa * math.sqrt((2 * a * a + 2 * b - 3 * a * b)
+                                                 / (a * (4 - 2 * a - b)))
+
+    def _filter(self, dt: float, z: float) -> None:
+        """The α-β (constant-rate) filter on P: no lag on a steady press, unlike a one-pole
+        filter; α = 1 − exp(−Δt/τ_s), β = α²/(2 − α) (critically damped)."""
+        tau = self.params.smoothing_s
+        self._dt = dt
+        a = 1.0 - math.exp(-dt / tau) if tau > 0 else 1.0
+        self.a, self.b = a, a * a / (2.0 - a)
+        if self.settle is not None:  # the valve's exponential fall: no rate to follow
+            self.b = self.v = 0.0
+        pred = self.p_s + self.v * dt
+        r = z - pred
+        self.p_s = pred + a * r
+        self.v += self.b * r / dt
+
+    def update(self, t_s: float, p_kPa: float) -> Estimate:
+        """The estimate at the sample (``t_s`` s, ``p_kPa`` gauge)."""
+        if self.p_s is None:
+            self.p_s, self.v, self._dt = p_kPa, 0.0, 0.0
+        else:
+            self._filter(t_s - self.t, p_kPa)
+        self.t = t_s
+        p = self.p_s
+        if self.settle is not None:
+            t0, y, p_eq, tol, _ = self.settle
+            if abs(p - p_eq) <= tol or t_s - t0 > self.params.settle_max_s:
+                self.settle = None
+        sigma = self.sigma_kPa
+        if self.settle is not None:
+            # at the held travel F barely depends on P (0.1 N/kPa on the Type B dome): the raw
+            # sample, not the filter lagging the valve's fall
+            y, sigma = self.settle[1], self.params.noise_kPa
+            f = self.dense.at(self.dense.force, y, p_kPa)
+            dp = 0.05
+            slope = (self.dense.at(self.dense.force, y, p_kPa + dp) - f) / dp
+            inside = True
+            # and the held travel is as uncertain as it was read at the switch
+            noise = math.hypot(Z95 * sigma * slope, self.settle[4])
+        else:
+            y, f, slope, inside = self.table.lookup(p)
+            noise = self.noise_half = Z95 * sigma * slope
+        self.y = y
+        half = math.hypot(noise, self.params.model_error * f)
+        return Estimate(f, max(f - half, 0.0), f + half, y, p, inside, self.settle is not None)
