@@ -134,7 +134,7 @@ def test_iso6358_flow_function_and_the_orifice_conversion():
 
 def test_leaving_the_map_stops_with_the_trace_so_far():
     m = linear_map(top=50.0)  # the press drives the closed chamber past 50 kPa
-    with pytest.raises(CircuitFailure, match="outside the map") as err:
+    with pytest.raises(CircuitFailure, match="left the map") as err:
         integrate(m, Circuit(40.0, 0.0, Valve(0.06), Gas(n=1.0)),
                   PressProfile.of([[0, 0], [0.5, 0.1], [1, 4]]), dt=1e-2)
     # 50 kPa at (40 + Pa) 3000 / (3000 − 400 y) = 50 + Pa: y = 0.4956 mm, t = 0.5507 s; the

@@ -64,7 +64,7 @@ def _rates(chamber, circuit, state, y, ydot, open_, fdot=None):
     of the energy balance, with F_P Ṗ + F_y ẏ = Ḟ."""
     gas, valve = circuit.gas, circuit.valve
     mc, tc, mr, tr = state[0] * _MG, state[1], state[2] * _MG, state[3]
-    p = chamber.pressure(mc, tc, y)
+    p = chamber.pressure(mc, tc, y, check=False)
     s = chamber.slice(y)
     pa = p * _KPA + _PA
     v = float(s.volume(p)) * _MM3
@@ -215,9 +215,26 @@ class _Run:
         self.open = opened
         self.switches.append((float(t), bool(opened), why))
 
-    def _pressure(self, t, s):
+    def _pressure(self, t, s, check=True):
         y = self.profile.travel(t, self.chamber, s[0] * _MG, s[1])
-        return self.chamber.pressure(s[0] * _MG, s[1], y)
+        return self.chamber.pressure(s[0] * _MG, s[1], y, check)
+
+    def _events(self, armed) -> list:
+        """The integrator's terminal events: each armed trigger's crossing, then the chamber
+        pressure leaving the map's pressures (last)."""
+        def crossing(tr):
+            def f(t, s):
+                return self._pressure(t, s, False) - tr.level_kPa
+            f.terminal, f.direction = True, 1.0 if tr.above else -1.0
+            return f
+
+        lo, hi = self.chamber.p_lo, self.chamber.p_hi
+
+        def leaving(t, s):
+            p = self._pressure(t, s, False)
+            return min(p - lo, hi - p) + 1e-7
+        leaving.terminal, leaving.direction = True, -1.0
+        return [crossing(tr) for tr in armed] + [leaving]
 
     def piece(self, t0, t1, want) -> float:
         """Integrate from t0 toward t1 (outputs at ``want``); where it got to (a trigger
@@ -255,17 +272,11 @@ class _Run:
                 y = self.profile.travel(t, self.chamber, s[0] * _MG, s[1])
                 return _rates(self.chamber, self.circuit, s, y, None, open_, fdot=rate)
 
-        def crossing(tr):
-            def f(t, s):
-                return self._pressure(t, s) - tr.level_kPa
-            f.terminal, f.direction = True, 1.0 if tr.above else -1.0
-            return f
-
         t_eval = np.append(want, t1) if not want.size or want[-1] < t1 else want
         try:
             sol = solve_ivp(rhs, (t0, t1), self.state, method="LSODA", t_eval=t_eval,
                             rtol=1e-9, atol=1e-12 * self.scale,
-                            events=[crossing(tr) for tr in armed] or None)
+                            events=self._events(armed))
             failed = None if sol.success else sol.message
         except (ValueError, np.linalg.LinAlgError) as exc:
             failed = str(exc)
@@ -277,6 +288,14 @@ class _Run:
             keep = sol.t < te
             self._keep(sol.t[keep], sol.y[:, keep], open_)
             self.state = sol.y_events[k][0]
+            if k == len(armed):  # the gas left the map: the trace ends where it did
+                self._keep(np.array([te]), self.state[:, None], open_)
+                p = self._pressure(te, self.state, False)
+                err = CircuitFailure(f"stopped at t = {te:.6g} s: the chamber pressure "
+                                     f"({p:.4g} kPa) left the map's [{self.chamber.p_lo:.3g}, "
+                                     f"{self.chamber.p_hi:.3g}] kPa", float(te))
+                err.trace = self.trace()
+                raise err
             tr = armed[k]
             self.pending.remove(tr)
             self.switch(te, tr.opened, f"at t = {te:.6g} s: {tr.describe()}")
