@@ -53,6 +53,16 @@ def wall_cycle(geometry, material, prony, *, stroke_mm: float = 6.0, speed_mm_s:
     require("stroke", stroke_mm, gt=0, le=12, unit="mm")
     require("speed", speed_mm_s, gt=0, le=1e4, unit="mm/s")
     require("points", points, ge=3, le=500)
+    from threadpoolctl import threadpool_limits
+
+    # one BLAS thread, as wall_curve: on small blocks threads spin (10-20x slower under load)
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _cycle(geometry, material, prony, stroke_mm, speed_mm_s, int(points),
+                      pressure_kPa, reservoir_mm3, settings)
+
+
+def _cycle(geometry, material, prony, stroke_mm, speed_mm_s, points, pressure_kPa,
+           reservoir_mm3, settings) -> CycleResult:
     t0 = time.perf_counter()
     model = WallModel(geometry, material, settings, prony=prony)
     s = dataclasses.replace(model.default_settings(), snap_through=False)  # no potential
