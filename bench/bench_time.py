@@ -119,9 +119,13 @@ def speed(g_params, cache):
     t1 = time.perf_counter()
     again = simulate(sc, cache_dir=cache)
     t2 = time.perf_counter()
+    # the map's levels on two local worker processes (spsc simulate's default on 2 cores)
+    dask = simulate(sc, cache_dir=None, workers=2)
+    t3 = time.perf_counter()
     return {"samples": len(first.trace), "first_run_s": t1 - t0, "map_s": first.seconds["map"],
             "integrate_s": first.seconds["integrate"], "cached_run_s": t2 - t1,
-            "cached_integrate_s": again.seconds["integrate"]}
+            "cached_integrate_s": again.seconds["integrate"],
+            "first_run_2_workers_s": t3 - t2, "map_2_workers_s": dask.seconds["map"]}
 
 
 def main(argv=None) -> int:

@@ -24,6 +24,7 @@ from spsc.dynamics.chamber_map import build_map
 from spsc.dynamics.circuit import Circuit, integrate
 from spsc.dynamics.profile import PressProfile
 from spsc.fem.wall import wall_curve
+from spsc.fem.wall.model import WallSettings
 from spsc.materials import material
 
 G = preset("B", l=0.0)
@@ -157,3 +158,15 @@ def test_simulate_with_continuous_stiffness_reports_the_step(tmp_path):
     held = d[(d.t_s > 0.55) & (d.t_s < 0.6)]
     assert_allclose(held.stiffness_N_per_mm, 2.4, rtol=1e-3)
     assert 0.0 < steps[0]["rise_s"] < 0.1
+
+
+def test_the_map_built_on_dask_is_the_map_built_here():
+    """The levels pressed on two local worker processes give the map pressed one after the
+    other, to the last bit (the same solves, only elsewhere)."""
+    mat = material("tpu60a")
+    kw = dict(setup_kPa=30.0, top_kPa=50.0, y_max_mm=1.0, levels=3,
+              settings=WallSettings(mesh_size_mm=1.5))
+    here = build_map(G, mat, workers=1, **kw)
+    there = build_map(G, mat, workers=2, **kw)
+    for name, value in here.as_arrays().items():
+        np.testing.assert_array_equal(there.as_arrays()[name], value, err_msg=name)

@@ -43,6 +43,10 @@ def register(subparsers) -> None:
                    "--time shows)")
     p.add_argument("--types", default="ABCD", metavar="ABCD", help="with --study: the Table 1 "
                    "types whose hysteresis is computed (default ABCD)")
+    p.add_argument("--workers", default=None, metavar="N", help="local worker processes that "
+                   "press the chamber map's levels when it is built (default: one per core)")
+    p.add_argument("--scheduler", default=None, metavar="ADDR", help="address of a running "
+                   "Dask scheduler (tcp://host:8786) instead")
     p.add_argument("--cache", metavar="DIR", default=None, help="where chamber maps are kept "
                    "(default: spsc-cache beside --out)")
     add_quiet_option(p)
@@ -56,7 +60,10 @@ def run(args) -> int:
     from spsc.dynamics.scenario import read_scenario
     from spsc.dynamics.simulate import simulate
 
+    from spsc.study.executor import check_cluster
+
     out = check_output_dir("--out", args.out)
+    where = dict(zip(("workers", "scheduler"), check_cluster(args.workers, args.scheduler)))
     scenario = read_scenario(args.scenario)
     scenario.chamber.geometry()  # the chamber checked before any work
     from spsc.materials import material
@@ -82,11 +89,12 @@ def run(args) -> int:
             bars["run"].update(round(t, 6) - bars["run"].n)
 
     if args.bode:
-        return _bode(scenario, out, cache, map_progress, bars, quiet)
+        return _bode(scenario, out, cache, map_progress, bars, quiet, where)
     if args.study:
-        return _study(scenario, out, cache, args.types, quiet)
+        return _study(scenario, out, cache, args.types, quiet, where)
     try:
-        sim = simulate(scenario, cache_dir=cache, progress=progress, map_progress=map_progress)
+        sim = simulate(scenario, cache_dir=cache, progress=progress, map_progress=map_progress,
+                       **where)
     finally:
         for bar in bars.values():
             bar.close()
@@ -101,12 +109,13 @@ def run(args) -> int:
     return 0
 
 
-def _bode(scenario, out, cache, map_progress, bars, quiet) -> int:
+def _bode(scenario, out, cache, map_progress, bars, quiet, where) -> int:
     from spsc.dynamics.output import write_bode
     from spsc.dynamics.simulate import frequency_response
 
     try:
-        table, summary = frequency_response(scenario, cache_dir=cache, map_progress=map_progress)
+        table, summary = frequency_response(scenario, cache_dir=cache, map_progress=map_progress,
+                                            **where)
     finally:
         for bar in bars.values():
             bar.close()
@@ -122,7 +131,7 @@ def _bode(scenario, out, cache, map_progress, bars, quiet) -> int:
     return 0
 
 
-def _study(scenario, out, cache, types, quiet) -> int:
+def _study(scenario, out, cache, types, quiet, where) -> int:
     from tqdm import tqdm
 
     from spsc.studies.time import run_time_study
@@ -145,7 +154,8 @@ def _study(scenario, out, cache, types, quiet) -> int:
         print(f"spsc {VERB} --study: the trace, the Bode plot, then {len(types)} squeeze-release "
               "cycles (about 40 s each)", file=sys.stderr)
     try:
-        summary = run_time_study(scenario, out, cache_dir=cache, types=types, progress=progress)
+        summary = run_time_study(scenario, out, cache_dir=cache, types=types, progress=progress,
+                                 **where)
     finally:
         if bar is not None:
             bar.close()

@@ -144,16 +144,53 @@ def _level(model, p_kPa, travels, settings):
     return V, F, A, reached, res.message
 
 
+def _level_job(geometry, material, settings, p_kPa, travels):
+    """One level on a worker: its own wall model, one BLAS thread."""
+    from threadpoolctl import threadpool_limits
+
+    from spsc.fem.wall.model import WallModel
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _level(WallModel(geometry, material, settings), p_kPa, travels, settings)
+
+
+def _levels(model, jobs, settings, workers, scheduler, progress) -> list:
+    """The (V, F, A, reached, message) of each job (p_kPa, travels), in order: here, one after
+    the other (``workers`` 1), or on Dask (:func:`spsc.study.executor.dask_client`)."""
+    done = [None] * len(jobs)
+    if workers == 1 and not scheduler:
+        for j, (p, travels) in enumerate(jobs):
+            done[j] = _level(model, p, travels, settings)
+            if progress is not None:
+                progress(j + 1, len(jobs))
+        return done
+    from distributed import as_completed
+
+    from spsc.study.executor import dask_client
+
+    with dask_client(workers, scheduler) as client:
+        futures = {client.submit(_level_job, model.geometry, model.material, settings, p, t,
+                                 pure=False): j for j, (p, t) in enumerate(jobs)}
+        for k, fut in enumerate(as_completed(futures), start=1):
+            done[futures[fut]] = fut.result()
+            if progress is not None:
+                progress(k, len(jobs))
+    return done
+
+
 def build_map(geometry, material, *, setup_kPa: float, top_kPa: float, y_max_mm: float,
-              y_step_mm: float = 0.25, levels: int = 6, settings=None,
-              progress=None) -> ChamberMap:
+              y_step_mm: float = 0.25, levels: int = 6, settings=None, progress=None,
+              workers: int | None = 1, scheduler: str | None = None) -> ChamberMap:
     """The map of the chamber for gauge pressures 0 … ``top_kPa`` (``levels`` of them, the
     setup pressure added among them) and travels from the highest level's first contact to
     ``y_max_mm``, every ``y_step_mm``. Six levels (16 kPa apart to 80 kPa) reproduce the
     Table 1 Type B's wall curves as well as nine (slow press against ``spsc curve``: pressure
     7.0e-5 / 1.6e-5, force 7.2e-4 / 8.8e-4, high mode; the force's error is the travel's
-    interpolation) in 62 % of the time; five leave 1.5e-3 in pressure. ``progress(done, total)`` after each level. Raises
-    ParameterError naming the level when the wall model cannot reach ``y_max_mm`` there."""
+    interpolation) in 62 % of the time; five leave 1.5e-3 in pressure. The levels are pressed
+    one after the other (``workers`` 1) or on Dask: ``workers`` local processes (None: one
+    per core) or the cluster at ``scheduler``; the map is the same. ``progress(done, total)``
+    after each level. Raises ParameterError naming the level when the wall model cannot reach
+    ``y_max_mm`` there."""
     from threadpoolctl import threadpool_limits
 
     from spsc.fem.wall.model import WallModel, WallSettings
@@ -163,24 +200,26 @@ def build_map(geometry, material, *, setup_kPa: float, top_kPa: float, y_max_mm:
     ps = pressure_levels(setup_kPa, top_kPa, levels)
     with threadpool_limits(limits=1, user_api="blas"):
         tops = _tops(model, ps, settings)
-        z_ref = tops[float(setup_kPa)][1] if setup_kPa > 0 else tops[0.0][1]
-        y_lo = -(max(t[1] for t in tops.values()) - z_ref)
-        y = travel_grid(y_lo, y_max_mm, y_step_mm)
-        n_y = y.size
-        V, F, A = (np.zeros((n_y, len(ps))) for _ in range(3))
-        for j, p in enumerate(ps):
-            _, top, v_free = tops[float(p)]
-            travel = y - (z_ref - top)  # from this level's first contact
-            touching = travel > 1e-9
-            V[:, j], F[:, j], A[:, j] = v_free, 0.0, 0.0
-            if touching.any():
-                v, f, a, reached, message = _level(model, p, travel[touching], settings)
-                if not np.all(np.isfinite(v)):
-                    raise ParameterError(
-                        "chamber map", f"{p:g} kPa", "a pressure the wall model presses to "
-                        f"y = {y_max_mm:g} mm (it reached {reached + z_ref - top:.3g} mm: "
-                        f"{message}); lower the stroke or the pressures")
-                V[touching, j], F[touching, j], A[touching, j] = v, f, a
-            if progress is not None:
-                progress(j + 1, len(ps))
+    z_ref = tops[float(setup_kPa)][1] if setup_kPa > 0 else tops[0.0][1]
+    y_lo = -(max(t[1] for t in tops.values()) - z_ref)
+    y = travel_grid(y_lo, y_max_mm, y_step_mm)
+    V, F, A = (np.zeros((y.size, len(ps))) for _ in range(3))
+    touching = {}
+    for j, p in enumerate(ps):
+        _, top, v_free = tops[float(p)]
+        touching[j] = y - (z_ref - top) > 1e-9  # from this level's first contact
+        V[:, j], F[:, j], A[:, j] = v_free, 0.0, 0.0
+    jobs = [(float(p), y[touching[j]] - (z_ref - tops[float(p)][1]))
+            for j, p in enumerate(ps) if touching[j].any()]
+    with threadpool_limits(limits=1, user_api="blas"):
+        results = _levels(model, jobs, settings, workers, scheduler, progress)
+    for (p, _), (v, f, a, reached, message) in zip(jobs, results):
+        j = int(np.flatnonzero(ps == p)[0])
+        if not np.all(np.isfinite(v)):
+            top = tops[p][1]
+            raise ParameterError(
+                "chamber map", f"{p:g} kPa", "a pressure the wall model presses to "
+                f"y = {y_max_mm:g} mm (it reached {reached + z_ref - top:.3g} mm: "
+                f"{message}); lower the stroke or the pressures")
+        V[touching[j], j], F[touching[j], j], A[touching[j], j] = v, f, a
     return ChamberMap(y, ps, V, F, A, float(setup_kPa))

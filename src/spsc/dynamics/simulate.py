@@ -77,9 +77,11 @@ def _piston_ceiling(m: ChamberMap, sc, y0: float, y1: float, n: float) -> float:
     return p
 
 
-def chamber_map_for(scenario, *, cache_dir=None, progress=None) -> ChamberMap:
+def chamber_map_for(scenario, *, cache_dir=None, progress=None, workers: int | None = 1,
+                    scheduler: str | None = None) -> ChamberMap:
     """The map the scenario needs, from the cache (``cache_dir``/dynamics, keyed by the
-    chamber, the grid and the code) or built."""
+    chamber, the grid and the code) or built (its levels on ``workers`` local processes or
+    ``scheduler``'s cluster, :func:`~.chamber_map.build_map`)."""
     from spsc.fem.wall.model import WallSettings
     from spsc.materials import material
 
@@ -90,7 +92,7 @@ def chamber_map_for(scenario, *, cache_dir=None, progress=None) -> ChamberMap:
     top = max(2.0 * sc.setup_kPa, sc.setup_kPa + 30.0)
     while True:
         m = _cached(geometry, mat, settings, sc.setup_kPa, top, max(hi, 0.0), cache_dir,
-                    progress)
+                    progress, {"workers": workers, "scheduler": scheduler})
         n = 1.0 if sc.gas.isothermal else sc.gas.n
         need = _closed_ceiling(m, sc.setup_kPa, max(lo, m.y_range[0]), max(hi, 0.0), n)
         if sc.stiffness is not None:
@@ -100,21 +102,22 @@ def chamber_map_for(scenario, *, cache_dir=None, progress=None) -> ChamberMap:
         top = 1.15 * need
 
 
-def _cached(geometry, mat, settings, setup, top, y_max, cache_dir, progress) -> ChamberMap:
+def _cached(geometry, mat, settings, setup, top, y_max, cache_dir, progress,
+            where) -> ChamberMap:
     from spsc.study.keyed import KeyedFile, input_key
 
     inputs = {"geometry": geometry.as_dict(), "material": repr(mat), "settings": repr(settings),
               "setup_kPa": setup, "top_kPa": top, "y_max_mm": y_max}
     if cache_dir is None:
         return build_map(geometry, mat, setup_kPa=setup, top_kPa=top, y_max_mm=y_max,
-                         settings=settings, progress=progress)
+                         settings=settings, progress=progress, **where)
     key = input_key(inputs, ["spsc.dynamics.chamber_map"])
     f = KeyedFile(Path(cache_dir) / "dynamics" / f"map-{key[:16]}.npz", key)
     if f.valid:
         with np.load(f.path) as d:
             return ChamberMap.from_arrays(d)
     m = build_map(geometry, mat, setup_kPa=setup, top_kPa=top, y_max_mm=y_max,
-                  settings=settings, progress=progress)
+                  settings=settings, progress=progress, **where)
     f.path.parent.mkdir(parents=True, exist_ok=True)
     np.savez(f.path, **m.as_arrays())
     f.mark()
@@ -133,11 +136,14 @@ def _sample(sensor, df) -> pd.DataFrame:
                          "pressure_measured_kPa": sensor.read(true)})
 
 
-def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None) -> Simulation:
+def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None,
+             workers: int | None = 1, scheduler: str | None = None) -> Simulation:
     """Run ``scenario`` (:class:`~.scenario.Scenario`): ``progress(t, t_end)`` while
-    integrating, ``map_progress(done, total)`` while building the map."""
+    integrating, ``map_progress(done, total)`` while building the map (on ``workers`` or
+    ``scheduler``, :func:`chamber_map_for`)."""
     t0 = time.perf_counter()
-    m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress)
+    m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress, workers=workers,
+                        scheduler=scheduler)
     t1 = time.perf_counter()
     circuit = Circuit(scenario.setup_kPa, scenario.reservoir_mm3, scenario.valve, scenario.gas)
     complete, message, switches, steps = True, "complete", [], []
@@ -180,14 +186,16 @@ def _controlled(m, circuit, scenario, progress):
     return df, stopped, steps
 
 
-def frequency_response(scenario, *, cache_dir=None, map_progress=None):
+def frequency_response(scenario, *, cache_dir=None, map_progress=None,
+                       workers: int | None = 1, scheduler: str | None = None):
     """(the Bode table of :func:`~.frequency.bode` at the scenario's ``[bode]`` point, a
     summary: the operating point, the low- and high-frequency limits, the frequency where the
     sensitivity is halfway between them (in log), the map's seconds)."""
     from .frequency import bode, linearise
 
     t0 = time.perf_counter()
-    m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress)
+    m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress, workers=workers,
+                        scheduler=scheduler)
     b = scenario.bode
     circuit = Circuit(scenario.setup_kPa, scenario.reservoir_mm3, scenario.valve, scenario.gas)
     freqs = np.logspace(np.log10(b["f_min_Hz"]), np.log10(b["f_max_Hz"]), b["points"])

@@ -99,19 +99,21 @@ def _hysteresis_figure(loops, rows, path) -> None:
 
 
 def run_time_study(scenario, out, *, cache_dir=None, types: str = "ABCD",
-                   progress=None) -> dict:
+                   progress=None, workers: int | None = 1, scheduler: str | None = None) -> dict:
     """Run the study of ``scenario`` (:class:`~spsc.dynamics.scenario.Scenario`) into ``out``:
     ``trace/`` (what ``spsc simulate`` writes), ``bode/`` (``--bode``), ``hysteresis.png`` and
-    ``summary.json``; returns the summary. ``progress(what, done, total)``."""
+    ``summary.json``; returns the summary. ``progress(what, done, total)``; the map's levels
+    on ``workers`` or ``scheduler`` (:func:`~spsc.dynamics.chamber_map.build_map`)."""
     from spsc.dynamics.output import write, write_bode
     from spsc.dynamics.simulate import frequency_response, simulate
 
     out = Path(out)
     t0 = time.perf_counter()
-    sim = simulate(scenario, cache_dir=cache_dir)
+    sim = simulate(scenario, cache_dir=cache_dir, workers=workers, scheduler=scheduler)
     write(sim, out / "trace")
     t1 = time.perf_counter()
-    table, bode = frequency_response(scenario, cache_dir=cache_dir)
+    table, bode = frequency_response(scenario, cache_dir=cache_dir, workers=workers,
+                                     scheduler=scheduler)
     write_bode(table, bode, scenario, out / "bode")
     t2 = time.perf_counter()
     rows, loops, source = hysteresis(scenario.chamber.material, types, progress=None if

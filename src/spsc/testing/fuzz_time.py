@@ -128,6 +128,9 @@ def simulate_cases(f: dict, tmp: Path) -> list[Case]:
                    "scenario", "input file"),
               Case(("simulate", str(sc["scenario"])), "no --out", "out", "argparse"),
               Case(base + ("--study", "--types", "E"), "a study of an unknown type", "--types",
-                   "choice")]
+                   "choice"),
+              Case(base + ("--workers", "0"), "no map workers", "workers", "range"),
+              Case(base + ("--workers", "2", "--scheduler", "tcp://127.0.0.1:1"),
+                   "workers and a scheduler", "workers", "combination")]
     cases += out_dirs(base[:2] + ("--quiet",), "--out", f)
     return cases
