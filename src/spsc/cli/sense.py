@@ -49,6 +49,10 @@ def register(subparsers) -> None:
                    help="the wall model's element edge, mm (default: its own)")
     g.add_argument("--cache", metavar="DIR", default=None,
                    help="where chamber maps are kept (default: spsc-cache beside --out)")
+    g.add_argument("--workers", default=None, metavar="N", help="local worker processes that "
+                   "press the chamber map's levels when it is built (default: one per core)")
+    g.add_argument("--scheduler", default=None, metavar="ADDR", help="address of a running "
+                   "Dask scheduler (tcp://host:8786) instead")
     s = p.add_argument_group("sensing")
     s.add_argument("--noise", default="auto", metavar="auto|KPA", help="the sensor's σ, kPa "
                    "(auto: from the log's first differences; with --follow the ELVH's 0.086)")
@@ -92,6 +96,9 @@ def _check_chamber(args):
     check_load(geometry, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
                stroke_mm=args.stroke, points=2, polytropic_n=1.0)
     wall_size_check(VERB, geometry, args.mesh_size, 2, 2, force=False, quiet=True, points=2)
+    from spsc.study.executor import check_cluster
+
+    args.workers, args.scheduler = check_cluster(args.workers, args.scheduler)
     return geometry
 
 
@@ -114,7 +121,8 @@ def _chamber(args, geometry):
     try:
         m = chamber_map(geometry.as_dict(), material=args.material, setup_kPa=args.pressure,
                         reservoir_mm3=args.reservoir, stroke_mm=args.stroke,
-                        mesh_size=args.mesh_size, cache_dir=cache, progress=progress)
+                        mesh_size=args.mesh_size, cache_dir=cache, progress=progress,
+                        workers=args.workers, scheduler=args.scheduler)
     finally:
         bar.close()
     return DenseMap(m)
