@@ -162,14 +162,16 @@ def test_simulate_with_continuous_stiffness_reports_the_step(tmp_path):
 
 def test_the_map_built_on_dask_is_the_map_built_here():
     """The levels pressed on two local worker processes give the map pressed one after the
-    other, to the last bit (the same solves, only elsewhere)."""
+    other: the same solves elsewhere, equal to round-off (alone, bit for bit; after other
+    tests in this process, 1 ulp apart: the in-process BLAS and solver state differ)."""
     mat = material("tpu60a")
     kw = dict(setup_kPa=30.0, top_kPa=50.0, y_max_mm=1.0, levels=3,
               settings=WallSettings(mesh_size_mm=1.5))
     here = build_map(G, mat, workers=1, **kw)
     there = build_map(G, mat, workers=2, **kw)
     for name, value in here.as_arrays().items():
-        np.testing.assert_array_equal(there.as_arrays()[name], value, err_msg=name)
+        np.testing.assert_allclose(there.as_arrays()[name], value, rtol=1e-12, atol=1e-12,
+                                   err_msg=name)
 
 
 def test_simulate_a_force_press_carries_the_force(tmp_path):
