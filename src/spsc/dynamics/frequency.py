@@ -25,6 +25,7 @@ import pandas as pd
 
 from .chamber import Chamber
 from .circuit import _MG, _PA, _rates, initial_state
+from .stiffness import pooled_pressure
 
 __all__ = ["operating_point", "linearise", "bode"]
 
@@ -39,15 +40,8 @@ def operating_point(chamber_map, circuit, y0: float, valve_open: bool) -> np.nda
     if not valve_open or circuit.reservoir_mm3 <= 0:
         return np.array([x[0], t, x[2], t])
     total = (x[0] + x[2]) * _MG
-    s = ch.slice(y0)
-    p = circuit.setup_kPa
-    vr = circuit.reservoir_mm3 * 1e-9
-    for _ in range(60):  # P (V_c(P) + V_r) = m R T
-        v = float(s.volume(p)) * 1e-9
-        f = (p * 1e3 + _PA) * (v + vr) - total * circuit.gas.R * t
-        df = (v + vr) * 1e3 + (p * 1e3 + _PA) * float(s.volume(p, 1)) * 1e-9
-        p -= f / df
-    v = float(s.volume(p)) * 1e-9
+    p = pooled_pressure(ch, y0, x[0] + x[2], t, circuit.reservoir_mm3)
+    v = float(ch.slice(y0).volume(p)) * 1e-9
     mc = (p * 1e3 + _PA) * v / (circuit.gas.R * t)
     return np.array([mc / _MG, t, total / _MG - mc / _MG, t])
 
