@@ -59,20 +59,22 @@ def _argument(group, name: str, meta: dict) -> None:
 
 def add_model_options(parser, models) -> None:
     """The options of ``models`` (names of :data:`MODELS`), from their options dataclasses:
-    the discretisation shared by the meshed models in one group, each model's own in its
-    group. Every option defaults to None (not given), so a model can refuse another's."""
-    shared, done = {}, set()
-    for m in models:
-        for name, meta in cli_options(MODELS[m].Options).items():
-            if meta["group"] == "discretisation":
-                shared.setdefault(name, meta)
-    owners = [m for m in models if any(cli_options(MODELS[m].Options).get(n, {}).get("group")
-                                       == "discretisation" for n in shared)]
-    if shared:
-        g = parser.add_argument_group(f"{' and '.join(owners)} discretisation")
-        for name, meta in shared.items():
-            _argument(g, name, meta)
-            done.add(name)
+    those of a shared group (the meshed models' ``discretisation``, the plate's ``contact``)
+    once in that group, each model's own in its group. Every option defaults to None (not
+    given), so a model can refuse another's."""
+    done = set()
+    for group in ("discretisation", "contact"):
+        shared = {}
+        for m in models:
+            for name, meta in cli_options(MODELS[m].Options).items():
+                if meta["group"] == group:
+                    shared.setdefault(name, meta)
+        owners = [m for m in models if any(n in cli_options(MODELS[m].Options) for n in shared)]
+        if shared:
+            g = parser.add_argument_group(f"{' and '.join(owners)} {group}")
+            for name, meta in shared.items():
+                _argument(g, name, meta)
+                done.add(name)
     for m in models:
         own = {n: meta for n, meta in cli_options(MODELS[m].Options).items() if n not in done}
         if own:

@@ -116,8 +116,9 @@ def option(default, flag: str, help: str, *, kind: str = "value", group: str = "
 
     ``kind``: ``flag`` (present or not), ``number``, ``integer``, ``choice`` (one of
     ``choices``) or ``value`` (a string, e.g. a folder). ``group``: ``model`` (the model's own
-    options) or ``discretisation`` (mesh size, layers, --force: shared by the meshed models,
-    which must declare them with the same flag and help). ``label``, ``unit``: how an invalid
+    options), ``discretisation`` (mesh size, layers, --force) or ``contact`` (the plate's
+    friction): the last two shared by the meshed models, which must declare them with the same
+    flag and help. ``label``, ``unit``: how an invalid
     number is named in the one-line error."""
     cli = {"flag": flag, "help": help, "kind": kind, "group": group, "label": label or
            flag.lstrip("-").replace("-", " "), "unit": unit, "metavar": metavar,

@@ -1,11 +1,12 @@
-"""The options every meshed model shares (mesh size, layers through the wall, --force), declared
-once so that the wall model and the 3D FEM spell and explain them alike."""
+"""The options every meshed model shares (mesh size, layers through the wall, --force; the
+plate's friction), declared once so that the wall model and the 3D FEM spell and explain them
+alike."""
 
 from __future__ import annotations
 
 from .base import option
 
-__all__ = ["mesh_size_option", "layers_option", "force_option"]
+__all__ = ["mesh_size_option", "layers_option", "force_option", "friction_option"]
 
 
 def mesh_size_option(default: float | None):
@@ -27,3 +28,10 @@ def force_option():
     return option(False, "--force", "run a model beyond the size limits (the estimate of "
                   "unknowns, memory and load steps is printed and checked before the run)",
                   kind="flag", group="discretisation")
+
+
+def friction_option():
+    """The plate's friction: 0 (frictionless) or stick (:mod:`spsc.core.contact`)."""
+    return option("0", "--friction", "the plate's friction: 0 (frictionless, default) or "
+                  "stick (no slip: every node the plate touches is held where it touched)",
+                  kind="value", group="contact", metavar="0|stick")

@@ -7,7 +7,7 @@ import itertools
 from dataclasses import dataclass
 
 from .base import ModelBase, Outcome
-from .meshed import force_option, layers_option, mesh_size_option
+from .meshed import force_option, friction_option, layers_option, mesh_size_option
 
 __all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
 
@@ -15,11 +15,12 @@ __all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
 @dataclass(frozen=True)
 class WallOptions:
     """``mesh_size`` (mm; None: 0.5 on a dome, 1.0 on a stadium), ``layers`` through the wall,
-    ``force``: run beyond the size limits."""
+    ``force``: run beyond the size limits, ``friction``: the plate's, ``"0"`` or ``"stick"``."""
 
     mesh_size: float | None = mesh_size_option(None)
     layers: int = layers_option(2)
     force: bool = force_option()
+    friction: str = friction_option()
 
 
 def wall_size_check(verb: str, geometry, mesh_size, layers, steps: int, *, force: bool,
@@ -65,6 +66,9 @@ class WallCurveModel(ModelBase):
         return load.points - 1 + inflate
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
+        from spsc.core.contact import check_friction
+
+        check_friction(options.friction)
         wall_size_check(verb, geometry, options.mesh_size, options.layers,
                         load.points - 1 + (2 if load.pressure_kPa > 0 else 0),
                         force=bool(options.force), quiet=quiet, points=load.points)
@@ -79,4 +83,4 @@ class WallCurveModel(ModelBase):
         return Outcome(wall_curve(geometry, material, pressure_kPa=load.pressure_kPa,
                                   reservoir_mm3=load.reservoir_mm3, stroke_mm=load.stroke_mm,
                                   points=load.points, polytropic_n=load.polytropic_n,
-                                  settings=ws, progress=step))
+                                  settings=ws, progress=step, friction=options.friction))

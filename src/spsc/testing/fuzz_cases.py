@@ -113,7 +113,12 @@ def _chamber_cases(f, b, tmp) -> list[Case]:
               Case(b["curve-fem"] + ("--vtu", str(f["file"] / "v")), "--vtu under a file",
                    "vtu"),
               Case(b["curve-membrane"][:1] + ("--model", "nothing", "--type", "B"),
-                   "unknown model", "model")]
+                   "unknown model", "model"),
+              Case(b["curve-wall"] + ("--friction", "0.3"), "Coulomb not built", "friction"),
+              Case(b["curve-fem"] + ("--friction", "slip"), "unknown friction", "friction"),
+              Case(b["fem"] + ("--friction", "-1"), "negative friction", "friction"),
+              Case(b["curve-membrane"] + ("--friction", "stick"), "option of another model",
+                   "friction")]
     return cases
 
 

@@ -20,6 +20,7 @@ import numpy as np
 
 from .active_set import jumps, start as start_active, update as update_active
 from .constraints import Constraints, constraint_key, restriction
+from .friction import Grip, hold, release, stuck
 from .linear import gas_vector, inertia, linear_step
 from .linsolve import FULL_INPUT
 from .result import NewtonFailure
@@ -39,8 +40,9 @@ _CONTRACTION = 0.25
 @dataclass(frozen=True, eq=False)
 class Converged:
     """A converged load: the state x, the plate's active contact unknowns, the tie's engaged
-    nodes, Newton iterations, the evaluation at x (with tangent) and the negative eigenvalues
-    of the displacement problem there (None: unknown)."""
+    nodes, Newton iterations, the evaluation at x (with tangent), the negative eigenvalues
+    of the displacement problem there (None: unknown) and, on a sticking plate, the anchors
+    of its stuck lateral unknowns (:class:`~.friction.Grip`, else None)."""
 
     x: np.ndarray
     active: np.ndarray
@@ -48,6 +50,7 @@ class Converged:
     iterations: int
     evaluation: object
     unstable_modes: int | None
+    grip: Grip | None = None
 
     def with_tangent(self, model, load: Load) -> "Converged":
         """This state with an evaluation that carries its tangent (a modified Newton
@@ -60,10 +63,13 @@ class Converged:
 class _Newton:
     """The state of one Newton solve between iterations."""
 
-    def __init__(self, model, load: Load, settings: Settings, x0, active, engaged):
+    def __init__(self, model, load: Load, settings: Settings, x0, active, engaged, grip=None):
         self.model, self.load, self.s = model, load, settings
         self.x = x0.copy()
         self.active = start_active(model, self.x, load.plate, active, settings)
+        #: the sticking plate's anchors (None: frictionless)
+        self.grip = None if not (load.stick and load.plate is not None) else \
+            grip if grip is not None else Grip.empty(model)
         tie = model.tie
         self.engaged = np.zeros(0, int) if engaged is None or tie is None \
             else np.asarray(engaged)
@@ -91,6 +97,10 @@ class _Newton:
         m, x, tie = self.model, self.x, self.model.tie
         presc = np.asarray(self.active, int)
         jump = jumps(m, x, self.load.plate, presc)
+        if self.grip is not None:  # the anchored nodes still on the plate do not slide
+            self.grip = release(m, self.grip, presc)
+            held, moved = stuck(self.grip, x)
+            presc, jump = np.concatenate([presc, held]), np.concatenate([jump, moved])
         slaves, sjump = tie.constraints(x, self.engaged) if tie is not None \
             else (np.zeros(0, int), np.zeros(0))
         con = Constraints(len(m.fixed), presc, jump, slaves, sjump,
@@ -124,7 +134,7 @@ class _Newton:
         s, m, changed = self.s, self.model, False
         tol = s.rtol * self.scale
         if self.load.plate is not None:
-            reaction = self.lam if s.semismooth and self.lam is not None \
+            reaction = self.lam[:self.active.size] if s.semismooth and self.lam is not None \
                 else -ev.r[self.active]
             new = update_active(m, self.x, reaction, self.load.plate, self.active, tol,
                                 s.contact_tolerance)
@@ -171,14 +181,18 @@ class _Newton:
             red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT)
             gc = red.take(con.condense(gas_vector(self.model, ev, con.n)))
             modes = inertia(self.model, red, ev, gc, self.s)
-        return Converged(self.x, self.active, self.engaged, it, ev, modes)
+        grip = None if self.grip is None else hold(self.model, self.grip, self.x, self.active)
+        return Converged(self.x, self.active, self.engaged, it, ev, modes, grip)
 
 
-def newton(model, x0, load: Load, settings: Settings, active=None, engaged=None) -> Converged:
+def newton(model, x0, load: Load, settings: Settings, active=None, engaged=None,
+           grip: Grip | None = None) -> Converged:
     """Solve r(x) = 0 from ``x0`` for one ``load``, starting from the plate's ``active``
-    contact unknowns and the tie's ``engaged`` nodes. Raises :class:`NewtonFailure` with the
-    reason when it does not converge."""
-    nw = _Newton(model, load, settings, x0, active, engaged)
+    contact unknowns, the tie's ``engaged`` nodes and, on a sticking plate (``load.stick``),
+    the anchors ``grip`` (None: none yet); the converged state's grip also holds the nodes
+    that touched in this load (:mod:`.friction`). Raises
+    :class:`NewtonFailure` with the reason when it does not converge."""
+    nw = _Newton(model, load, settings, x0, active, engaged, grip)
     for it in range(1, settings.max_iterations + 1):
         con, free = nw.constrain()
         ev = nw.evaluate()

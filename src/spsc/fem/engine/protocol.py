@@ -64,6 +64,9 @@ class Discretisation(Protocol):
     symmetry: int  #: copies of the modelled part in the whole (forces and areas × symmetry)
     fixed: np.ndarray  #: bool over the Newton system's m unknowns: supported
     contact_dofs: np.ndarray  #: sorted unknowns the plate may prescribe (vertical, outer)
+    #: (k, len(contact_dofs)): each contact unknown's lateral unknowns (k = 1 on an
+    #: axisymmetric section, 2 in 3D), held by a sticking plate (:mod:`.friction`)
+    contact_lateral: np.ndarray
     contact_height: np.ndarray  #: per system unknown: its node's reference height z (mm)
     contact_gap: np.ndarray  #: per system unknown: how far above the node the plate meets it
     tie: Tie | None  #: a rigid body inside the model, or None

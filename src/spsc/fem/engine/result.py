@@ -33,6 +33,9 @@ class Record:
     group_forces: dict = field(default_factory=dict)
     #: the rigid insert's force (N, ≥ 0: the wall above it pressed onto it; None: no insert)
     insert_force: float | None = None
+    #: a sticking plate's tangential reactions, Σ over the contact nodes of their norms (N,
+    #: whole part; 0 on a frictionless plate): what friction must carry for no slip
+    shear: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)

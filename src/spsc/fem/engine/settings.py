@@ -63,6 +63,10 @@ class Settings:
     there; the onset is located between the last stable and the first unstable increment by
     ``snap_bisections`` halvings. Needs the inertia of every converged state
     (``fresh_inertia``).
+
+    stick_increment : the longest plate travel (mm) of one increment on a sticking plate
+    (:mod:`.friction`): a node is held from the end of the increment it touched in, an
+    error of first order in the increment (``bench/bench_friction.py``).
     """
 
     rtol: float = 1e-8
@@ -83,6 +87,7 @@ class Settings:
     snap_through: bool = False
     snap_bisections: int = 5
     modified_newton: float = 1e-2
+    stick_increment: float = 0.05
 
     def __post_init__(self):
         for name, allowed in _CHOICES.items():

@@ -47,12 +47,14 @@ class Press:
     stroke: float
     increments: int = 10
     travel: tuple | None = None
+    #: the plate holds every node it touches from sliding (:mod:`.friction`); else frictionless
+    stick: bool = False
 
     @classmethod
-    def through(cls, travel) -> "Press":
+    def through(cls, travel, *, stick: bool = False) -> "Press":
         """Press through the plate travels ``travel`` (mm from first contact, increasing)."""
         travel = tuple(float(v) for v in travel)
-        return cls(travel[-1], len(travel), travel)
+        return cls(travel[-1], len(travel), travel, stick)
 
     def targets(self) -> list:
         """The recorded load parameters t: fractions of the stroke, or the travels (mm)."""
@@ -65,6 +67,10 @@ class Press:
         """The plate travel (mm from first contact) at the load parameter t."""
         return t if self.travel is not None else t * self.stroke
 
+    def parameter_span(self, travel_mm: float) -> float:
+        """The load parameter's change over a plate travel of ``travel_mm``."""
+        return travel_mm if self.travel is not None else travel_mm / self.stroke
+
 
 @dataclass(frozen=True)
 class Cycle:
@@ -75,6 +81,7 @@ class Cycle:
 
     times: tuple
     travels: tuple
+    stick: bool = False
 
     def __post_init__(self):
         from spsc.core.errors import ParameterError
@@ -104,21 +111,23 @@ class Cycle:
 class Load:
     """Cavity gauge pressure ``pressure`` (MPa) unless ``gas`` is given; rigid plate at height
     ``plate`` (mm, None: no plate); ``time`` (s) of a :class:`Cycle`'s load, None for a load
-    at rest (a rate-dependent material is then relaxed)."""
+    at rest (a rate-dependent material is then relaxed); ``stick``: the plate holds what it
+    touches from sliding (else it is frictionless)."""
 
     pressure: float = 0.0
     gas: GasLaw | None = None
     plate: float | None = None
     time: float | None = None
+    stick: bool = False
 
 
-def load_steps(load, inflate_increments: int = 4) -> list:
+def load_steps(load, inflate_increments: int = 4, *, stick: bool = False) -> list:
     """The steps of a load case (:class:`~spsc.core.loadcase.LoadCase`: kPa gauge, mm³, mm):
     inflate to the setup pressure in ``inflate_increments``, close the valve onto the
-    reservoir, press the stroke in ``points − 1`` increments; the open chamber (p = 0) is
-    pressed alone."""
+    reservoir, press the stroke in ``points − 1`` increments (``stick``: with a sticking
+    plate); the open chamber (p = 0) is pressed alone."""
     out = []
     if load.pressure_kPa > 0:
         out += [Inflate(load.pressure_kPa * 1e-3, inflate_increments),
                 CloseValve(load.reservoir_mm3, load.polytropic_n)]
-    return out + [Press(load.stroke_mm, int(load.points) - 1)]
+    return out + [Press(load.stroke_mm, int(load.points) - 1, stick=stick)]

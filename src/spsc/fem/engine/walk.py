@@ -20,6 +20,7 @@ import numpy as np
 from spsc.core.gaslaw import GasLaw
 
 from .active_set import first_contact, plate_force
+from .friction import Grip, tractions
 from .newton import newton
 from .result import NewtonFailure, Record, Result, Stop
 from .snap import PUSH_MM, Jump, relax, unstable_mode
@@ -36,7 +37,7 @@ _MAX_JUMPS = 8
 def record(model, step, kind, load, sol) -> Record:
     """The record of a converged load ``sol`` (:class:`~.newton.Converged`) of step
     ``step``: pressure, gas volume, plate force, contact area and force per named surface,
-    the tie's force."""
+    the tie's force, a sticking plate's tangential reactions."""
     ev, active, x = sol.evaluation, sol.active, sol.x
     force, area = 0.0, 0.0
     groups = model.group_forces(ev.r, active[:0])
@@ -46,8 +47,10 @@ def record(model, step, kind, load, sol) -> Record:
         groups = model.group_forces(ev.r, active)
     held = model.tie.force(ev.r, sol.engaged) * model.symmetry if model.tie is not None \
         else None
+    shear = float(tractions(model, ev.r, active).sum()) * model.symmetry \
+        if getattr(sol, "grip", None) is not None and active.size else 0.0
     return Record(step, kind, x.copy(), ev.pressure, ev.volume, load.plate, force, area,
-                  sol.iterations, sol.unstable_modes, groups, held)
+                  sol.iterations, sol.unstable_modes, groups, held, shear)
 
 
 class _Walk:
@@ -62,6 +65,7 @@ class _Walk:
                                insert_force=0.0 if model.tie is not None else None)]
         self.load = Load()
         self.active, self.engaged = np.zeros(0, int), np.zeros(0, int)
+        self.grip = None  # a sticking plate's anchors (:mod:`.friction`)
         self.total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
         self.done, self.last_force, self.instability, self.iterations = 0, 0.0, "", 0
         self.jumps: list[Jump] = []
@@ -82,12 +86,12 @@ class _Walk:
         if isinstance(step, Press):
             z0 = first_contact(self.model, self.x) if load.plate is None \
                 else load.plate
-            return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t)), "press",
-                    step.targets())
+            return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t),
+                                   stick=step.stick), "press", step.targets())
         if isinstance(step, Cycle):
             z0 = first_contact(self.model, self.x) if load.plate is None else load.plate
-            return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t), t),
-                    "press", step.targets())
+            return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t), t,
+                                   step.stick), "press", step.targets())
         raise TypeError(f"unknown step {step!r}")
 
     def solve_one(self, trial, t_new, history):
@@ -98,18 +102,28 @@ class _Walk:
         if self.s.predictor and len(history) >= 2:
             (t0, x0), (t1, x1) = history[-2], history[-1]
             guess = x1 + (x1 - x0) * (t_new - t1) / (t1 - t0)
+        grip = self.gripped(trial)
         try:
-            return newton(model, guess, trial, self.s, self.active, self.engaged)
+            return newton(model, guess, trial, self.s, self.active, self.engaged, grip)
         except model.recoverable:
             if guess is x:
                 raise
-            return newton(model, x, trial, self.s, self.active, self.engaged)
+            return newton(model, x, trial, self.s, self.active, self.engaged, grip)
+
+    def gripped(self, trial):
+        """The anchors a sticking ``trial`` load starts from (None for a frictionless
+        load)."""
+        if not trial.stick:
+            return None
+        return Grip.empty(self.model) if self.grip is None else self.grip
 
     def ramp(self, k, step) -> Stop | None:
         """Walk one Inflate or Press step through its targets with step halving; the
         :class:`Stop` where it failed or met an unstable equilibrium, else None."""
         load_at, kind, targets = self.path(step)
         nominal = targets[0]
+        if isinstance(step, Press) and step.stick:  # touch-downs interpolated per increment
+            nominal = min(nominal, step.parameter_span(self.s.stick_increment))
         t, dt, ti, history = 0.0, nominal, 0, []
         while ti < len(targets):
             t_new = min(t + dt, targets[ti])
@@ -130,6 +144,7 @@ class _Walk:
                     trial, history = load_at(t_new), []  # no secant across the jump
             self.x, self.active, self.engaged, t, self.load = (sol.x, sol.active, sol.engaged,
                                                                t_new, trial)
+            self.grip = sol.grip
             if hasattr(self.model, "commit"):  # a rate-dependent material closes its step
                 self.model.commit(sol.x, trial)
             self.iterations += sol.iterations
@@ -150,16 +165,17 @@ class _Walk:
         at the jump, or None if no stable state was found (the walk then stops there)."""
         m, s = self.model, self.s
         x0, a0, e0 = self.x, self.active, self.engaged
+        g0 = self.gripped(load_at(t1))
         for _ in range(s.snap_bisections):
             tm = 0.5 * (t0 + t1)
             try:
-                solm = newton(m, x0, load_at(tm), s, a0, e0)
+                solm = newton(m, x0, load_at(tm), s, a0, e0, g0)
             except m.recoverable:
                 break
             if solm.unstable_modes:
                 t1, sol1 = tm, solm
             else:
-                t0, x0, a0, e0 = tm, solm.x, solm.active, solm.engaged
+                t0, x0, a0, e0, g0 = tm, solm.x, solm.active, solm.engaged, solm.grip
         load = load_at(t1)
         sol1 = sol1.with_tangent(m, load)
         mode = unstable_mode(m, sol1, load, s)
@@ -171,7 +187,7 @@ class _Walk:
             push[: mode.size] = sign * PUSH_MM * mode
             try:
                 end, released, steps, its = relax(m, sol1.x, load, sol1.active, sol1.engaged,
-                                                  s, push, metric)
+                                                  s, push, metric, sol1.grip)
             except NewtonFailure as exc:
                 _log.debug("snap descent %+g failed: %s", sign, exc)
                 continue

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from spsc.core.contact import check_friction
 from spsc.core.errors import ParameterError
 from spsc.core.loadcase import LoadCase, WithLoadCase, check_load
 from spsc.cad.geometry import SPSCGeometry
@@ -44,6 +45,7 @@ class ChamberRun(WithLoadCase):
     inflate_increments: int = 4
     full: bool = False
     bulk_ratio: float = 2000.0
+    friction: str = "0"
 
     def __post_init__(self):
         if not isinstance(self.load, LoadCase):
@@ -51,9 +53,11 @@ class ChamberRun(WithLoadCase):
                                  "a LoadCase (spsc.core.loadcase.check_load)")
         check_load(self.geometry, **self.load.as_dict())  # the same limits, on this chamber
         check_mesh_size(self.geometry, self.mesh_size_mm, self.layers)
+        object.__setattr__(self, "friction", check_friction(self.friction))
 
     def steps(self) -> list:
-        return load_steps(self.load, self.inflate_increments)
+        return load_steps(self.load, self.inflate_increments,
+                          stick=self.friction == "stick")
 
 
 def chamber_run(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
@@ -146,9 +150,11 @@ def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
              "layers": run.layers, "dofs": model.disc.n, "model_part": part}
     if result.instability:
         setup["instability"] = result.instability
-    info = solve_info(result, model, pts, mesh_seconds,
-                      {"mesh_size_mm": run.mesh_size_mm, "layers": run.layers,
-                       "model_part": part, "bulk_ratio": run.bulk_ratio})
+    details = {"mesh_size_mm": run.mesh_size_mm, "layers": run.layers, "model_part": part,
+               "bulk_ratio": run.bulk_ratio}
+    if run.friction == "stick":
+        details.update(friction="stick", shear_N=[0.0] + [r.shear for r in pts["presses"]])
+    info = solve_info(result, model, pts, mesh_seconds, details)
     inflated = pts["inflated"]
     return Curve(pts["y"], pts["F"], pts["P"], pts["A"], pts["dV"], model="fem",
                  geometry=run.geometry.as_dict(), material=run.material.name, setup=setup,

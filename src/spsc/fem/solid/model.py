@@ -135,6 +135,11 @@ class FEMModel:
         return 3 * np.asarray(self.contact_nodes) + 2
 
     @cached_property
+    def contact_lateral(self) -> np.ndarray:
+        """The horizontal (x, y) displacement unknowns of the contact nodes (2, n)."""
+        return np.stack([self.contact_dofs - 2, self.contact_dofs - 1])
+
+    @cached_property
     def contact_height(self) -> np.ndarray:
         h = np.zeros(self.disc.n)
         h[2:self.disc.n_u:3] = self.disc.X[:, 2]

@@ -51,6 +51,7 @@ from spsc.cad.geometry import SPSCGeometry
 from spsc.core.constants import KPA_PER_MPA
 from spsc.core.curve import Curve, SolveInfo
 from spsc.core.gaslaw import GasLaw
+from spsc.core.contact import sticks
 from spsc.core.loadcase import check_load
 from spsc.materials import Material
 
@@ -130,11 +131,14 @@ def wall_curve(geometry: SPSCGeometry, material: Material, **kwargs) -> Curve:
     """Inflate to ``pressure_kPa`` (kPa gauge), close the valve (gas with ``reservoir_mm3``,
     polytropic index ``polytropic_n``), lower the plate from first contact by ``stroke_mm`` in
     ``points`` − 1 equal increments. ``pressure_kPa = 0``: vented chamber (F_el). Returns the
-    :class:`Curve` (model ``wall``); points not reached hold NaN and the reason.
+    :class:`Curve` (model ``wall``); points not reached hold NaN and the reason. ``friction``
+    ``"stick"``: the plate holds what it touches (:mod:`spsc.core.contact`); the solver block
+    then carries ``friction`` and ``shear_N``, the plate's tangential reactions per point.
 
     Keyword arguments: ``pressure_kPa`` (40), ``reservoir_mm3`` (0), ``stroke_mm`` (6),
     ``points`` (25), ``polytropic_n`` (1), ``settings`` (:class:`WallSettings`), ``model`` (a
-    :class:`WallModel` to reuse), ``progress`` (called once per converged point).
+    :class:`WallModel` to reuse), ``progress`` (called once per converged point),
+    ``friction`` (``"0"`` or ``"stick"``).
     """
     from threadpoolctl import threadpool_limits
 
@@ -146,8 +150,9 @@ def wall_curve(geometry: SPSCGeometry, material: Material, **kwargs) -> Curve:
 def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
                reservoir_mm3: float = 0.0, stroke_mm: float = 6.0, points: int = 25,
                polytropic_n: float = 1.0, settings: WallSettings | None = None,
-               model: WallModel | None = None, progress=None) -> Curve:
+               model: WallModel | None = None, progress=None, friction="0") -> Curve:
     t_start = time.perf_counter()
+    stick = sticks(friction)
     load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
                       stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
     pressure_kPa, reservoir_mm3, stroke_mm = load.pressure_kPa, load.reservoir_mm3, load.stroke_mm
@@ -159,16 +164,20 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
     steps = [Inflate(p_i, settings.inflate_increments), CloseValve(reservoir_mm3, polytropic_n)] \
         if p_i > 0 else []
     tick = (lambda done, total: progress()) if progress is not None else None
-    result = solve(model, steps + [Press.through(y[1:])], settings=settings.newton_settings(),
-                   progress=tick)
+    result = solve(model, steps + [Press.through(y[1:], stick=stick)],
+                   settings=settings.newton_settings(), progress=tick)
     walked = _walked(result, pressure_kPa)
     if progress is not None and result.stop is not None and result.stop.record is not None:
         progress()  # the unstable point it stopped at is a point reached
     inflates = [st for st in walked.states if st.kind == "inflate"]
     pressed = [st for st in walked.states if st.kind == "press"]
-    return _to_curve(model, walked, inflates[-1] if inflates else None, pressed, y,
-                     result.records[0].volume, pressure_kPa, reservoir_mm3, polytropic_n,
-                     time.perf_counter() - t_start)
+    curve = _to_curve(model, walked, inflates[-1] if inflates else None, pressed, y,
+                      result.records[0].volume, pressure_kPa, reservoir_mm3, polytropic_n,
+                      time.perf_counter() - t_start)
+    if stick:
+        curve.solver.details.update(friction="stick",
+                                    shear_N=[0.0] + [st.shear for st in pressed])
+    return curve
 
 
 def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reservoir,

@@ -191,6 +191,11 @@ class WallModel:
         self.reference = np.asarray(self.part.reference, float)
         zdofs = np.unique(self.part.zdofs)
         self.contact_dofs = zdofs[~self.fixed[zdofs]]
+        #: each contact unknown's lateral ones: the radial displacement on the dome's section
+        #: (2 unknowns a node), x and y on the swept wall (3 a node)
+        per_node = 3 if stadium else 2
+        self.contact_lateral = np.stack([self.contact_dofs - per_node + 1 + k
+                                         for k in range(per_node - 1)])
         self.contact_height = self.reference
         self.contact_gap = np.zeros(self.n_u)
         self.mu = law.mu
