@@ -6,7 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .base import ModelBase, Outcome, option
-from .meshed import force_option, friction_option, layers_option, mesh_size_option
+from .meshed import (force_option, friction_option, layers_option, mesh_size_option,
+                     object_stiffness_option)
 
 __all__ = ["FEMCurveModel", "FEMOptions"]
 
@@ -16,12 +17,13 @@ class FEMOptions:
     """``mesh_size`` (mm), ``layers`` through the wall, ``force`` (beyond the size limits),
     ``full`` (the whole chamber, not the quarter on the symmetry planes), ``solver`` (sparse
     linear solver), ``vtu`` (a folder for one VTU per converged step, or None), ``friction``
-    (the plate's: ``"0"`` or ``"stick"``)."""
+    (the plate's: ``"0"`` or ``"stick"``), ``object_stiffness`` (N/mm, None: rigid)."""
 
     mesh_size: float = mesh_size_option(1.0)
     layers: int = layers_option(2)
     force: bool = force_option()
     friction: str = friction_option()
+    object_stiffness: float | None = object_stiffness_option()
     full: bool = option(False, "--full", "full model instead of the quarter on the symmetry "
                         "planes", kind="flag")
     solver: str = option("auto", "--solver", "sparse linear solver (default auto: pardiso if "
@@ -56,10 +58,11 @@ class FEMCurveModel(ModelBase):
         return load.points - 1 + inflate
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        from spsc.core.contact import check_friction
+        from spsc.core.contact import check_friction, check_object_stiffness
         from spsc.fem.solid.mesh import check_mesh_size, wall_mesh_counts
 
         check_friction(options.friction)
+        check_object_stiffness(options.object_stiffness)
         from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 
         size, layers = check_mesh_size(geometry, options.mesh_size, options.layers)
@@ -75,7 +78,8 @@ class FEMCurveModel(ModelBase):
 
         spec = ChamberRun(geometry, material, load, mesh_size_mm=options.mesh_size,
                           layers=options.layers, full=bool(options.full),
-                          friction=options.friction)
+                          friction=options.friction,
+                          object_stiffness=options.object_stiffness)
         curve, result, model = run_chamber(spec, settings=Settings(solver=options.solver),
                                            progress=progress, cache_dir=cache_dir)
         extra = {}

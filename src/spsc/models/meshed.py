@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from .base import option
 
-__all__ = ["mesh_size_option", "layers_option", "force_option", "friction_option"]
+__all__ = ["mesh_size_option", "layers_option", "force_option", "friction_option",
+           "object_stiffness_option"]
 
 
 def mesh_size_option(default: float | None):
@@ -35,3 +36,11 @@ def friction_option():
     return option("0", "--friction", "the plate's friction: 0 (frictionless, default) or "
                   "stick (no slip: every node the plate touches is held where it touched)",
                   kind="value", group="contact", metavar="0|stick")
+
+
+def object_stiffness_option():
+    """The pressing object's stiffness (N/mm), None: rigid (:mod:`spsc.core.contact`)."""
+    return option(None, "--object-stiffness", "the pressing object's stiffness, N/mm: the "
+                  "indenter rides on a spring whose far end follows the travel; the curve's "
+                  "indenter_travel_mm is its own (default: a rigid object)", kind="number",
+                  group="contact", label="object stiffness", unit="N/mm", metavar="N/MM")

@@ -7,7 +7,8 @@ import itertools
 from dataclasses import dataclass
 
 from .base import ModelBase, Outcome
-from .meshed import force_option, friction_option, layers_option, mesh_size_option
+from .meshed import (force_option, friction_option, layers_option, mesh_size_option,
+                     object_stiffness_option)
 
 __all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
 
@@ -15,12 +16,14 @@ __all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
 @dataclass(frozen=True)
 class WallOptions:
     """``mesh_size`` (mm; None: 0.5 on a dome, 1.0 on a stadium), ``layers`` through the wall,
-    ``force``: run beyond the size limits, ``friction``: the plate's, ``"0"`` or ``"stick"``."""
+    ``force``: run beyond the size limits, ``friction``: the plate's, ``"0"`` or ``"stick"``,
+    ``object_stiffness``: N/mm, None for a rigid object."""
 
     mesh_size: float | None = mesh_size_option(None)
     layers: int = layers_option(2)
     force: bool = force_option()
     friction: str = friction_option()
+    object_stiffness: float | None = object_stiffness_option()
 
 
 def wall_size_check(verb: str, geometry, mesh_size, layers, steps: int, *, force: bool,
@@ -66,9 +69,10 @@ class WallCurveModel(ModelBase):
         return load.points - 1 + inflate
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        from spsc.core.contact import check_friction
+        from spsc.core.contact import check_friction, check_object_stiffness
 
         check_friction(options.friction)
+        check_object_stiffness(options.object_stiffness)
         wall_size_check(verb, geometry, options.mesh_size, options.layers,
                         load.points - 1 + (2 if load.pressure_kPa > 0 else 0),
                         force=bool(options.force), quiet=quiet, points=load.points)
@@ -83,4 +87,5 @@ class WallCurveModel(ModelBase):
         return Outcome(wall_curve(geometry, material, pressure_kPa=load.pressure_kPa,
                                   reservoir_mm3=load.reservoir_mm3, stroke_mm=load.stroke_mm,
                                   points=load.points, polytropic_n=load.polytropic_n,
-                                  settings=ws, progress=step, friction=options.friction))
+                                  settings=ws, progress=step, friction=options.friction,
+                                  object_stiffness=options.object_stiffness))

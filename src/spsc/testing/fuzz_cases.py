@@ -118,7 +118,11 @@ def _chamber_cases(f, b, tmp) -> list[Case]:
               Case(b["curve-fem"] + ("--friction", "slip"), "unknown friction", "friction"),
               Case(b["fem"] + ("--friction", "-1"), "negative friction", "friction"),
               Case(b["curve-membrane"] + ("--friction", "stick"), "option of another model",
-                   "friction")]
+                   "friction"),
+              Case(b["curve-membrane"] + ("--object-stiffness", "2"), "option of another model",
+                   "object-stiffness")]
+    for verb in ("fem", "curve-wall"):
+        cases += numbers(b[verb], ("object-stiffness",))
     return cases
 
 

@@ -36,6 +36,9 @@ class Record:
     #: a sticking plate's tangential reactions, Σ over the contact nodes of their norms (N,
     #: whole part; 0 on a frictionless plate): what friction must carry for no slip
     shear: float = 0.0
+    #: the indenter's own travel (mm from first contact) when it rides on a spring (the
+    #: press's travel is then the spring's far end); None otherwise
+    indenter: float | None = None
 
 
 @dataclass(frozen=True, eq=False)

@@ -11,6 +11,7 @@ result). A failure returns everything converged so far with the reason.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -21,6 +22,7 @@ from spsc.core.gaslaw import GasLaw
 
 from .active_set import first_contact, plate_force
 from .friction import Grip, tractions
+from .spring import balance, solver as spring_solver
 from .newton import newton
 from .result import NewtonFailure, Record, Result, Stop
 from .snap import PUSH_MM, Jump, relax, unstable_mode
@@ -66,6 +68,8 @@ class _Walk:
         self.load = Load()
         self.active, self.engaged = np.zeros(0, int), np.zeros(0, int)
         self.grip = None  # a sticking plate's anchors (:mod:`.friction`)
+        #: a spring-borne indenter: its travel (mm), force (N) and the last two of each
+        self.indenter = [(0.0, 0.0)]
         self.total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
         self.done, self.last_force, self.instability, self.iterations = 0, 0.0, "", 0
         self.jumps: list[Jump] = []
@@ -86,8 +90,8 @@ class _Walk:
         if isinstance(step, Press):
             z0 = first_contact(self.model, self.x) if load.plate is None \
                 else load.plate
-            return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t),
-                                   stick=step.stick), "press", step.targets())
+            self.at_travel = lambda y: Load(load.pressure, load.gas, z0 - y, stick=step.stick)
+            return (lambda t: self.at_travel(step.travel_at(t)), "press", step.targets())
         if isinstance(step, Cycle):
             z0 = first_contact(self.model, self.x) if load.plate is None else load.plate
             return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t), t,
@@ -110,6 +114,22 @@ class _Walk:
                 raise
             return newton(model, x, trial, self.s, self.active, self.engaged, grip)
 
+    def solve_spring(self, step, t_new):
+        """(solution, its load) of the spring-borne indenter at the far-end travel of
+        ``t_new`` (:mod:`.spring`)."""
+        (y0, f0), (y1, f1) = (self.indenter * 2)[-2:]
+        slope = (f1 - f0) / (y1 - y0) if y1 > y0 else 0.0
+        solve_at = spring_solver(self.model, self.s, self.at_travel, self.x, self.active,
+                                 self.engaged, self.gripped(self.at_travel(y1)))
+        tol = self.s.rtol * 10 * max(f1, step.spring * step.travel_at(t_new),
+                                     self.model.force_floor)
+        sol, y_p = balance(solve_at, step.travel_at(t_new), step.spring, y1, f1, slope, tol)
+        return sol, self.at_travel(y_p)
+
+    def at_travel_of(self, load) -> float:
+        """The indenter's travel (mm) of a press load."""
+        return self.at_travel(0.0).plate - load.plate
+
     def gripped(self, trial):
         """The anchors a sticking ``trial`` load starts from (None for a frictionless
         load)."""
@@ -129,7 +149,10 @@ class _Walk:
             t_new = min(t + dt, targets[ti])
             trial = load_at(t_new)
             try:
-                sol = self.solve_one(trial, t_new, history)
+                if getattr(step, "spring", None):
+                    sol, trial = self.solve_spring(step, t_new)
+                else:
+                    sol = self.solve_one(trial, t_new, history)
             except self.model.recoverable as exc:
                 _log.debug("cut %s t=%.4g dt=%.3g: %s", kind, t_new, dt, exc)
                 dt *= 0.5
@@ -137,7 +160,7 @@ class _Walk:
                     return Stop(k, kind, t_new, step, trial, str(exc))
                 continue
             if sol.unstable_modes and kind == "press" and self.s.snap_through \
-                    and len(self.jumps) < _MAX_JUMPS:
+                    and len(self.jumps) < _MAX_JUMPS and not getattr(step, "spring", None):
                 jumped = self.snap(step, load_at, t, t_new, sol)
                 if jumped is not None:
                     t_new, sol = jumped
@@ -145,6 +168,11 @@ class _Walk:
             self.x, self.active, self.engaged, t, self.load = (sol.x, sol.active, sol.engaged,
                                                                t_new, trial)
             self.grip = sol.grip
+            if getattr(step, "spring", None):
+                self.indenter = self.indenter[-1:] + [(self.at_travel_of(trial),
+                                                       plate_force(self.model,
+                                                                   sol.evaluation.r,
+                                                                   sol.active))]
             if hasattr(self.model, "commit"):  # a rate-dependent material closes its step
                 self.model.commit(sol.x, trial)
             self.iterations += sol.iterations
@@ -152,6 +180,8 @@ class _Walk:
             dt = min(nominal, 2 * dt)
             if math.isclose(t, targets[ti], rel_tol=1e-12, abs_tol=1e-14):
                 rec = record(self.model, k, kind, self.load, sol)
+                if getattr(step, "spring", None):
+                    rec = dataclasses.replace(rec, indenter=self.indenter[-1][0])
                 if rec.unstable_modes:
                     return Stop(k, kind, t, step, trial, "", rec)
                 self.keep(rec, kind, t, step)

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.core.contact import check_friction
+from spsc.core.contact import check_friction, check_object_stiffness, with_indenter
 from spsc.core.errors import ParameterError
 from spsc.core.loadcase import LoadCase, WithLoadCase, check_load
 from spsc.cad.geometry import SPSCGeometry
@@ -35,7 +35,9 @@ class ChamberRun(WithLoadCase):
     (:class:`~spsc.core.loadcase.LoadCase`: kPa gauge, mm³, mm; ``points`` plate positions from
     first contact, points − 1 increments) and the mesh. ``mesh_size_mm``: element edge along
     the wall surfaces (``spsc fem --mesh-size``; not the preset footprint, which is
-    ``--footprint`` and part of the geometry). :func:`chamber_run` builds one from keywords."""
+    ``--footprint`` and part of the geometry). ``friction`` (``"0"`` or ``"stick"``) and
+    ``object_stiffness`` (N/mm, None: rigid) describe what presses it
+    (:mod:`spsc.core.contact`). :func:`chamber_run` builds one from keywords."""
 
     geometry: SPSCGeometry
     material: Material
@@ -46,6 +48,7 @@ class ChamberRun(WithLoadCase):
     full: bool = False
     bulk_ratio: float = 2000.0
     friction: str = "0"
+    object_stiffness: float | None = None
 
     def __post_init__(self):
         if not isinstance(self.load, LoadCase):
@@ -54,10 +57,12 @@ class ChamberRun(WithLoadCase):
         check_load(self.geometry, **self.load.as_dict())  # the same limits, on this chamber
         check_mesh_size(self.geometry, self.mesh_size_mm, self.layers)
         object.__setattr__(self, "friction", check_friction(self.friction))
+        object.__setattr__(self, "object_stiffness",
+                           check_object_stiffness(self.object_stiffness))
 
     def steps(self) -> list:
-        return load_steps(self.load, self.inflate_increments,
-                          stick=self.friction == "stick")
+        return load_steps(self.load, self.inflate_increments, stick=self.friction == "stick",
+                          spring=self.object_stiffness)
 
 
 def chamber_run(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
@@ -156,11 +161,12 @@ def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
         details.update(friction="stick", shear_N=[0.0] + [r.shear for r in pts["presses"]])
     info = solve_info(result, model, pts, mesh_seconds, details)
     inflated = pts["inflated"]
-    return Curve(pts["y"], pts["F"], pts["P"], pts["A"], pts["dV"], model="fem",
-                 geometry=run.geometry.as_dict(), material=run.material.name, setup=setup,
-                 nominal_volume_mm3=pts["start"].volume, inflated_volume_mm3=inflated.volume,
-                 inflated_height_mm=_apex_height(model, inflated.x), converged=pts["conv"],
-                 message=pts["msg"], solver=info)
+    curve = Curve(pts["y"], pts["F"], pts["P"], pts["A"], pts["dV"], model="fem",
+                  geometry=run.geometry.as_dict(), material=run.material.name, setup=setup,
+                  nominal_volume_mm3=pts["start"].volume, inflated_volume_mm3=inflated.volume,
+                  inflated_height_mm=_apex_height(model, inflated.x), converged=pts["conv"],
+                  message=pts["msg"], solver=info)
+    return with_indenter(curve, run.object_stiffness, [r.indenter for r in pts["presses"]])
 
 
 def write_vtu(model: FEMModel, result: Result, directory) -> list[Path]:

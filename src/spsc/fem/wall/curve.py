@@ -51,7 +51,7 @@ from spsc.cad.geometry import SPSCGeometry
 from spsc.core.constants import KPA_PER_MPA
 from spsc.core.curve import Curve, SolveInfo
 from spsc.core.gaslaw import GasLaw
-from spsc.core.contact import sticks
+from spsc.core.contact import check_object_stiffness, sticks, with_indenter
 from spsc.core.loadcase import check_load
 from spsc.materials import Material
 
@@ -138,7 +138,9 @@ def wall_curve(geometry: SPSCGeometry, material: Material, **kwargs) -> Curve:
     Keyword arguments: ``pressure_kPa`` (40), ``reservoir_mm3`` (0), ``stroke_mm`` (6),
     ``points`` (25), ``polytropic_n`` (1), ``settings`` (:class:`WallSettings`), ``model`` (a
     :class:`WallModel` to reuse), ``progress`` (called once per converged point),
-    ``friction`` (``"0"`` or ``"stick"``).
+    ``friction`` (``"0"`` or ``"stick"``), ``object_stiffness`` (N/mm: the indenter on a
+    spring whose far end is the travel y; the curve's series ``indenter_travel_mm`` is the
+    indenter's own travel; None: rigid).
     """
     from threadpoolctl import threadpool_limits
 
@@ -150,9 +152,11 @@ def wall_curve(geometry: SPSCGeometry, material: Material, **kwargs) -> Curve:
 def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
                reservoir_mm3: float = 0.0, stroke_mm: float = 6.0, points: int = 25,
                polytropic_n: float = 1.0, settings: WallSettings | None = None,
-               model: WallModel | None = None, progress=None, friction="0") -> Curve:
+               model: WallModel | None = None, progress=None, friction="0",
+               object_stiffness=None) -> Curve:
     t_start = time.perf_counter()
     stick = sticks(friction)
+    spring = check_object_stiffness(object_stiffness)
     load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
                       stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
     pressure_kPa, reservoir_mm3, stroke_mm = load.pressure_kPa, load.reservoir_mm3, load.stroke_mm
@@ -164,7 +168,7 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
     steps = [Inflate(p_i, settings.inflate_increments), CloseValve(reservoir_mm3, polytropic_n)] \
         if p_i > 0 else []
     tick = (lambda done, total: progress()) if progress is not None else None
-    result = solve(model, steps + [Press.through(y[1:], stick=stick)],
+    result = solve(model, steps + [Press.through(y[1:], stick=stick, spring=spring)],
                    settings=settings.newton_settings(), progress=tick)
     walked = _walked(result, pressure_kPa)
     if progress is not None and result.stop is not None and result.stop.record is not None:
@@ -177,7 +181,8 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
     if stick:
         curve.solver.details.update(friction="stick",
                                     shear_N=[0.0] + [st.shear for st in pressed])
-    return curve
+    return with_indenter(curve, spring, [st.indenter for st in pressed])
+
 
 
 def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reservoir,
@@ -226,4 +231,3 @@ def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reserv
                  material=model.material.name, setup=setup, nominal_volume_mm3=v_nominal,
                  inflated_volume_mm3=v_inf, inflated_height_mm=model.apex(x_inf),
                  converged=conv, message=tuple(msg), solver=info)
-

@@ -1,0 +1,81 @@
+"""A compliant object (``--object-stiffness K``): the rigid indenter on a linear spring of
+stiffness k (N/mm) whose far end follows the prescribed travel y.
+
+The indenter stands where the spring's force balances the chamber's. Its own travel y_p (mm
+from first contact) solves
+
+    g(y_p) = k (y − y_p) − F(y_p) = 0,
+
+with F(y_p) the plate force of the chamber held at y_p: a converged load of the engine. So the
+curve F(y) with the spring is the rigid curve at the indenter's travel, F(y) = F_rigid(y − F/k),
+which is what makes objects of different stiffness (the paper's Fig. 10a) one option.
+
+g is k Δy > 0 at the last indenter position and decreases with y_p while the chamber is stable
+against the spring (dF/dy_p > −k). The root is found by secant steps from the last position,
+the first with F's slope from the last increment, kept inside the bracket once one is found
+(bisection otherwise), and never past the far end. Each trial solves the chamber from the last
+trial's state.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from .active_set import plate_force
+from .newton import newton
+from .result import NewtonFailure
+
+__all__ = ["balance", "solver"]
+
+#: trials of one balance before the increment fails (and is cut)
+MAX_TRIALS = 30
+
+
+def balance(solve_at, y: float, k: float, y_prev: float, f_prev: float, slope: float,
+            tol: float):
+    """(converged solution, y_p) with |k (y − y_p) − F(y_p)| ≤ ``tol`` (N).
+
+    ``solve_at(y_p)`` → (solution, F) solves the chamber with the indenter at y_p; ``y_prev``,
+    ``f_prev``: the last converged indenter travel and force; ``slope``: dF/dy_p there (N/mm,
+    an estimate). Raises :class:`NewtonFailure` if no balance is found."""
+    lo, g_lo, hi, g_hi = y_prev, k * (y - y_prev), None, None
+    a, g_a = lo, g_lo
+    yp = min(y, lo + g_lo / (k + max(slope, 0.0)))
+    for _ in range(MAX_TRIALS):
+        sol, force = solve_at(yp)
+        g = k * (y - yp) - force
+        if abs(g) <= tol:
+            return sol, yp
+        if g > 0:
+            lo, g_lo = yp, g
+        else:
+            hi, g_hi = yp, g
+        nxt = yp - g * (yp - a) / (g - g_a) if g != g_a else yp
+        a, g_a = yp, g
+        if hi is None:
+            nxt = min(max(nxt, lo), y)
+        elif not lo < nxt < hi:
+            nxt = 0.5 * (lo + hi)
+        yp = nxt
+    raise NewtonFailure(f"the object's spring does not balance the chamber at y = {y:.4g} mm "
+                        f"in {MAX_TRIALS} trials (indenter between {lo:.6g} and "
+                        f"{hi if hi is not None else y:.6g} mm)")
+
+
+def solver(model, settings, load_at_travel, x, active, engaged, grip):
+    """``solve_at(y_p)`` for :func:`balance`: Newton from the last trial's state (the walk's
+    first), always from the walk's anchors ``grip`` (a sticking plate's nodes touch at the
+    indenter's final position only)."""
+    state = {"x": x, "active": active, "engaged": engaged, "iterations": 0}
+
+    def solve_at(y_p):
+        load = load_at_travel(y_p)
+        sol = newton(model, state["x"], load, settings, state["active"], state["engaged"],
+                     grip)
+        state.update(x=sol.x, active=sol.active, engaged=sol.engaged,
+                     iterations=state["iterations"] + sol.iterations)
+        sol = dataclasses.replace(sol, iterations=state["iterations"])  # every trial's
+        return sol, plate_force(model, sol.evaluation.r, sol.active) if sol.active.size \
+            else 0.0
+
+    return solve_at
