@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-all docs bench bench-mold bench-compare bench-wall bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction clean
+.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-all docs bench bench-mold bench-compare bench-wall bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -122,6 +122,10 @@ bench-sense: $(STAMP)
 	$(BIN)/python bench/bench_sense.py
 
 # the sticking plate: increments, work, wall against 3D FEM, the Table 1 means (about 15 min)
+# the bench gap factor by factor (wall model, about 12 min), shown by make report
+bench-gap: $(STAMP)
+	$(BIN)/spsc bench-gap --out build/bench-gap
+
 bench-friction: $(STAMP)
 	mkdir -p build/bench
 	$(BIN)/python bench/bench_friction.py --json build/bench/friction.json

@@ -82,6 +82,7 @@ KEY_OPTIONS = {
              "--parting", "--out", "--no-step", "--no-render"],
     "check": ["--min-wall", "--process", "--design", "--json"],
     "haptic": ["--mesh-size", "--out", "--parts"],
+    "bench-gap": ["--out", "--material", "--types", "--workers", "--scheduler", "--quiet"],
     "curve": ["--model", "--pressure", "--reservoir", "--stroke", "--points", "--mesh-size",
               "--layers", "--vtu", "--meridians", "--json", "--csv", "--png", "--quiet"],
     "membrane": ["--model", "--pressure", "--meridians", "--json", "--csv", "--png"],

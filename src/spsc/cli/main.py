@@ -38,6 +38,7 @@ COMMANDS = {
     "haptic": "haptic",
     "simulate": "simulate",
     "sense": "sense",
+    "bench-gap": "bench_gap",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

@@ -2,6 +2,7 @@
 
     spsc report [--quick] [--out DIR] [--cache DIR] [--no-fem] [--no-sweep] [--types ABCD]
                 [--quiet] [--workers N | --scheduler ADDRESS] [--allow-dirty]
+                [--fingertip DIR] [--haptic DIR] [--time DIR] [--bench-gap DIR]
 
 Default: the full study into ``reports/validation/``; ``--quick`` (coarse FEM mesh, fewer
 points and pressures; CI) into ``build/report-quick/``. Runs are cached under
@@ -64,6 +65,9 @@ def register(subparsers) -> None:
     p.add_argument("--time", metavar="DIR", default=None,
                    help="the time-domain study to show (make time-study's build/time-study, "
                    "the default when it exists)")
+    p.add_argument("--bench-gap", metavar="DIR", default=None,
+                   help="the bench-gap study to show (make bench-gap's build/bench-gap, the "
+                   "default when it exists)")
     p.add_argument("--types", help="subset of the types, e.g. BD (default ABCD)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     d = p.add_argument_group("where the runs are computed (Dask; no cluster is started when "
@@ -104,15 +108,7 @@ def run(args) -> int:
     out = check_output_dir("--out", args.out if args.out is not None
                            else DEFAULT_OUT[bool(args.quick)])
     check_output_dir("--cache", args.cache)
-    if args.fingertip is not None and not (Path(args.fingertip) / "summary.json").is_file():
-        raise ParameterError("fingertip", args.fingertip, "a folder holding a fingertip study's "
-                             "summary.json (spsc fingertip --fem --out DIR writes DIR/fem)")
-    if args.haptic is not None and not (Path(args.haptic) / "summary.json").is_file():
-        raise ParameterError("haptic", args.haptic, "a folder holding the haptic chamber's "
-                             "study summary.json (make haptic-fem writes build/haptic-fem)")
-    if args.time is not None and not (Path(args.time) / "summary.json").is_file():
-        raise ParameterError("time", args.time, "a folder holding the time-domain study's "
-                             "summary.json (make time-study writes build/time-study)")
+    _check_studies(args)
     study = quick_study() if args.quick else full_study()
     if args.no_fem:
         study = study.replace(fem=False)
@@ -138,7 +134,7 @@ def run(args) -> int:
                         wall_seconds=time.perf_counter() - t0, bench=bench,
                         executor=executor, sweep=sweep, fingertip=_fingertip(args),
                         molds=tuple(study.types), haptic=_haptic(args),
-                        time_study=_time(args))
+                        time_study=_time(args), gap=_gap(args))
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
@@ -152,6 +148,25 @@ def run(args) -> int:
     return 0
 
 
+#: the studies a report shows: (the option's name, what its folder holds and what writes it)
+_STUDIES = (("fingertip", "a fingertip study's summary.json (spsc fingertip --fem "
+             "--out DIR writes DIR/fem)"),
+            ("haptic", "the haptic chamber's study summary.json (make haptic-fem "
+             "writes build/haptic-fem)"),
+            ("time", "the time-domain study's summary.json (make time-study writes "
+             "build/time-study)"),
+            ("bench_gap", "the bench-gap study's summary.json (make bench-gap "
+             "writes build/bench-gap)"))
+
+
+def _check_studies(args) -> None:
+    """Each study folder given holds its summary.json."""
+    for name, what in _STUDIES:
+        value = getattr(args, name)
+        if value is not None and not (Path(value) / "summary.json").is_file():
+            raise ParameterError(name, value, f"a folder holding {what}")
+
+
 def _haptic(args):
     from spsc.report.haptic import DEFAULT_DIR
 
@@ -162,6 +177,12 @@ def _time(args):
     from spsc.report.time import DEFAULT_DIR
 
     return DEFAULT_DIR if args.time is None else args.time
+
+
+def _gap(args):
+    from spsc.report.gap import DEFAULT_DIR
+
+    return DEFAULT_DIR if args.bench_gap is None else args.bench_gap
 
 
 def _fingertip(args):

@@ -15,8 +15,8 @@ from pathlib import Path
 from .fuzz_base import (GEOMETRY, KINDS, SETUP, Case, not_dask_address, numbers, out_dirs,
                         outputs)
 from .fuzz_fixtures import bases, fixtures
-from .fuzz_studies import (design_argv, design_cases, fit_material_cases, random_design,
-                           sweep_cases)
+from .fuzz_studies import (bench_gap_cases, design_argv, design_cases, fit_material_cases,
+                           random_design, sweep_cases)
 from .fuzz_sense import sense_cases
 from .fuzz_time import simulate_cases
 
@@ -38,6 +38,7 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += _calibrate_cases(f, b, tmp)
     cases += _report_cases(f, b, tmp)
     cases += simulate_cases(f, tmp)
+    cases += bench_gap_cases(f, b)
     cases += sense_cases(f, tmp)
     cases += [replace(c, kind="argparse") for c in _argparse_cases(f, b, tmp)]
     return [c if c.kind != "other" else replace(c, kind=_kind(c.why)) for c in cases]

@@ -200,6 +200,7 @@ def bases(f: dict[str, Path], tmp: Path) -> dict[str, tuple[str, ...]]:
         "design": ("design", "--target", "stiffness_high=6", "--model", "simplified",
                    "--out", str(tmp / "design"), "--quiet"),
         "haptic": ("haptic", "--out", out, "--parts", str(tmp / "parts")),
+        "bench-gap": ("bench-gap", "--out", out, "--quiet"),
         "simulate": ("simulate", str(tmp / "scenarios" / "scenario.toml"), "--out", out,
                      "--quiet"),
     }

@@ -6,7 +6,8 @@ from __future__ import annotations
 from .fuzz_base import Case, not_dask_address, out_dirs, outputs
 from .fuzz_fixtures import TENSION_BAD
 
-__all__ = ["sweep_cases", "design_cases", "fit_material_cases", "random_design", "design_argv"]
+__all__ = ["sweep_cases", "design_cases", "fit_material_cases", "random_design", "design_argv",
+           "bench_gap_cases"]
 
 
 
@@ -224,3 +225,15 @@ def design_argv(d: dict) -> list[str]:
         argv += [f"--{k}", f"{d[k]:g}"]
     return argv + ["--material", d["material"], "--flange-holes", str(d["flange_holes"]),
                    "--tube-id", f"{d['tube_id']:g}"]
+
+
+def bench_gap_cases(f, b) -> list[Case]:
+    """spsc bench-gap: its types, material, folder and cluster."""
+    g = b["bench-gap"]
+    return out_dirs(g[:1], "--out", f) + [
+        Case(g + ("--types", "BX"), "an unknown type", "types"),
+        Case(g + ("--types", ""), "no type", "types"),
+        Case(g + ("--material", "rubber"), "unknown material", "material"),
+        Case(g + ("--workers", "0"), "no worker", "workers"),
+        Case(g + ("--workers", "2", "--scheduler", "tcp://127.0.0.1:1"),
+             "workers with a scheduler", "workers")]

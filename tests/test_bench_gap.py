@@ -1,0 +1,102 @@
+"""The bench-gap study (:mod:`spsc.studies.bench_gap`) and its report section
+(:mod:`spsc.report.gap`): each factor's row is the headline means of its runs over its window,
+against the bench and the baseline; the section says what the rows say."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from spsc.core.curve import Curve
+from spsc.studies import bench_gap
+
+#: a fake chamber per run set: F = a y + C y², P = p_i + b y (any type and mode)
+A = {"long": 4.0, "stick": 4.2, "thin": 3.6, "thick": 4.4, "stiffest": 4.6}
+B = {"long": 4.0, "stick": 3.5, "thin": 4.1, "thick": 3.9, "stiffest": 3.4}
+C = 0.1
+#: the paper's (sec. 3.1)
+BENCH = {"stiffness_high": 8.0, "stiffness_low": 5.0, "sensitivity_high": 6.1,
+         "sensitivity_low": 0.5}
+
+
+def _fake(spec, type_name, pressure_kPa, mode, material_name):
+    y = np.linspace(0.0, spec.stroke, int(round(spec.stroke * bench_gap.POINTS_PER_MM)) + 1)
+    scale = 0.5 if mode == "low" else 1.0
+    return Curve(y, scale * (A[spec.name] * y + C * y ** 2), pressure_kPa + scale * B[spec.name] * y,
+                 y, y, model="wall", geometry={}, material=material_name, setup={},
+                 nominal_volume_mm3=1.0, inflated_volume_mm3=1.0, inflated_height_mm=13.0)
+
+
+@pytest.fixture
+def summary(tmp_path, monkeypatch):
+    monkeypatch.setattr(bench_gap, "curve_of", _fake)
+    return bench_gap.run_gap(tmp_path, BENCH, types="AB", pressures=(10.0, 40.0))
+
+
+def test_each_row_is_the_mean_slope_of_its_runs_over_its_window(summary):
+    """The integral mean of F = a y + C y² over [0, Y] is a + C Y: the baseline reads the 8 mm
+    runs over 0-6 mm, the stroke rows over 0-4 and 0-8 mm; the low mode's fake is half."""
+    rows = {r["factor"]: r for r in summary["rows"]}
+    assert_allclose(rows["baseline"]["stiffness_high"], A["long"] + 6 * C, rtol=1e-12)
+    assert_allclose(rows["y_0-4"]["stiffness_high"], A["long"] + 4 * C, rtol=1e-12)
+    assert_allclose(rows["y_0-8"]["stiffness_low"], 0.5 * (A["long"] + 8 * C), rtol=1e-12)
+    assert_allclose(rows["stick"]["stiffness_high"], A["stick"] + 6 * C, rtol=1e-12)
+    assert_allclose(rows["stiffest"]["stiffness_high"], A["stiffest"] + 8 * C, rtol=1e-12)
+    assert_allclose(rows["t0_1.1"]["sensitivity_high"], B["thick"], rtol=1e-12)
+    assert_allclose(rows["stick"]["against_baseline_pct"]["stiffness_high"],
+                    100 * ((A["stick"] + 6 * C) / (A["long"] + 6 * C) - 1), rtol=1e-12)
+    assert_allclose(rows["baseline"]["against_bench_pct"]["stiffness_high"],
+                    100 * ((A["long"] + 6 * C) / 8.0 - 1), rtol=1e-12)
+    assert all(not r["partial"] for r in rows.values())
+    assert summary["curves"] == 5 * 2 * 2 * 2  # run sets × modes × types × pressures
+
+
+def test_the_summary_and_figure_are_written(summary, tmp_path):
+    assert json.loads((tmp_path / "summary.json").read_text())["rows"][0]["factor"] == \
+        "baseline"
+    assert (tmp_path / "bench-gap.png").stat().st_size > 10_000
+
+
+def test_the_report_section_says_which_factor_closes_most_of_the_gap(summary, tmp_path):
+    from spsc.report.gap import gap_section
+    from spsc.report.render import environment
+
+    out = tmp_path / "report"
+    sec = gap_section(tmp_path, out)
+    assert (out / sec["figure"]).is_file()
+    high = sec["findings"][0]
+    gap = 8.0 - (A["long"] + 6 * C)
+    best = max(("t0_1.1", A["thick"] + 6 * C), ("y_0-8", A["long"] + 8 * C),
+               ("stick", A["stick"] + 6 * C), key=lambda kv: kv[1])
+    assert f"({100 * (best[1] - (A['long'] + 6 * C)) / gap:.0f} % of it)" in high
+    stiffest = 100 * (A["stiffest"] + 8 * C - (A["long"] + 6 * C)) / gap
+    assert f"{stiffest:.0f} % of the gap" in high
+    html = environment().from_string('{% import "macros.html.j2" as m with context %}'
+                                     '{% include "gap_section.html.j2" %}').render(gap=sec)
+    assert 'id="gap"' in html and "the paper's bench" in html and "wall 0.9 mm" in html
+
+
+def test_no_study_renders_how_to_make_it():
+    from spsc.report.render import environment
+
+    html = environment().from_string('{% import "macros.html.j2" as m with context %}'
+                                     '{% include "gap_section.html.j2" %}').render(gap=None)
+    assert "make bench-gap" in html
+
+
+@pytest.mark.slow
+def test_the_real_study_on_one_type_and_pressure(tmp_path):
+    """Type B at 40 kPa, the real wall model: the sticking plate and the thicker wall are
+    stiffer than the report's setup, the thinner wall softer, every curve complete."""
+    factors = [f for f in bench_gap.FACTORS if f.name in ("baseline", "stick", "t0_0.9",
+                                                          "t0_1.1")]
+    s = bench_gap.run_gap(tmp_path, BENCH, types="B", pressures=(40.0,), factors=factors)
+    rows = {r["factor"]: r for r in s["rows"]}
+    for mode in ("high", "low"):
+        k = f"stiffness_{mode}"
+        assert rows["t0_0.9"][k] < rows["baseline"][k] < rows["t0_1.1"][k]
+        assert rows["stick"][k] > rows["baseline"][k]
+    assert all(not r["partial"] for r in rows.values())
