@@ -121,6 +121,14 @@ def test_open_chamber_and_curve_json(tmp_path):
     np.testing.assert_allclose(curve.nominal_volume_mm3, G.cavity_volume(), rtol=1e-3)
     paths = write_vtu(model, result, tmp_path / "vtu")
     assert len(paths) == len(result.records) and all(p.stat().st_size > 0 for p in paths)
+    # the nodes' contact forces sum to the plate force (× the quarter's symmetry) and are
+    # normal to the frictionless plate
+    import pyvista as pv
+
+    last = pv.read(paths[-1]).point_data["contact_force_N"]
+    np.testing.assert_allclose(last[:, 2].sum() * model.symmetry, result.records[-1].force,
+                               rtol=1e-9)
+    assert np.all(last[:, 2] >= -1e-9) and np.abs(last[:, :2]).max() < 1e-6 * last[:, 2].max()
 
 
 def test_failure_keeps_converged_points_and_says_why(tmp_path):
