@@ -122,7 +122,7 @@ bench-sense: $(STAMP)
 	$(BIN)/python bench/bench_sense.py
 
 # the sticking plate: increments, work, wall against 3D FEM, the Table 1 means (about 15 min)
-# the bench gap factor by factor (wall model, about 12 min), shown by make report
+# the bench gap factor by factor (wall model, about 14 min), shown by make report
 bench-gap: $(STAMP)
 	$(BIN)/spsc bench-gap --out build/bench-gap
 

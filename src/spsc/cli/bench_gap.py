@@ -5,7 +5,7 @@ the stroke of the means changed one at a time (:mod:`spsc.studies.bench_gap`).
     spsc bench-gap [--out build/bench-gap] [--material tpu60a] [--types ABCD]
                    [--workers N | --scheduler ADDRESS] [--quiet]
 
-Writes ``summary.json`` and ``bench-gap.png`` where ``spsc report`` finds them (about 12 min
+Writes ``summary.json`` and ``bench-gap.png`` where ``spsc report`` finds them (about 14 min
 on two cores). Exit 0 when every curve reached its stroke's end, 1 when some stopped early
 (their points reached count; the table says how many).
 """

@@ -1,7 +1,7 @@
 """The report's "Against the bench, factor by factor" section: the wall model's Table 1 means
 with one thing changed at a time (friction, wall thickness, the stroke the means are taken
 over), from the study ``spsc bench-gap`` wrote (:mod:`spsc.studies.bench_gap`), shown as the
-time-domain study is: the report does not run it (about 12 min on two cores).
+time-domain study is: the report does not run it (about 14 min on two cores).
 """
 
 from __future__ import annotations

@@ -18,7 +18,7 @@ thing changed from the report's setup:
 The material row (a fit of a published tension test of printed TPU 60A) needs such data,
 which the catalogue does not hold yet.
 
-    spsc bench-gap --out build/bench-gap [--workers N | --scheduler ADDR]   (about 12 min)
+    spsc bench-gap --out build/bench-gap [--workers N | --scheduler ADDR]   (about 14 min)
 
 writes ``summary.json`` and ``bench-gap.png``; ``spsc report --bench-gap DIR`` shows them.
 """
@@ -181,6 +181,8 @@ def _figure(summary, path) -> None:
     for k, r in enumerate(rows):
         ax.bar(x + (k - (len(rows) - 1) / 2) * width, [r[q] / bench[q] for q in qs], width,
                label=r["label"])
+    top = max(r[q] / bench[q] for r in rows for q in qs)
+    ax.set_ylim(0.0, 1.5 * max(top, 1.0))  # room for the legend above the bars
     ax.axhline(1.0, color="k", lw=1)
     ax.text(len(qs) - 0.5, 1.01, "the paper's bench", ha="right", va="bottom", fontsize=8)
     ax.set_xticks(x, [q.replace("_", " ") for q in qs])
