@@ -99,15 +99,16 @@ def test_the_default_increment_is_within_half_a_percent_of_a_four_times_finer_on
 
 
 @pytest.mark.parametrize("value, expected", [(0, "0"), ("0.0", "0"), ("stick", "stick"),
-                                             (" Stick ", "stick")])
+                                             (" Stick ", "stick"), (0.3, "0.3"),
+                                             ("0.60", "0.6")])
 def test_friction_values(value, expected):
     assert check_friction(value) == expected
 
 
-@pytest.mark.parametrize("value", [0.3, "-1", "slip", "nan", None])
+@pytest.mark.parametrize("value", ["-1", "slip", "nan", None, "inf"])
 def test_other_friction_values_are_refused_in_one_line(value, dome):
-    with pytest.raises(ParameterError, match=r"^friction = .* allowed 0 \(frictionless\) or "
-                                             r"stick") as err:
+    with pytest.raises(ParameterError, match=r"^friction = .* allowed 0 \(frictionless\), a "
+                                             r"Coulomb coefficient") as err:
         wall_curve(dome.geometry, dome.material, friction=value, points=3, stroke_mm=1)
     assert "\n" not in str(err.value)
 
@@ -128,3 +129,51 @@ def test_spsc_curve_friction_stick_through_the_command_line(tmp_path, dome):
     assert held.solver.details["friction"] == "stick" and "friction" not in free.solver.details
     assert len(held.solver.details["shear_N"]) == 5 and held.solver.details["shear_N"][-1] > 0
     assert held.force_N[-1] > free.force_N[-1]
+
+
+# -- Coulomb friction (spsc.fem.engine.coulomb) -----------------------------------------------
+def _coulomb(dome, mu, pressure_kPa=40.0, y=Y[:9]):
+    steps = [Inflate(pressure_kPa * 1e-3, 4), CloseValve(0.0, 1.0)] if pressure_kPa else []
+    res = solve(dome, steps + [Press.through(y[1:], stick=True, mu=mu)])
+    assert res.converged, res.message
+    return res.of("press")
+
+
+def test_every_node_on_the_plate_obeys_coulomb_s_law(dome):
+    """μ = 0.3 on the 40 kPa dome to 1 mm: at every recorded point every node on the plate
+    has |R_t| ≤ μ λ_n (to 1e-6 of it), and some slide with |R_t| = μ λ_n (to 1e-6): the
+    return mapping's cone, from the model's own residual at the recorded state."""
+    mu, slipping = 0.3, 0
+    for rec in _coulomb(dome, mu):
+        r = dome.evaluate(rec.x, Load(pressure=rec.pressure), tangent=False).r
+        on = _on_plate(dome, rec)
+        lat = lateral(dome, on)[0]
+        normal, tangential = -r[on], np.abs(np.where(lat >= 0, r[np.maximum(lat, 0)], 0.0))
+        assert np.all(normal >= -1e-9)
+        assert np.all(tangential <= mu * normal * (1 + 1e-6) + 1e-12)
+        slipping += int(np.sum(np.isclose(tangential, mu * normal, rtol=1e-6) & (normal > 0)))
+    assert slipping > 0
+
+
+@pytest.mark.slow
+def test_coulomb_spans_frictionless_to_sticking(dome):
+    """μ = 1e-6 is the frictionless plate (to 1e-5), μ = 1e6 the sticking one (to 1e-9), and
+    the force grows with μ in between (0.3, 1: +1.6 % and +5.2 % at 1 mm, stick +5.6 %)."""
+    f = {mu: np.array([r.force for r in _coulomb(dome, mu)]) for mu in (1e-6, 0.3, 1.0, 1e6)}
+    free = np.array([r.force for r in _press(dome, False, y=Y[:9])])
+    held = np.array([r.force for r in _press(dome, True, y=Y[:9])])
+    assert_allclose(f[1e-6], free, rtol=1e-5)
+    assert_allclose(f[1e6], held, rtol=1e-9)
+    assert np.all(free[1:] < f[0.3][1:]) and np.all(f[0.3][1:] < f[1.0][1:])
+    assert np.all(f[1.0][1:] <= held[1:] * (1 + 1e-9))
+
+
+@pytest.mark.slow
+def test_coulomb_friction_dissipates(dome):
+    """Vented dome: with μ = 0.3 the plate's work exceeds the stored energy (the friction
+    dissipates) by more than the quadrature's error (3e-4 frictionless)."""
+    y = np.linspace(0.0, 2.0, 17)
+    recs = _coulomb(dome, 0.3, pressure_kPa=0.0, y=y)
+    F = np.array([0.0] + [r.force for r in recs])
+    stored = dome.potential(recs[-1].x, Load()) - dome.potential(dome.zero_state(), Load())
+    assert simpson(F, x=y) > stored * (1 + 1e-3)

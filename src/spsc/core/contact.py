@@ -4,9 +4,9 @@ object), checked in one place so the command line and the Python API refuse the 
 with the same one-line error.
 
 ``stick`` holds every node the plate touches from sliding on it (no tangential slip: the
-limit of Coulomb friction as μ → ∞, :mod:`spsc.fem.engine.friction`); ``0`` is the
-frictionless plate of the paper's models. A finite coefficient (Coulomb stick/slip) is not
-built yet and is refused.
+limit of Coulomb friction as μ → ∞, :mod:`spsc.fem.engine.friction`); a number μ > 0 is
+Coulomb friction, stick or slip per node (:mod:`spsc.fem.engine.coulomb`); ``0`` is the
+frictionless plate of the paper's models.
 """
 
 from __future__ import annotations
@@ -15,15 +15,17 @@ import math
 
 from .errors import ParameterError, require
 
-__all__ = ["FRICTION_VALUES", "check_friction", "sticks", "check_object_stiffness",
+__all__ = ["FRICTION_VALUES", "check_friction", "sticks", "coefficient", "check_combination",
+           "check_object_stiffness",
            "with_indenter"]
 
-#: what ``--friction`` takes
+#: what ``--friction`` takes (besides a coefficient μ > 0)
 FRICTION_VALUES = ("0", "stick")
 
 
 def check_friction(value) -> str:
-    """``"0"`` (frictionless) or ``"stick"``; ParameterError naming ``friction`` otherwise."""
+    """``"0"`` (frictionless), ``"stick"`` or the coefficient μ > 0 as text (``"0.3"``);
+    ParameterError naming ``friction`` otherwise."""
     text = str(value).strip().lower()
     if text == "stick":
         return "stick"
@@ -33,15 +35,29 @@ def check_friction(value) -> str:
         mu = math.nan
     if mu == 0.0:
         return "0"
-    allowed = "0 (frictionless) or stick (no slip)"
     if math.isfinite(mu) and mu > 0:
-        allowed += "; a finite Coulomb coefficient is not built yet"
-    raise ParameterError("friction", value, allowed)
+        return f"{mu:g}"
+    raise ParameterError("friction", value, "0 (frictionless), a Coulomb coefficient > 0 "
+                         "(e.g. 0.3) or stick (no slip)")
 
 
 def sticks(value) -> bool:
-    """Whether the checked ``value`` holds what the plate touches."""
-    return check_friction(value) == "stick"
+    """Whether the plate of the checked ``value`` holds what it touches (stick, or Coulomb
+    friction within its cone)."""
+    return check_friction(value) != "0"
+
+
+def coefficient(value) -> float | None:
+    """The Coulomb coefficient μ of the checked ``value``; None for no slip or no friction."""
+    text = check_friction(value)
+    return None if text in ("0", "stick") else float(text)
+
+
+def check_combination(mu: float | None, spring: float | None) -> None:
+    """Coulomb friction and a spring-borne object are not built together."""
+    if mu is not None and spring is not None:
+        raise ParameterError("object_stiffness", spring, "only with friction 0 or stick (a "
+                             "compliant object under Coulomb friction is not built yet)")
 
 
 def check_object_stiffness(value) -> float | None:

@@ -17,7 +17,7 @@ class FEMOptions:
     """``mesh_size`` (mm), ``layers`` through the wall, ``force`` (beyond the size limits),
     ``full`` (the whole chamber, not the quarter on the symmetry planes), ``solver`` (sparse
     linear solver), ``vtu`` (a folder for one VTU per converged step, or None), ``friction``
-    (the plate's: ``"0"`` or ``"stick"``), ``object_stiffness`` (N/mm, None: rigid)."""
+    (the plate's: ``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``), ``object_stiffness`` (N/mm, None: rigid)."""
 
     mesh_size: float = mesh_size_option(1.0)
     layers: int = layers_option(2)
@@ -58,11 +58,12 @@ class FEMCurveModel(ModelBase):
         return load.points - 1 + inflate
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        from spsc.core.contact import check_friction, check_object_stiffness
+        from spsc.core.contact import (check_combination, check_friction,
+                                       check_object_stiffness, coefficient)
         from spsc.fem.solid.mesh import check_mesh_size, wall_mesh_counts
 
-        check_friction(options.friction)
-        check_object_stiffness(options.object_stiffness)
+        check_combination(coefficient(check_friction(options.friction)),
+                          check_object_stiffness(options.object_stiffness))
         from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 
         size, layers = check_mesh_size(geometry, options.mesh_size, options.layers)

@@ -32,10 +32,11 @@ def force_option():
 
 
 def friction_option():
-    """The plate's friction: 0 (frictionless) or stick (:mod:`spsc.core.contact`)."""
-    return option("0", "--friction", "the plate's friction: 0 (frictionless, default) or "
-                  "stick (no slip: every node the plate touches is held where it touched)",
-                  kind="value", group="contact", metavar="0|stick")
+    """The plate's friction: 0 (frictionless), μ or stick (:mod:`spsc.core.contact`)."""
+    return option("0", "--friction", "the plate's friction: 0 (frictionless, default), a "
+                  "Coulomb coefficient such as 0.3 (stick or slip per node), or stick (no "
+                  "slip: every node the plate touches is held where it touched)",
+                  kind="value", group="contact", metavar="0|MU|stick")
 
 
 def object_stiffness_option():

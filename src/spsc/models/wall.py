@@ -16,7 +16,7 @@ __all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
 @dataclass(frozen=True)
 class WallOptions:
     """``mesh_size`` (mm; None: 0.5 on a dome, 1.0 on a stadium), ``layers`` through the wall,
-    ``force``: run beyond the size limits, ``friction``: the plate's, ``"0"`` or ``"stick"``,
+    ``force``: run beyond the size limits, ``friction``: the plate's, ``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``,
     ``object_stiffness``: N/mm, None for a rigid object."""
 
     mesh_size: float | None = mesh_size_option(None)
@@ -69,10 +69,11 @@ class WallCurveModel(ModelBase):
         return load.points - 1 + inflate
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        from spsc.core.contact import check_friction, check_object_stiffness
+        from spsc.core.contact import (check_combination, check_friction,
+                                       check_object_stiffness, coefficient)
 
-        check_friction(options.friction)
-        check_object_stiffness(options.object_stiffness)
+        check_combination(coefficient(check_friction(options.friction)),
+                          check_object_stiffness(options.object_stiffness))
         wall_size_check(verb, geometry, options.mesh_size, options.layers,
                         load.points - 1 + (2 if load.pressure_kPa > 0 else 0),
                         force=bool(options.force), quiet=quiet, points=load.points)

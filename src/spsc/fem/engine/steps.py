@@ -52,12 +52,15 @@ class Press:
     #: the indenter's spring (N/mm, :mod:`.spring`): the travel is the spring's far end; None:
     #: the indenter itself follows the travel
     spring: float | None = None
+    #: a sticking plate's Coulomb coefficient (:mod:`.coulomb`); None: no slip
+    mu: float | None = None
 
     @classmethod
-    def through(cls, travel, *, stick: bool = False, spring: float | None = None) -> "Press":
+    def through(cls, travel, *, stick: bool = False, spring: float | None = None,
+                mu: float | None = None) -> "Press":
         """Press through the plate travels ``travel`` (mm from first contact, increasing)."""
         travel = tuple(float(v) for v in travel)
-        return cls(travel[-1], len(travel), travel, stick, spring)
+        return cls(travel[-1], len(travel), travel, stick, spring, mu)
 
     def targets(self) -> list:
         """The recorded load parameters t: fractions of the stroke, or the travels (mm)."""
@@ -125,14 +128,15 @@ class Load:
 
 
 def load_steps(load, inflate_increments: int = 4, *, stick: bool = False,
-               spring: float | None = None) -> list:
+               spring: float | None = None, mu: float | None = None) -> list:
     """The steps of a load case (:class:`~spsc.core.loadcase.LoadCase`: kPa gauge, mm³, mm):
     inflate to the setup pressure in ``inflate_increments``, close the valve onto the
     reservoir, press the stroke in ``points − 1`` increments (``stick``: with a sticking
-    plate; ``spring``: the indenter on a spring of that stiffness, N/mm); the open chamber
-    (p = 0) is pressed alone."""
+    plate, with Coulomb friction ``mu`` if given; ``spring``: the indenter on a spring of that
+    stiffness, N/mm); the open chamber (p = 0) is pressed alone."""
     out = []
     if load.pressure_kPa > 0:
         out += [Inflate(load.pressure_kPa * 1e-3, inflate_increments),
                 CloseValve(load.reservoir_mm3, load.polytropic_n)]
-    return out + [Press(load.stroke_mm, int(load.points) - 1, stick=stick, spring=spring)]
+    return out + [Press(load.stroke_mm, int(load.points) - 1, stick=stick, spring=spring,
+                        mu=mu)]

@@ -21,6 +21,7 @@ import numpy as np
 from spsc.core.gaslaw import GasLaw
 
 from .active_set import first_contact, plate_force
+from .coulomb import coulomb
 from .friction import Grip, tractions
 from .spring import balance, solver as spring_solver
 from .newton import newton
@@ -151,6 +152,9 @@ class _Walk:
             try:
                 if getattr(step, "spring", None):
                     sol, trial = self.solve_spring(step, t_new)
+                elif getattr(step, "mu", None) is not None:
+                    sol = coulomb(self.model, self.x, trial, self.s, self.active,
+                                  self.engaged, self.gripped(trial), step.mu)
                 else:
                     sol = self.solve_one(trial, t_new, history)
             except self.model.recoverable as exc:
@@ -160,7 +164,8 @@ class _Walk:
                     return Stop(k, kind, t_new, step, trial, str(exc))
                 continue
             if sol.unstable_modes and kind == "press" and self.s.snap_through \
-                    and len(self.jumps) < _MAX_JUMPS and not getattr(step, "spring", None):
+                    and len(self.jumps) < _MAX_JUMPS and not getattr(step, "spring", None) \
+                    and getattr(step, "mu", None) is None:
                 jumped = self.snap(step, load_at, t, t_new, sol)
                 if jumped is not None:
                     t_new, sol = jumped

@@ -14,7 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.core.contact import check_friction, check_object_stiffness, with_indenter
+from spsc.core.contact import (check_combination, check_friction, check_object_stiffness,
+                               coefficient, with_indenter)
 from spsc.core.errors import ParameterError
 from spsc.core.loadcase import LoadCase, WithLoadCase, check_load
 from spsc.cad.geometry import SPSCGeometry
@@ -36,7 +37,7 @@ class ChamberRun(WithLoadCase):
     (:class:`~spsc.core.loadcase.LoadCase`: kPa gauge, mm³, mm; ``points`` plate positions from
     first contact, points − 1 increments) and the mesh. ``mesh_size_mm``: element edge along
     the wall surfaces (``spsc fem --mesh-size``; not the preset footprint, which is
-    ``--footprint`` and part of the geometry). ``friction`` (``"0"`` or ``"stick"``) and
+    ``--footprint`` and part of the geometry). ``friction`` (``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``) and
     ``object_stiffness`` (N/mm, None: rigid) describe what presses it
     (:mod:`spsc.core.contact`). :func:`chamber_run` builds one from keywords."""
 
@@ -60,10 +61,11 @@ class ChamberRun(WithLoadCase):
         object.__setattr__(self, "friction", check_friction(self.friction))
         object.__setattr__(self, "object_stiffness",
                            check_object_stiffness(self.object_stiffness))
+        check_combination(coefficient(self.friction), self.object_stiffness)
 
     def steps(self) -> list:
-        return load_steps(self.load, self.inflate_increments, stick=self.friction == "stick",
-                          spring=self.object_stiffness)
+        return load_steps(self.load, self.inflate_increments, stick=self.friction != "0",
+                          spring=self.object_stiffness, mu=coefficient(self.friction))
 
 
 def chamber_run(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
@@ -158,8 +160,8 @@ def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
         setup["instability"] = result.instability
     details = {"mesh_size_mm": run.mesh_size_mm, "layers": run.layers, "model_part": part,
                "bulk_ratio": run.bulk_ratio}
-    if run.friction == "stick":
-        details.update(friction="stick", shear_N=[0.0] + [r.shear for r in pts["presses"]])
+    if run.friction != "0":
+        details.update(friction=run.friction, shear_N=[0.0] + [r.shear for r in pts["presses"]])
     info = solve_info(result, model, pts, mesh_seconds, details)
     inflated = pts["inflated"]
     curve = Curve(pts["y"], pts["F"], pts["P"], pts["A"], pts["dV"], model="fem",

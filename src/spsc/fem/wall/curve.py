@@ -51,7 +51,8 @@ from spsc.cad.geometry import SPSCGeometry
 from spsc.core.constants import KPA_PER_MPA
 from spsc.core.curve import Curve, SolveInfo
 from spsc.core.gaslaw import GasLaw
-from spsc.core.contact import check_object_stiffness, sticks, with_indenter
+from spsc.core.contact import (check_combination, check_friction, check_object_stiffness,
+                               coefficient, sticks, with_indenter)
 from spsc.core.loadcase import check_load
 from spsc.materials import Material
 
@@ -138,7 +139,7 @@ def wall_curve(geometry: SPSCGeometry, material: Material, **kwargs) -> Curve:
     Keyword arguments: ``pressure_kPa`` (40), ``reservoir_mm3`` (0), ``stroke_mm`` (6),
     ``points`` (25), ``polytropic_n`` (1), ``settings`` (:class:`WallSettings`), ``model`` (a
     :class:`WallModel` to reuse), ``progress`` (called once per converged point),
-    ``friction`` (``"0"`` or ``"stick"``), ``object_stiffness`` (N/mm: the indenter on a
+    ``friction`` (``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``), ``object_stiffness`` (N/mm: the indenter on a
     spring whose far end is the travel y; the curve's series ``indenter_travel_mm`` is the
     indenter's own travel; None: rigid).
     """
@@ -155,8 +156,9 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
                model: WallModel | None = None, progress=None, friction="0",
                object_stiffness=None) -> Curve:
     t_start = time.perf_counter()
-    stick = sticks(friction)
+    stick, mu = sticks(friction), coefficient(friction)
     spring = check_object_stiffness(object_stiffness)
+    check_combination(mu, spring)
     load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
                       stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
     pressure_kPa, reservoir_mm3, stroke_mm = load.pressure_kPa, load.reservoir_mm3, load.stroke_mm
@@ -168,7 +170,7 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
     steps = [Inflate(p_i, settings.inflate_increments), CloseValve(reservoir_mm3, polytropic_n)] \
         if p_i > 0 else []
     tick = (lambda done, total: progress()) if progress is not None else None
-    result = solve(model, steps + [Press.through(y[1:], stick=stick, spring=spring)],
+    result = solve(model, steps + [Press.through(y[1:], stick=stick, spring=spring, mu=mu)],
                    settings=settings.newton_settings(), progress=tick)
     walked = _walked(result, pressure_kPa)
     if progress is not None and result.stop is not None and result.stop.record is not None:
@@ -179,7 +181,7 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
                       result.records[0].volume, pressure_kPa, reservoir_mm3, polytropic_n,
                       time.perf_counter() - t_start)
     if stick:
-        curve.solver.details.update(friction="stick",
+        curve.solver.details.update(friction=check_friction(friction),
                                     shear_N=[0.0] + [st.shear for st in pressed])
     return with_indenter(curve, spring, [st.indenter for st in pressed])
 

@@ -1,0 +1,116 @@
+"""Coulomb friction on the plate (``--friction MU``): each node on the plate sticks while the
+plate's tangential force on it stays within μ times its normal force, and slides against a
+friction force of exactly μ times its normal force otherwise.
+
+Each increment is solved by a return mapping over the nodes, as plasticity is:
+
+1. trial: every node that was on the plate sticks (:mod:`.friction`: its lateral unknowns
+   held at its anchor; a node touching in this increment meets the plate frictionless);
+2. a sticking node whose tangential force R_t exceeds μ λ_n (λ_n its normal force) slips: its
+   lateral unknowns are freed and loaded by the friction force F = μ λ_n R_t / |R_t|, the
+   direction the sticking force had;
+3. the increment is solved again with those forces held (:class:`Sliding`), then each slipping
+   node's force is updated: its magnitude μ λ_n from the new normal force, its direction
+   against the node's slide since its anchor; a node whose slide turned along the force
+   (it would be pushed forward by friction) sticks again at its anchor;
+4. until the set of slipping nodes is unchanged and the friction forces move by less than
+   ``TOLERANCE`` of the largest.
+
+The friction forces are held within each Newton solve, so the tangent stays symmetric (the
+nonsymmetric term μ t ⊗ ∂λ_n/∂u is left to the outer loop, a fixed point). μ → ∞ is the
+sticking plate and μ = 0 the frictionless one (both tested). After the increment a slipping
+node is anchored where it stopped, and the next increment's trial holds it there.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from .friction import Grip, lateral
+from .newton import newton
+from .result import NewtonFailure
+
+__all__ = ["Sliding", "coulomb", "TOLERANCE", "MAX_ROUNDS"]
+
+#: the friction forces' largest change, relative to the largest force, that ends the loop
+TOLERANCE = 1e-7
+#: rounds of the return mapping before the increment fails (and is cut)
+MAX_ROUNDS = 60
+
+
+class Sliding:
+    """``model`` with the friction forces ``forces`` (N, plate on node) on its lateral unknowns
+    ``dofs`` as held external loads: r − F, the tangent unchanged."""
+
+    def __init__(self, model, dofs, forces):
+        self.model, self.dofs, self.forces = model, np.asarray(dofs, int), np.asarray(forces)
+
+    def __getattr__(self, name):
+        return getattr(self.model, name)
+
+    def evaluate(self, x, load, *, tangent: bool = True):
+        ev = self.model.evaluate(x, load, tangent=tangent)
+        r = ev.r.copy()
+        r[self.dofs] -= self.forces
+        return dataclasses.replace(ev, r=r)
+
+    def reuse(self, ev, tangent_ev):
+        return self.model.reuse(ev, tangent_ev)
+
+
+def coulomb(model, x0, load, settings, active, engaged, grip: Grip, mu: float):
+    """The converged state of one sticking ``load`` with Coulomb friction μ from the walk's
+    ``x0``, active set, engaged set and anchors ``grip`` (nodes on the plate before the
+    increment). Its evaluation is the model's own (the plate's forces as reactions r: normal
+    −r_z, tangential r_t at every node, sticking or slipping); its grip anchors every node
+    where it ended. Raises :class:`NewtonFailure` if the return mapping does not settle."""
+    slip = {}  # lateral dof -> friction force (N)
+    x, act, eng = x0, active, engaged
+    iterations, change = 0, np.inf
+    for _ in range(MAX_ROUNDS):
+        free = grip.anchor.copy()
+        dofs = np.fromiter(slip, int, len(slip))
+        free[dofs] = np.nan
+        solved = newton(Sliding(model, dofs, [slip[d] for d in dofs]) if slip else model,
+                        x, load, settings, act, eng, Grip(free))
+        iterations += solved.iterations
+        x, act, eng = solved.x, solved.active, solved.engaged
+        r = model.evaluate(x, load, tangent=False).r
+        new, change = _map(model, r, x, act, grip, slip, mu)
+        if new.keys() == slip.keys() and change <= TOLERANCE:
+            ev = model.evaluate(x, load, tangent=False)
+            return dataclasses.replace(solved, evaluation=ev, iterations=iterations)
+        slip = new
+    raise NewtonFailure(f"the friction's stick and slip do not settle in {MAX_ROUNDS} rounds "
+                        f"(the friction forces still change by {change:.2g} of the largest)")
+
+
+def _map(model, r, x, active, grip: Grip, slip: dict, mu: float) -> tuple[dict, float]:
+    """The next slipping set and friction forces, and how much the forces changed (relative
+    to the largest)."""
+    lat = lateral(model, active)
+    normal = np.maximum(-r[active], 0.0)
+    new, change, scale = {}, 0.0, mu * max(float(normal.max(initial=0.0)), 1e-300)
+    for k in range(len(active)):
+        dofs = lat[:, k][lat[:, k] >= 0]
+        if dofs.size == 0 or np.isnan(grip.anchor[dofs]).any():
+            continue  # no lateral freedom, or touched in this increment: frictionless
+        limit = mu * normal[k]
+        if dofs[0] not in slip:
+            held = r[dofs]
+            if np.linalg.norm(held) > limit * (1 + 1e-9) + 1e-12 * scale:
+                force = limit * held / np.linalg.norm(held)
+                new.update(zip(dofs, force))
+                change = max(change, 1.0)
+            continue
+        old = np.array([slip[d] for d in dofs])
+        slid = x[dofs] - grip.anchor[dofs]
+        if slid @ old > 0 or np.linalg.norm(slid) == 0.0:  # pushed forward: it sticks again
+            change = max(change, 1.0)
+            continue
+        force = -limit * slid / np.linalg.norm(slid)
+        new.update(zip(dofs, force))
+        change = max(change, float(np.abs(force - old).max()) / scale)
+    return new, change
