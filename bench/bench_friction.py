@@ -8,10 +8,12 @@ paper's bench it explains.
 3. Wall against 3D FEM: Type B (Table 1, the stadium) at 40 kPa pressed 2 mm, frictionless
    and sticking, the 3D FEM on its 1 mm quarter mesh with two layers (minutes).
 4. The headline: the wall model's Table 1 means (types A-D, p_i 10-40 kPa, 6 mm, high and low
-   mode as the report: V_r = 0 and 40 cm³), frictionless and sticking, beside the paper's bench.
+   mode as the report: V_r = 0 and 40 cm³), frictionless, with Coulomb friction (μ = 0.3, 0.6)
+   and sticking, beside the paper's bench.
    The curves run on Dask (``--workers``, default one per core).
 
-    python bench/bench_friction.py [--part increments,work,fem,headline] [--workers N] [--json F]
+    python bench/bench_friction.py [--part increments,work,fem,headline] [--frictions 0,0.3,0.6,stick]
+                                   [--workers N] [--json F]
 """
 
 from __future__ import annotations
@@ -115,11 +117,11 @@ def _curve(t, p, mode, friction):
     return (t, p, mode, friction), c
 
 
-def headline(workers) -> dict:
+def headline(workers, frictions=("0", "stick")) -> dict:
     from spsc.study.executor import dask_client
     from spsc.study.metrics import headline as means
 
-    jobs = [(t, p, mode, fr) for fr in ("0", "stick") for mode in MODES
+    jobs = [(t, p, mode, fr) for fr in frictions for mode in MODES
             for t in "ABCD" for p in PRESSURES]
     t0 = time.perf_counter()
     with dask_client(workers) as client:
@@ -127,7 +129,7 @@ def headline(workers) -> dict:
         curves = dict(f.result() for f in futures)
     seconds = time.perf_counter() - t0
     out = {}
-    for fr in ("0", "stick"):
+    for fr in frictions:
         row = {}
         for mode in MODES:
             h = means({t: [curves[(t, p, mode, fr)] for p in PRESSURES] for t in "ABCD"})
@@ -139,12 +141,15 @@ def headline(workers) -> dict:
         out[fr] = row
     print(f"4. the wall model's Table 1 means, {len(jobs)} curves in {seconds:.0f} s")
     print("   friction      | k high | k low | S high | S low  (N/mm, kPa/mm)")
-    for name, row in (("bench (paper)", BENCH), ("0", out["0"]), ("stick", out["stick"])):
+    for name, row in (("bench (paper)", BENCH), *((fr, out[fr]) for fr in frictions)):
         print(f"   {name:<13} | {row['stiffness_high']:6.2f} | {row['stiffness_low']:5.2f} | "
               f"{row['sensitivity_high']:6.2f} | {row['sensitivity_low']:5.2f}")
-    for q in BENCH:
-        print(f"   stick against frictionless, {q}: {out['stick'][q] / out['0'][q] - 1:+.1%}")
-    for fr in ("0", "stick"):
+    for fr in frictions:
+        if fr == "0" or "0" not in out:
+            continue
+        print(f"   friction {fr} against frictionless: " + ", ".join(
+            f"{q} {out[fr][q] / out['0'][q] - 1:+.1%}" for q in BENCH))
+    for fr in frictions:
         if out[fr]["partial"]:
             print(f"   partial curves ({fr}): {out[fr]['partial']}")
     out["seconds"] = seconds
@@ -155,6 +160,8 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--part", default="increments,work,fem,headline")
     ap.add_argument("--workers", type=int, default=None)
+    ap.add_argument("--frictions", default="0,0.3,0.6,stick",
+                    help="the plates of the Table 1 means (0, a Coulomb coefficient, stick)")
     ap.add_argument("--json")
     args = ap.parse_args(argv)
     parts = args.part.split(",")
@@ -166,7 +173,7 @@ def main(argv=None) -> int:
     if "fem" in parts:
         out["fem"] = fem()
     if "headline" in parts:
-        out["headline"] = headline(args.workers)
+        out["headline"] = headline(args.workers, tuple(args.frictions.split(",")))
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=1, default=float)
