@@ -117,12 +117,12 @@ def _curve(t, p, mode, friction):
     return (t, p, mode, friction), c
 
 
-def headline(workers, frictions=("0", "stick")) -> dict:
+def headline(workers, frictions=("0", "stick"), types="ABCD") -> dict:
     from spsc.study.executor import dask_client
     from spsc.study.metrics import headline as means
 
     jobs = [(t, p, mode, fr) for fr in frictions for mode in MODES
-            for t in "ABCD" for p in PRESSURES]
+            for t in types for p in PRESSURES]
     t0 = time.perf_counter()
     with dask_client(workers) as client:
         futures = [client.submit(_curve, *j, pure=False) for j in jobs]
@@ -132,14 +132,15 @@ def headline(workers, frictions=("0", "stick")) -> dict:
     for fr in frictions:
         row = {}
         for mode in MODES:
-            h = means({t: [curves[(t, p, mode, fr)] for p in PRESSURES] for t in "ABCD"})
+            h = means({t: [curves[(t, p, mode, fr)] for p in PRESSURES] for t in types})
             row[f"stiffness_{mode}"] = h["stiffness"]
             row[f"sensitivity_{mode}"] = h["sensitivity"]
             row[f"types_{mode}"] = h["types"]
         partial = [k for k, c in curves.items() if k[3] == fr and not c.solver.converged]
         row["partial"] = [list(k) for k in partial]
         out[fr] = row
-    print(f"4. the wall model's Table 1 means, {len(jobs)} curves in {seconds:.0f} s")
+    print(f"4. the wall model's Table 1 means of types {types}, {len(jobs)} curves in "
+          f"{seconds:.0f} s")
     print("   friction      | k high | k low | S high | S low  (N/mm, kPa/mm)")
     for name, row in (("bench (paper)", BENCH), *((fr, out[fr]) for fr in frictions)):
         print(f"   {name:<13} | {row['stiffness_high']:6.2f} | {row['stiffness_low']:5.2f} | "
@@ -160,6 +161,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--part", default="increments,work,fem,headline")
     ap.add_argument("--workers", type=int, default=None)
+    ap.add_argument("--types", default="ABCD", help="the Table 1 types of the means")
     ap.add_argument("--frictions", default="0,0.3,0.6,stick",
                     help="the plates of the Table 1 means (0, a Coulomb coefficient, stick)")
     ap.add_argument("--json")
@@ -173,7 +175,7 @@ def main(argv=None) -> int:
     if "fem" in parts:
         out["fem"] = fem()
     if "headline" in parts:
-        out["headline"] = headline(args.workers, tuple(args.frictions.split(",")))
+        out["headline"] = headline(args.workers, tuple(args.frictions.split(",")), args.types)
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=1, default=float)

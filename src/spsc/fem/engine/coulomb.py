@@ -10,16 +10,21 @@ Each increment is solved by a return mapping over the nodes, as plasticity is:
    lateral unknowns are freed and loaded by the friction force F = μ λ_n R_t / |R_t|, the
    direction the sticking force had;
 3. the increment is solved again with those forces held (:class:`Sliding`), then each slipping
-   node's force is updated: its magnitude μ λ_n from the new normal force, its direction
-   against the node's slide since its anchor; a node whose slide turned along the force
-   (it would be pushed forward by friction) sticks again at its anchor;
+   node's force is updated: its magnitude μ λ_n from the new normal force, its direction kept
+   the trial's (the radial return of plasticity: updating it from the node's slide made the
+   swept wall's nodes flip between stick and slip without end); a node whose slide runs along
+   its friction force (it would be pushed forward by friction) sticks again at its anchor;
 4. until the set of slipping nodes is unchanged and the friction forces move by less than
    ``TOLERANCE`` of the largest.
 
 The friction forces are held within each Newton solve, so the tangent stays symmetric (the
 nonsymmetric term μ t ⊗ ∂λ_n/∂u is left to the outer loop, a fixed point). μ → ∞ is the
 sticking plate and μ = 0 the frictionless one (both tested). After the increment a slipping
-node is anchored where it stopped, and the next increment's trial holds it there.
+node is anchored where it stopped, and the next increment's trial holds it there. On the
+axisymmetric dome the direction is a sign and exact; on the swept wall (two lateral unknowns)
+a slipping node's force keeps the trial's direction, which may lean from the slide's within
+one increment of 0.05 mm. The loop costs: 5 s against 0.4 s frictionless for a dome curve to
+2 mm, 81 s against 4 s for a Type B stadium curve to 6 mm.
 """
 
 from __future__ import annotations
@@ -107,10 +112,10 @@ def _map(model, r, x, active, grip: Grip, slip: dict, mu: float) -> tuple[dict, 
             continue
         old = np.array([slip[d] for d in dofs])
         slid = x[dofs] - grip.anchor[dofs]
-        if slid @ old > 0 or np.linalg.norm(slid) == 0.0:  # pushed forward: it sticks again
-            change = max(change, 1.0)
+        if slid @ old > 1e-6 * np.linalg.norm(slid) * np.linalg.norm(old):
+            change = max(change, 1.0)  # pushed forward by its friction: it sticks again
             continue
-        force = -limit * slid / np.linalg.norm(slid)
+        force = limit * old / max(np.linalg.norm(old), 1e-300)  # the trial's direction
         new.update(zip(dofs, force))
         change = max(change, float(np.abs(force - old).max()) / scale)
     return new, change
