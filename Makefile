@@ -121,7 +121,8 @@ bench-time: $(STAMP)
 bench-sense: $(STAMP)
 	$(BIN)/python bench/bench_sense.py
 
-# the sticking plate: increments, work, wall against 3D FEM, the Table 1 means (about 15 min)
+# the plate's friction: increments, work, wall against 3D FEM, the Table 1 means with
+# mu = 0, 0.3, 0.6 and stick (the Coulomb curves are slow: about an hour on 2 cores)
 # the bench gap factor by factor (wall model, about 14 min), shown by make report
 bench-gap: $(STAMP)
 	$(BIN)/spsc bench-gap --out build/bench-gap
