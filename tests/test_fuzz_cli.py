@@ -128,12 +128,19 @@ def _files(*roots) -> set:
     return {p for r in roots for p in Path(r).rglob("*") if not p.is_dir()}
 
 
-def test_every_invalid_invocation_is_one_line_exit_2(tmp_cases, capsys, no_work, monkeypatch,
-                                                     tmp_path):
-    """... and leaves no file behind, under the fixtures' folder or the current folder."""
+#: the table runs in this many shards, so pytest-xdist spreads it over the cores (one shard
+#: took 19 s, the longest test of make test)
+SHARDS = 4
+
+
+@pytest.mark.parametrize("shard", range(SHARDS))
+def test_every_invalid_invocation_is_one_line_exit_2(shard, tmp_cases, capsys, no_work,
+                                                     monkeypatch, tmp_path):
+    """... and leaves no file behind, under the fixtures' folder or the current folder
+    (every ``SHARDS``-th case from ``shard``)."""
     monkeypatch.chdir(tmp_path)
     failures = []
-    cases = invalid_cases(tmp_cases)
+    cases = invalid_cases(tmp_cases)[shard::SHARDS]
     before = _files(tmp_cases, tmp_path)
     for case in cases:
         try:
