@@ -189,7 +189,8 @@ def test_bode_limits_are_the_pooled_and_the_closed_adiabatic_chamber():
     assert_allclose(table.stiffness_N_per_mm.iloc[0], 0.4 * p + 0.4 * 3.0 * lo, rtol=1e-4)
 
 
-@pytest.mark.parametrize("f_Hz", [2.0, 60.0])
+# 60 Hz takes 10 s of make test's 3 minutes: with the slow cases (CI runs both)
+@pytest.mark.parametrize("f_Hz", [2.0, pytest.param(60.0, marks=pytest.mark.slow)])
 def test_bode_is_the_time_domain_response_to_a_small_sinusoid(monkeypatch, f_Hz):
     """The linearisation against the nonlinear circuit pressed by ŷ = 5 µm at f, after the
     start-up transient (a lock-in on whole periods)."""

@@ -397,6 +397,7 @@ ISSUE_30 = [{"type": "D", "w": 12.0, "h": 13.0, "l": 3.0, "t0": 1.0, "n1": 2.0, 
              "cy": 0.6, "material": "tpu60a", "flange_holes": 4, "tube_id": 3.0}]
 
 
+@pytest.mark.slow  # 22 s, the longest of make test: with the slow cases (CI runs both)
 def test_gate_and_sweep_agree_on_the_issue_case_and_random_designs():
     """The gate of ``spsc bladder`` (mesh written to STL, design facts beside it) and the
     ``printable`` column of ``spsc sweep`` on the issue's Type D at w = 12 mm (FDM refuses its
