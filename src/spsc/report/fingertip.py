@@ -32,6 +32,17 @@ def read_study(study_dir, out, name: str):
     return json.loads(path.read_text(encoding="utf-8")), dest
 
 
+def copy_figure(study_dir, dest, name: str) -> str | None:
+    """``study_dir/name`` copied into a section's figure folder ``dest`` (``out/SECTION``);
+    its path relative to the report (``SECTION/name``), None if the study has no such
+    figure."""
+    src = Path(study_dir) / name
+    if not src.is_file():
+        return None
+    shutil.copy2(src, Path(dest) / Path(name).name)
+    return f"{Path(dest).name}/{Path(name).name}"
+
+
 def fingertip_section(study_dir, out) -> dict | None:
     """The section's data from the study in ``study_dir`` (None if it has no summary.json),
     its figures copied to ``out/fingertip/``."""

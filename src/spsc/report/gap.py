@@ -6,10 +6,9 @@ time-domain study is: the report does not run it (about 14 min on two cores).
 
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
-from spsc.report.fingertip import read_study
+from spsc.report.fingertip import copy_figure, read_study
 
 __all__ = ["gap_section", "DEFAULT_DIR", "COMMAND", "QUANTITIES"]
 
@@ -27,10 +26,7 @@ def gap_section(study_dir, out) -> dict | None:
     if found is None:
         return None
     summary, dest = found
-    figure = None
-    if (study_dir / "bench-gap.png").is_file():
-        shutil.copy2(study_dir / "bench-gap.png", dest / "bench-gap.png")
-        figure = "gap/bench-gap.png"
+    figure = copy_figure(study_dir, dest, "bench-gap.png")
     rows = summary["rows"]
     return {"rows": rows, "bench": summary["bench"], "figure": figure, "command": COMMAND,
             "material": summary.get("material", ""), "quantities": QUANTITIES,

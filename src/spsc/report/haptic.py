@@ -9,10 +9,9 @@ it when there is none.
 
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
-from spsc.report.fingertip import read_study
+from spsc.report.fingertip import copy_figure, read_study
 from spsc.studies.haptic import LABELS
 
 __all__ = ["haptic_section", "DEFAULT_DIR", "COMMAND", "LABELS"]
@@ -29,10 +28,7 @@ def haptic_section(study_dir, out) -> dict | None:
     if found is None:
         return None
     summary, dest = found
-    figure = None
-    if (study_dir / "haptic-cost.png").is_file():
-        shutil.copy2(study_dir / "haptic-cost.png", dest / "haptic-cost.png")
-        figure = "haptic/haptic-cost.png"
+    figure = copy_figure(study_dir, dest, "haptic-cost.png")
     rows = [dict(summary[name], name=LABELS[name]) for name in LABELS if name in summary]
     return {"rows": rows, "mesh_size_mm": summary.get("mesh_size_mm"), "figure": figure,
             "command": COMMAND, "alone": summary.get("motor_alone_pct")}

@@ -82,10 +82,9 @@ def coulomb(model, x0, load, settings, active, engaged, grip: Grip, mu: float):
                         x, load, settings, act, eng, Grip(free))
         iterations += solved.iterations
         x, act, eng = solved.x, solved.active, solved.engaged
-        r = model.evaluate(x, load, tangent=False).r
-        new, change = _map(model, r, x, act, grip, slip, mu)
+        ev = model.evaluate(x, load, tangent=False)  # the plate's forces as reactions
+        new, change = _map(model, ev.r, x, act, grip, slip, mu)
         if new.keys() == slip.keys() and change <= TOLERANCE:
-            ev = model.evaluate(x, load, tangent=False)
             return dataclasses.replace(solved, evaluation=ev, iterations=iterations)
         slip = new
     raise NewtonFailure(f"the friction's stick and slip do not settle in {MAX_ROUNDS} rounds "

@@ -33,7 +33,7 @@ MAX_TRIALS = 30
 
 def balance(solve_at, y: float, k: float, y_prev: float, f_prev: float, slope: float,
             tol: float):
-    """(converged solution, y_p) with |k (y − y_p) − F(y_p)| ≤ ``tol`` (N).
+    """(converged solution, y_p, F(y_p)) with |k (y − y_p) − F(y_p)| ≤ ``tol`` (N).
 
     ``solve_at(y_p)`` → (solution, F) solves the chamber with the indenter at y_p; ``y_prev``,
     ``f_prev``: the last converged indenter travel and force; ``slope``: dF/dy_p there (N/mm,
@@ -45,7 +45,7 @@ def balance(solve_at, y: float, k: float, y_prev: float, f_prev: float, slope: f
         sol, force = solve_at(yp)
         g = k * (y - yp) - force
         if abs(g) <= tol:
-            return sol, yp
+            return sol, yp, force
         if g > 0:
             lo, g_lo = yp, g
         else:

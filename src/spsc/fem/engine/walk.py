@@ -69,8 +69,8 @@ class _Walk:
         self.load = Load()
         self.active, self.engaged = np.zeros(0, int), np.zeros(0, int)
         self.grip = None  # a sticking plate's anchors (:mod:`.friction`)
-        #: a spring-borne indenter: its travel (mm), force (N) and the last two of each
-        self.indenter = [(0.0, 0.0)]
+        #: a spring-borne indenter's last two (travel mm, force N), and the trial's
+        self.indenter, self.balanced = [(0.0, 0.0)], None
         self.total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
         self.done, self.last_force, self.instability, self.iterations = 0, 0.0, "", 0
         self.jumps: list[Jump] = []
@@ -115,21 +115,31 @@ class _Walk:
                 raise
             return newton(model, x, trial, self.s, self.active, self.engaged, grip)
 
+    def solve(self, step, trial, t_new, history):
+        """(solution, its load) of the trial load ``trial`` at ``t_new`` of a press: the
+        indenter's spring balanced (:mod:`.spring`), the Coulomb friction mapped
+        (:mod:`.coulomb`) or one Newton solve."""
+        if getattr(step, "spring", None):
+            return self.solve_spring(step, t_new)
+        if getattr(step, "mu", None) is not None:
+            return coulomb(self.model, self.x, trial, self.s, self.active, self.engaged,
+                           self.gripped(trial), step.mu), trial
+        return self.solve_one(trial, t_new, history), trial
+
     def solve_spring(self, step, t_new):
         """(solution, its load) of the spring-borne indenter at the far-end travel of
-        ``t_new`` (:mod:`.spring`)."""
-        (y0, f0), (y1, f1) = (self.indenter * 2)[-2:]
+        ``t_new`` (:mod:`.spring`); its (travel, force) kept in ``balanced``."""
+        (y0, f0), (y1, f1) = self.indenter[-2:] if len(self.indenter) > 1 \
+            else self.indenter * 2
         slope = (f1 - f0) / (y1 - y0) if y1 > y0 else 0.0
         solve_at = spring_solver(self.model, self.s, self.at_travel, self.x, self.active,
                                  self.engaged, self.gripped(self.at_travel(y1)))
         tol = self.s.rtol * 10 * max(f1, step.spring * step.travel_at(t_new),
                                      self.model.force_floor)
-        sol, y_p = balance(solve_at, step.travel_at(t_new), step.spring, y1, f1, slope, tol)
+        sol, y_p, force = balance(solve_at, step.travel_at(t_new), step.spring, y1, f1, slope,
+                                  tol)
+        self.balanced = (y_p, force)
         return sol, self.at_travel(y_p)
-
-    def at_travel_of(self, load) -> float:
-        """The indenter's travel (mm) of a press load."""
-        return self.at_travel(0.0).plate - load.plate
 
     def gripped(self, trial):
         """The anchors a sticking ``trial`` load starts from (None for a frictionless
@@ -145,18 +155,14 @@ class _Walk:
         nominal = targets[0]
         if isinstance(step, Press) and step.stick:  # touch-downs interpolated per increment
             nominal = min(nominal, step.parameter_span(self.s.stick_increment))
+        #: snap-throughs are followed on a plain press only (not on a spring, not with Coulomb)
+        plain = getattr(step, "spring", None) is None and getattr(step, "mu", None) is None
         t, dt, ti, history = 0.0, nominal, 0, []
         while ti < len(targets):
             t_new = min(t + dt, targets[ti])
             trial = load_at(t_new)
             try:
-                if getattr(step, "spring", None):
-                    sol, trial = self.solve_spring(step, t_new)
-                elif getattr(step, "mu", None) is not None:
-                    sol = coulomb(self.model, self.x, trial, self.s, self.active,
-                                  self.engaged, self.gripped(trial), step.mu)
-                else:
-                    sol = self.solve_one(trial, t_new, history)
+                sol, trial = self.solve(step, trial, t_new, history)
             except self.model.recoverable as exc:
                 _log.debug("cut %s t=%.4g dt=%.3g: %s", kind, t_new, dt, exc)
                 dt *= 0.5
@@ -164,8 +170,7 @@ class _Walk:
                     return Stop(k, kind, t_new, step, trial, str(exc))
                 continue
             if sol.unstable_modes and kind == "press" and self.s.snap_through \
-                    and len(self.jumps) < _MAX_JUMPS and not getattr(step, "spring", None) \
-                    and getattr(step, "mu", None) is None:
+                    and len(self.jumps) < _MAX_JUMPS and plain:
                 jumped = self.snap(step, load_at, t, t_new, sol)
                 if jumped is not None:
                     t_new, sol = jumped
@@ -173,11 +178,8 @@ class _Walk:
             self.x, self.active, self.engaged, t, self.load = (sol.x, sol.active, sol.engaged,
                                                                t_new, trial)
             self.grip = sol.grip
-            if getattr(step, "spring", None):
-                self.indenter = self.indenter[-1:] + [(self.at_travel_of(trial),
-                                                       plate_force(self.model,
-                                                                   sol.evaluation.r,
-                                                                   sol.active))]
+            if self.balanced is not None:  # a spring's balance is accepted as found
+                self.indenter, self.balanced = self.indenter[-1:] + [self.balanced], None
             if hasattr(self.model, "commit"):  # a rate-dependent material closes its step
                 self.model.commit(sol.x, trial)
             self.iterations += sol.iterations
