@@ -16,7 +16,7 @@ import math
 from .errors import ParameterError, require
 
 __all__ = ["FRICTION_VALUES", "check_friction", "sticks", "coefficient", "check_combination",
-           "check_object_stiffness",
+           "check_object_stiffness", "check_friction_on",
            "with_indenter"]
 
 #: what ``--friction`` takes (besides a coefficient μ > 0)
@@ -58,6 +58,15 @@ def check_combination(mu: float | None, spring: float | None) -> None:
     if mu is not None and spring is not None:
         raise ParameterError("object_stiffness", spring, "only with friction 0 or stick (a "
                              "compliant object under Coulomb friction is not built yet)")
+
+
+def check_friction_on(indenter, friction) -> None:
+    """Friction is built on the plate only: a curved ``indenter``
+    (:class:`~spsc.core.indenter.Indenter`) is frictionless."""
+    if indenter.curved and check_friction(friction) != "0":
+        raise ParameterError("friction", friction, f"0 with the indenter {indenter.spec} "
+                             "(friction on a curved body is not built yet; the plate takes "
+                             "0, MU or stick)")
 
 
 def check_object_stiffness(value) -> float | None:

@@ -7,34 +7,65 @@ released when its reaction pulls (λ_a < −tol) and an inactive one activated w
 plate. With exact enforcement there is no penalty parameter to tune, which is what makes the
 thin walls robust; the plate force is Σ λ_a over the active unknowns (× symmetry), the integral
 of the discrete contact pressure.
+
+A curved indenter (:class:`~spsc.core.indenter.Indenter`: sphere, cylinder, wedge) is met at
+the height its lower surface has over the node's current lateral position, z_tip − gap +
+S(x, y); an active node's height then follows its lateral unknowns (:mod:`.leaning`) and its
+reaction pushes along the body's normal. ``indenter`` None is the plate.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["heights", "first_contact", "jumps", "start", "update", "plate_force"]
+__all__ = ["heights", "first_contact", "jumps", "start", "update", "plate_force", "surface",
+           "lateral_of", "curved"]
 
 
-def heights(model, x, dofs) -> np.ndarray:
-    """Where the plate meets the contact unknowns ``dofs`` at the state x (mm): reference
-    height plus displacement plus gap."""
-    return model.contact_height[dofs] + x[dofs] + model.contact_gap[dofs]
+def curved(indenter) -> bool:
+    """Whether ``indenter`` (None: the plate) is a curved body."""
+    return indenter is not None and indenter.curved
 
 
-def first_contact(model, x) -> float:
-    """The plate height of first contact (mm): the highest contact point."""
-    return float(np.max(heights(model, x, model.contact_dofs)))
+def lateral_of(model, dofs) -> np.ndarray:
+    """The lateral unknowns (k, len(dofs)) of the contact unknowns ``dofs``."""
+    return model.contact_lateral[:, np.searchsorted(model.contact_dofs, dofs)]
 
 
-def jumps(model, x, plate, active) -> np.ndarray:
-    """How far each active unknown must move to lie on the plate (mm)."""
+def surface(model, x, dofs, indenter):
+    """(S, ∇S, ∇²S) of ``indenter`` over the current lateral positions of the contact
+    unknowns ``dofs`` (:meth:`~spsc.core.indenter.Indenter.surface`), and their lateral
+    unknowns."""
+    lat = lateral_of(model, dofs)
+    S, dS, d2S = indenter.surface(model.contact_height[lat] + x[lat], model.contact_gap[dofs])
+    return S, dS, d2S, lat
+
+
+def heights(model, x, dofs, indenter=None) -> np.ndarray:
+    """Where the indenter's tip meets the contact unknowns ``dofs`` at the state x (mm):
+    reference height plus displacement plus gap, less the curved body's rise S over the
+    node (−inf where the body has no lower surface)."""
+    h = model.contact_height[dofs] + x[dofs] + model.contact_gap[dofs]
+    if not curved(indenter):
+        return h
+    return h - surface(model, x, dofs, indenter)[0]
+
+
+def first_contact(model, x, indenter=None) -> float:
+    """The tip's height at first contact (mm): the highest contact point (on the plate)."""
+    return float(np.max(heights(model, x, model.contact_dofs, indenter)))
+
+
+def jumps(model, x, plate, active, indenter=None) -> np.ndarray:
+    """How far each active unknown must move to lie on the indenter (mm)."""
     if plate is None:
         return np.zeros(0)
+    if curved(indenter):
+        return plate - heights(model, x, active, indenter)
     return plate - model.contact_gap[active] - model.contact_height[active] - x[active]
 
 
-def start(model, x, plate, active, settings) -> np.ndarray:
+def start(model, x, plate, active, settings, indenter=None) -> np.ndarray:
     """The active set a Newton solve starts from: the given one (none without a plate); with
     the semi-smooth strategy also every contact unknown past the plate."""
     if plate is None or active is None:
@@ -42,17 +73,18 @@ def start(model, x, plate, active, settings) -> np.ndarray:
     active = np.asarray(active)
     if plate is None or not settings.semismooth:
         return active
-    passed = heights(model, x, model.contact_dofs) > plate + settings.contact_tolerance
+    passed = heights(model, x, model.contact_dofs, indenter) > \
+        plate + settings.contact_tolerance
     return np.union1d(active.astype(int), model.contact_dofs[passed])
 
 
-def update(model, x, reaction, plate, active, force_tol, gap_tol):
+def update(model, x, reaction, plate, active, force_tol, gap_tol, indenter=None):
     """The new active set, or None if it is unchanged (the PDAS fixed point): the active
     unknowns whose ``reaction`` (N, pushing > 0) does not pull below −``force_tol``, and the
     inactive ones past the plate by more than ``gap_tol`` (mm)."""
     keep = reaction >= -force_tol
     inactive = np.setdiff1d(model.contact_dofs, active)
-    new = inactive[heights(model, x, inactive) > plate + gap_tol]
+    new = inactive[heights(model, x, inactive, indenter) > plate + gap_tol]
     if new.size == 0 and np.all(keep):
         return None
     return np.union1d(np.asarray(active)[keep], new)

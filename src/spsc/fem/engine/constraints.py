@@ -9,28 +9,35 @@ fixed-pattern CSR, the slaves summed into the master's row and column, PᵀKP; o
 where nothing is aliased and the solver takes the upper triangle, kept on every unsupported
 unknown with the constrained ones as unit rows (:class:`Masked`): its sparsity pattern does not
 change with the contact active set, so the solver's symbolic analysis is done once per mesh.
+A curved indenter's active heights lean on their nodes' lateral unknowns (``lean``: u_z =
+Σ_k ∂S/∂x_k u_k + jump, :mod:`.leaning`), restricted by :class:`~.leaning.Leaning`.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["Constraints", "Reduction", "Submatrix", "Masked", "constraint_key", "restriction"]
+__all__ = ["Constraints", "Reduction", "Submatrix", "Masked", "constraint_key"]
 
 
-def constraint_key(free, slaves) -> bytes:
-    """The identity of a constraint set: the free mask and the aliased unknowns."""
-    return free.tobytes() + (b"" if slaves is None else np.asarray(slaves).tobytes())
+def constraint_key(free, slaves, lean=None) -> bytes:
+    """The identity of a constraint set: the free mask, the aliased and the leaning
+    unknowns."""
+    key = free.tobytes() + (b"" if slaves is None else np.asarray(slaves).tobytes())
+    return key if lean is None or not len(lean) else key + b"|" + np.asarray(lean).tobytes()
 
 
 @dataclass(frozen=True, eq=False)
 class Constraints:
     """The constraints of one Newton iteration over the ``n`` unknowns of the Newton system:
-    the plate's prescribed unknowns ``presc`` moving by ``jump`` (mm), and the tie's
-    ``slaves`` following ``master`` plus ``sjump`` (mm)."""
+    the plate's prescribed unknowns ``presc`` moving by ``jump`` (mm), the tie's
+    ``slaves`` following ``master`` plus ``sjump`` (mm) and a curved indenter's ``lean``
+    unknowns, each moving by ``ljump`` (mm) plus ``slope`` (k, len(lean)) times the moves of
+    its lateral unknowns ``lat`` (k, len(lean)); ``curv`` (k, k, len(lean), 1/mm): the
+    surface's Hessian there, for the tangent's curvature term."""
 
     n: int
     presc: np.ndarray
@@ -38,35 +45,63 @@ class Constraints:
     slaves: np.ndarray
     sjump: np.ndarray
     master: int
+    lean: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    ljump: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    lat: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), int))
+    slope: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    curv: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 0)))
 
     def shift(self) -> np.ndarray:
         """The part of the step the constraints fix (full vector)."""
         s = np.zeros(self.n)
         s[self.presc] = self.jump
         s[self.slaves] = self.sjump
+        if self.lean.size:
+            s[self.lean] = self.ljump
         return s
 
     def condense(self, v) -> np.ndarray:
-        """Pᵀv in full numbering: the slaves' entries added to the master's, theirs zeroed."""
-        if not self.slaves.size:
+        """Pᵀv in full numbering: the slaves' entries added to the master's, a leaning
+        unknown's entry times its slopes added to its lateral unknowns', theirs zeroed."""
+        if not self.slaves.size and not self.lean.size:
             return v
         w = v.copy()
-        w[self.master] += v[self.slaves].sum()
-        w[self.slaves] = 0.0
+        if self.slaves.size:
+            w[self.master] += v[self.slaves].sum()
+            w[self.slaves] = 0.0
+        if self.lean.size:
+            for k in range(self.lat.shape[0]):
+                np.add.at(w, self.lat[k], self.slope[k] * v[self.lean])
+            w[self.lean] = 0.0
         return w
 
     def free(self, fixed) -> np.ndarray:
-        """The free unknowns: neither supported (``fixed``), prescribed nor aliased."""
+        """The free unknowns: neither supported (``fixed``), prescribed, aliased nor
+        leaning."""
         free = ~fixed
         free[self.presc] = False
         free[self.slaves] = False
+        free[self.lean] = False
         return free
+
+    @property
+    def reacting(self) -> np.ndarray:
+        """The unknowns whose reactions are the indenter's: the leaning ones, then the
+        prescribed ones."""
+        return np.concatenate([self.lean, self.presc]) if self.lean.size else self.presc
+
+    @property
+    def held_settled(self) -> bool:
+        """The plate's and the tie's constraints hold (jumps ≤ 1e-12 mm)."""
+        return max(np.max(np.abs(self.jump), initial=0.0),
+                   np.max(np.abs(self.sjump), initial=0.0)) <= 1e-12
 
     @property
     def settled(self) -> bool:
         """Every constraint holds (jumps ≤ 1e-12 mm)."""
         return max(np.max(np.abs(self.jump), initial=0.0),
-                   np.max(np.abs(self.sjump), initial=0.0)) <= 1e-12
+                   np.max(np.abs(self.sjump), initial=0.0),
+                   np.max(np.abs(self.ljump), initial=0.0)) <= 1e-12
 
 
 class Reduction:
@@ -222,14 +257,3 @@ def _upper_pattern(K, index) -> _UpperPattern:
         _PATTERNS.pop(next(iter(_PATTERNS)))
     _PATTERNS[key] = (K.indices, index.copy(), pat)
     return pat
-
-
-def restriction(K, free, con: Constraints, full_input: bool):
-    """The tangent's restriction for the constraint set: the free block as assembled when the
-    solver takes the whole matrix and nothing is aliased, :class:`Masked` when it takes the
-    upper triangle and nothing is aliased, else :class:`Reduction`."""
-    if con.slaves.size:
-        return Reduction(K, free, con.slaves, con.master)
-    if full_input:
-        return Submatrix(free)
-    return Masked(K, free, con.presc)

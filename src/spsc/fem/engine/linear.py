@@ -46,6 +46,8 @@ def _gas_shift(gs, s, con: Constraints, how: str) -> float:
     if how == "full":
         return gs @ s
     out = gs[con.presc] @ con.jump
+    if con.lean.size:
+        out += gs[con.lean] @ con.ljump
     return out + gs[con.slaves] @ con.sjump if con.slaves.size else out
 
 
@@ -82,10 +84,10 @@ def linear_step(model, ev, restriction, free, con: Constraints, settings, *,
     modes = model.unstable_modes(factor, c, gc) if fresh else None
     step = s
     restriction.put(step, dx)
-    if con.slaves.size:
+    if con.slaves.size and not getattr(restriction, "aliases", False):
         step[con.slaves] += step[con.master]
     lam = None
-    if multipliers and con.presc.size:
+    if multipliers and con.reacting.size:
         r_lin = rs + K @ step + (c * gs * (gs @ step) if c > 0.0 else 0.0)
-        lam = -r_lin[con.presc]
+        lam = -r_lin[con.reacting]
     return Step(model.expand(ev, step), modes, lam, restriction.key, factor)

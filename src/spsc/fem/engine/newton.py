@@ -18,8 +18,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .active_set import jumps, start as start_active, update as update_active
-from .constraints import Constraints, constraint_key, restriction
+from .active_set import curved, jumps, start as start_active, surface, \
+    update as update_active
+from .constraints import Constraints, constraint_key
+from .restrict import restriction
 from .friction import Grip, hold, release, stuck
 from .linear import gas_vector, inertia, linear_step
 from .linsolve import FULL_INPUT
@@ -66,7 +68,7 @@ class _Newton:
     def __init__(self, model, load: Load, settings: Settings, x0, active, engaged, grip=None):
         self.model, self.load, self.s = model, load, settings
         self.x = x0.copy()
-        self.active = start_active(model, self.x, load.plate, active, settings)
+        self.active = start_active(model, self.x, load.plate, active, settings, load.indenter)
         #: the sticking plate's anchors (None: frictionless)
         self.grip = None if not (load.stick and load.plate is not None) else \
             grip if grip is not None else Grip.empty(model)
@@ -96,6 +98,8 @@ class _Newton:
         """(Constraints, free mask) of the current sets at x."""
         m, x, tie = self.model, self.x, self.model.tie
         presc = np.asarray(self.active, int)
+        if curved(self.load.indenter) and presc.size:
+            return self.lean(presc)
         jump = jumps(m, x, self.load.plate, presc)
         if self.grip is not None:  # the anchored nodes still on the plate do not slide
             self.grip = release(m, self.grip, presc)
@@ -105,6 +109,21 @@ class _Newton:
             else (np.zeros(0, int), np.zeros(0))
         con = Constraints(len(m.fixed), presc, jump, slaves, sjump,
                           tie.master if tie is not None else -1)
+        return con, con.free(m.fixed)
+
+    def lean(self, active):
+        """(Constraints, free mask) under a curved indenter: the active heights lean on
+        their lateral unknowns (:mod:`.leaning`)."""
+        m, x, tie = self.model, self.x, self.model.tie
+        S, dS, d2S, lat = surface(m, x, active, self.load.indenter)
+        if not np.all(np.isfinite(S)):
+            raise NewtonFailure("a node on the indenter passed beyond its equator (the body "
+                                "has no lower surface there)")
+        slaves, sjump = tie.constraints(x, self.engaged) if tie is not None \
+            else (np.zeros(0, int), np.zeros(0))
+        ljump = jumps(m, x, self.load.plate, active, self.load.indenter)
+        con = Constraints(len(m.fixed), np.zeros(0, int), np.zeros(0), slaves, sjump,
+                          tie.master if tie is not None else -1, active, ljump, lat, dS, d2S)
         return con, con.free(m.fixed)
 
     def measure(self, ev, rt, free) -> None:
@@ -122,7 +141,11 @@ class _Newton:
 
     def near(self, it, con, converged) -> bool:
         """Whether the active sets are updated in this iteration."""
-        if not (con.settled and it > 1):
+        # a curved body's jumps are the linearisation's second-order rest: within the
+        # contact tolerance they cannot change which nodes touch
+        settled = con.settled or (con.lean.size and np.max(np.abs(con.ljump)) <=
+                                  self.s.contact_tolerance and con.held_settled)
+        if not (settled and it > 1):
             return False
         if self.s.semismooth:
             return (self.load.plate is not None or self.model.tie is not None) and (
@@ -137,7 +160,7 @@ class _Newton:
             reaction = self.lam[:self.active.size] if s.semismooth and self.lam is not None \
                 else -ev.r[self.active]
             new = update_active(m, self.x, reaction, self.load.plate, self.active, tol,
-                                s.contact_tolerance)
+                                s.contact_tolerance, self.load.indenter)
             if new is not None:
                 self.active, changed = new, True
         if m.tie is not None:
@@ -153,7 +176,7 @@ class _Newton:
     def step(self, ev, con, free, rt) -> None:
         """The constrained Newton step and its line search; x moves. Without ev's tangent
         (modified Newton) the last factorisation, on the same constraint set, is reused."""
-        key = constraint_key(free, con.slaves)
+        key = constraint_key(free, con.slaves, con.lean)
         wanted = self.s.semismooth and self.changes < _MULTIPLIER_CHANGES
         if ev.K is None:
             st = linear_step(self.model, self.model.reuse(ev, self.tangent_ev),
@@ -162,23 +185,28 @@ class _Newton:
             self.lam = st.multipliers
         else:
             if self.restriction is None or self.restriction.key != key:
-                self.restriction = restriction(ev.K, free, con, self.s.solver in FULL_INPUT)
+                self.restriction = restriction(ev.K, free, con, self.s.solver in FULL_INPUT,
+                                               ev.r)
+            elif con.lean.size:  # the slopes move with the nodes
+                self.restriction.bind(con, ev.r)
             st = linear_step(self.model, ev, self.restriction, free, con, self.s,
                              multipliers=wanted)
             self.factored, self.modes, self.lam = st.key, st.unstable_modes, st.multipliers
             self.factor, self.tangent_ev = st.factor, ev
-            self.cheap = con.settled and self.res <= self.s.modified_newton * self.scale
+            # a curved indenter's slopes change every iteration: no stale factorisation
+            self.cheap = con.settled and self.res <= self.s.modified_newton * self.scale \
+                and not con.lean.size
         alpha, self.carried = line_search(self.model, self.x, st.dx, free, self.load, con, rt,
                                           self.s, tangent=not self.cheap)
         self.x += alpha * st.dx
 
     def converged(self, it, ev, con, free) -> Converged:
         """The converged state with the inertia of its tangent on its own constraint set."""
-        key = constraint_key(free, con.slaves)
+        key = constraint_key(free, con.slaves, con.lean)
         modes = self.modes if self.factored == key else None
         if self.factored != key and self.s.fresh_inertia:
             ev = self.full(ev)
-            red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT)
+            red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT, ev.r)
             gc = red.take(con.condense(gas_vector(self.model, ev, con.n)))
             modes = inertia(self.model, red, ev, gc, self.s)
         grip = None if self.grip is None else hold(self.model, self.grip, self.x, self.active)

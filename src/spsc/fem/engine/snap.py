@@ -41,7 +41,7 @@ from .linear import gas_vector
 from .linsolve import FULL_INPUT, factorize, solve_rank_one
 from .newton import _Newton, newton
 from .result import NewtonFailure
-from .constraints import restriction
+from .restrict import restriction
 
 __all__ = ["Jump", "Damped", "unstable_mode", "relax"]
 
@@ -134,7 +134,7 @@ def unstable_mode(model, sol, load, settings, iterations: int = 8) -> np.ndarray
     nw = _Newton(model, load, settings, sol.x, sol.active, sol.engaged, sol.grip)
     con, free = nw.constrain()
     ev = sol.with_tangent(model, load).evaluation
-    red = restriction(ev.K, free, con, settings.solver in FULL_INPUT)
+    red = restriction(ev.K, free, con, settings.solver in FULL_INPUT, ev.r)
     factor = factorize(red.matrix(ev.K), settings.solver, upper=red.upper)
     gc = red.take(con.condense(gas_vector(model, ev, con.n)))
     v = red.take(np.random.default_rng(0).standard_normal(con.n))

@@ -54,13 +54,26 @@ class Press:
     spring: float | None = None
     #: a sticking plate's Coulomb coefficient (:mod:`.coulomb`); None: no slip
     mu: float | None = None
+    #: the curved body that presses (:class:`~spsc.core.indenter.Indenter`, frictionless);
+    #: None: the plate
+    indenter: object | None = None
+
+    def __post_init__(self):
+        if self.indenter is not None and not self.indenter.curved:
+            object.__setattr__(self, "indenter", None)
+        if self.indenter is not None and (self.stick or self.mu is not None):
+            from spsc.core.errors import ParameterError
+
+            raise ParameterError("friction", "stick" if self.mu is None else self.mu,
+                                 f"0 with the indenter {self.indenter.spec} (friction on a "
+                                 "curved body is not built yet)")
 
     @classmethod
     def through(cls, travel, *, stick: bool = False, spring: float | None = None,
-                mu: float | None = None) -> "Press":
+                mu: float | None = None, indenter=None) -> "Press":
         """Press through the plate travels ``travel`` (mm from first contact, increasing)."""
         travel = tuple(float(v) for v in travel)
-        return cls(travel[-1], len(travel), travel, stick, spring, mu)
+        return cls(travel[-1], len(travel), travel, stick, spring, mu, indenter)
 
     def targets(self) -> list:
         """The recorded load parameters t: fractions of the stroke, or the travels (mm)."""
@@ -118,25 +131,28 @@ class Load:
     """Cavity gauge pressure ``pressure`` (MPa) unless ``gas`` is given; rigid plate at height
     ``plate`` (mm, None: no plate); ``time`` (s) of a :class:`Cycle`'s load, None for a load
     at rest (a rate-dependent material is then relaxed); ``stick``: the plate holds what it
-    touches from sliding (else it is frictionless)."""
+    touches from sliding (else it is frictionless); ``indenter``: a curved body whose tip is
+    at ``plate`` (:class:`~spsc.core.indenter.Indenter`; None: the plate)."""
 
     pressure: float = 0.0
     gas: GasLaw | None = None
     plate: float | None = None
     time: float | None = None
     stick: bool = False
+    indenter: object | None = None
 
 
 def load_steps(load, inflate_increments: int = 4, *, stick: bool = False,
-               spring: float | None = None, mu: float | None = None) -> list:
+               spring: float | None = None, mu: float | None = None, indenter=None) -> list:
     """The steps of a load case (:class:`~spsc.core.loadcase.LoadCase`: kPa gauge, mm³, mm):
     inflate to the setup pressure in ``inflate_increments``, close the valve onto the
     reservoir, press the stroke in ``points − 1`` increments (``stick``: with a sticking
     plate, with Coulomb friction ``mu`` if given; ``spring``: the indenter on a spring of that
-    stiffness, N/mm); the open chamber (p = 0) is pressed alone."""
+    stiffness, N/mm; ``indenter``: a curved body instead of the plate); the open chamber
+    (p = 0) is pressed alone."""
     out = []
     if load.pressure_kPa > 0:
         out += [Inflate(load.pressure_kPa * 1e-3, inflate_increments),
                 CloseValve(load.reservoir_mm3, load.polytropic_n)]
     return out + [Press(load.stroke_mm, int(load.points) - 1, stick=stick, spring=spring,
-                        mu=mu)]
+                        mu=mu, indenter=indenter)]

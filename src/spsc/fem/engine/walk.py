@@ -46,7 +46,8 @@ def record(model, step, kind, load, sol) -> Record:
     groups = model.group_forces(ev.r, active[:0])
     if load.plate is not None and active.size:
         force = plate_force(model, ev.r, active)
-        area = model.contact_area(x, load.plate)
+        area = model.contact_area(x, load.plate) if load.indenter is None \
+            else model.contact_area(x, load.plate, load.indenter)
         groups = model.group_forces(ev.r, active)
     held = model.tie.force(ev.r, sol.engaged) * model.symmetry if model.tie is not None \
         else None
@@ -78,7 +79,7 @@ class _Walk:
     def close_valve(self, step: CloseValve) -> None:
         gas = GasLaw(self.load.pressure, self.model.volume(self.x), step.reservoir,
                      step.polytropic_n)
-        self.load = Load(gas=gas, plate=self.load.plate)
+        self.load = Load(gas=gas, plate=self.load.plate, indenter=self.load.indenter)
 
     def path(self, step):
         """(t -> Load, kind, targets t) of an Inflate or Press step from the current state:
@@ -86,12 +87,14 @@ class _Walk:
         load = self.load
         if isinstance(step, Inflate):
             start, end = load.pressure, float(step.pressure)
-            return (lambda t: Load(pressure=start + t * (end - start), plate=load.plate),
+            return (lambda t: Load(pressure=start + t * (end - start), plate=load.plate,
+                                   indenter=load.indenter),
                     "inflate", step.targets())
         if isinstance(step, Press):
-            z0 = first_contact(self.model, self.x) if load.plate is None \
+            z0 = first_contact(self.model, self.x, step.indenter) if load.plate is None \
                 else load.plate
-            self.at_travel = lambda y: Load(load.pressure, load.gas, z0 - y, stick=step.stick)
+            self.at_travel = lambda y: Load(load.pressure, load.gas, z0 - y, stick=step.stick,
+                                            indenter=step.indenter)
             return (lambda t: self.at_travel(step.travel_at(t)), "press", step.targets())
         if isinstance(step, Cycle):
             z0 = first_contact(self.model, self.x) if load.plate is None else load.plate

@@ -14,8 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.core.contact import (check_combination, check_friction, check_object_stiffness,
-                               coefficient, with_indenter)
+from spsc.core.contact import (check_combination, check_friction, check_friction_on,
+                               check_object_stiffness, coefficient, with_indenter)
+from spsc.core.indenter import parse_indenter
 from spsc.core.errors import ParameterError
 from spsc.core.loadcase import LoadCase, WithLoadCase, check_load
 from spsc.cad.geometry import SPSCGeometry
@@ -39,7 +40,9 @@ class ChamberRun(WithLoadCase):
     the wall surfaces (``spsc fem --mesh-size``; not the preset footprint, which is
     ``--footprint`` and part of the geometry). ``friction`` (``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``) and
     ``object_stiffness`` (N/mm, None: rigid) describe what presses it
-    (:mod:`spsc.core.contact`). :func:`chamber_run` builds one from keywords."""
+    (:mod:`spsc.core.contact`), ``indenter`` which body (``"plate"`` or a curved one such as
+    ``"sphere:R=10"``, :mod:`spsc.core.indenter`, centred on the chamber's axis).
+    :func:`chamber_run` builds one from keywords."""
 
     geometry: SPSCGeometry
     material: Material
@@ -51,6 +54,7 @@ class ChamberRun(WithLoadCase):
     bulk_ratio: float = 2000.0
     friction: str = "0"
     object_stiffness: float | None = None
+    indenter: str = "plate"
 
     def __post_init__(self):
         if not isinstance(self.load, LoadCase):
@@ -62,10 +66,14 @@ class ChamberRun(WithLoadCase):
         object.__setattr__(self, "object_stiffness",
                            check_object_stiffness(self.object_stiffness))
         check_combination(coefficient(self.friction), self.object_stiffness)
+        body = parse_indenter(self.indenter)
+        check_friction_on(body, self.friction)
+        object.__setattr__(self, "indenter", body.spec)
 
     def steps(self) -> list:
         return load_steps(self.load, self.inflate_increments, stick=self.friction != "0",
-                          spring=self.object_stiffness, mu=coefficient(self.friction))
+                          spring=self.object_stiffness, mu=coefficient(self.friction),
+                          indenter=parse_indenter(self.indenter))
 
 
 def chamber_run(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
@@ -158,6 +166,8 @@ def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
              "layers": run.layers, "dofs": model.disc.n, "model_part": part}
     if result.instability:
         setup["instability"] = result.instability
+    if run.indenter != "plate":
+        setup["indenter"] = run.indenter
     details = {"mesh_size_mm": run.mesh_size_mm, "layers": run.layers, "model_part": part,
                "bulk_ratio": run.bulk_ratio}
     if run.friction != "0":
@@ -184,7 +194,8 @@ def contact_forces(model: FEMModel, rec) -> np.ndarray:
     from ..engine.active_set import heights
 
     dofs = model.contact_dofs
-    on = dofs[heights(model, rec.x, dofs) >= rec.plate - 1e-9]
+    on = dofs[heights(model, rec.x, dofs, getattr(rec, "indenter_body", None))
+              >= rec.plate - 1e-9]
     if on.size:
         r = model.evaluate(rec.x, Load(pressure=rec.pressure), tangent=False).r
         nodes = on // 3

@@ -27,15 +27,19 @@ def group_forces(model, r, active) -> dict:
             for name, nodes in model.groups.items()}
 
 
-def contact_area(model, x, plate: float, tol: float | None = None) -> float:
-    """Outer-surface area (mm², full part) touching the plate: the quadrature weights of the
-    outer facets whose points lie within ``tol`` (mm, default 1e-3) of the plate. Facets with
-    all six nodes active lie exactly on it; partly touching facets count in part."""
+def contact_area(model, x, plate: float, tol: float | None = None, indenter=None) -> float:
+    """Outer-surface area (mm², full part) touching the plate (or the curved ``indenter``
+    whose tip is at ``plate``): the quadrature weights of the outer facets whose points lie
+    within ``tol`` (mm, default 1e-3) of it. Facets with all six nodes active lie exactly on a
+    plate; partly touching facets count in part."""
     xq, w = tri_rule(4)
     N, dN = tri_p2(xq)
     pos = model.disc.X + model.displacement(x)
     f = pos[model.mesh.facets["outer"]]
-    z = np.einsum("fai,qa->fqi", f, N)[..., 2]
+    xyz = np.einsum("fai,qa->fqi", f, N)
+    z = xyz[..., 2]
+    if indenter is not None and indenter.curved:
+        z = z - indenter.surface(xyz[..., :2].reshape(-1, 2).T)[0].reshape(z.shape)
     xs = np.einsum("fai,qa->fqi", f, dN[:, :, 0])
     xt = np.einsum("fai,qa->fqi", f, dN[:, :, 1])
     da = np.linalg.norm(np.cross(xs, xt), axis=-1) * w

@@ -141,8 +141,10 @@ class FEMModel:
 
     @cached_property
     def contact_height(self) -> np.ndarray:
+        """Each displacement unknown's reference coordinate (mm; its node's z on a vertical
+        one, x or y on a lateral one: where a curved indenter is met), 0 beyond."""
         h = np.zeros(self.disc.n)
-        h[2:self.disc.n_u:3] = self.disc.X[:, 2]
+        h[:self.disc.n_u] = self.disc.X.ravel()
         return h
 
     @cached_property
@@ -187,8 +189,8 @@ class FEMModel:
             return None
         return max(factor.negative - self.disc.n_p - (1 if c > 0.0 else 0), 0)
 
-    def contact_area(self, x, plate: float) -> float:
-        return contact_area(self, x, plate)
+    def contact_area(self, x, plate: float, indenter=None) -> float:
+        return contact_area(self, x, plate, indenter=indenter)
 
     def group_forces(self, r, active) -> dict:
         """Force (N, full part) through each named contact surface (``active``: contact

@@ -51,8 +51,10 @@ from spsc.cad.geometry import SPSCGeometry
 from spsc.core.constants import KPA_PER_MPA
 from spsc.core.curve import Curve, SolveInfo
 from spsc.core.gaslaw import GasLaw
-from spsc.core.contact import (check_combination, check_friction, check_object_stiffness,
-                               coefficient, sticks, with_indenter)
+from spsc.core.contact import (check_combination, check_friction, check_friction_on,
+                               check_object_stiffness, coefficient, sticks, with_indenter)
+from spsc.core.errors import ParameterError
+from spsc.core.indenter import parse_indenter
 from spsc.core.loadcase import check_load
 from spsc.materials import Material
 
@@ -141,7 +143,9 @@ def wall_curve(geometry: SPSCGeometry, material: Material, **kwargs) -> Curve:
     :class:`WallModel` to reuse), ``progress`` (called once per converged point),
     ``friction`` (``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``), ``object_stiffness`` (N/mm: the indenter on a
     spring whose far end is the travel y; the curve's series ``indenter_travel_mm`` is the
-    indenter's own travel; None: rigid).
+    indenter's own travel; None: rigid), ``indenter`` (``"plate"`` or a curved body such as
+    ``"sphere:R=10"``, :mod:`spsc.core.indenter`: y is then its tip's travel; a dome takes
+    the plate and a sphere on its axis).
     """
     from threadpoolctl import threadpool_limits
 
@@ -154,23 +158,30 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
                reservoir_mm3: float = 0.0, stroke_mm: float = 6.0, points: int = 25,
                polytropic_n: float = 1.0, settings: WallSettings | None = None,
                model: WallModel | None = None, progress=None, friction="0",
-               object_stiffness=None) -> Curve:
+               object_stiffness=None, indenter="plate") -> Curve:
     t_start = time.perf_counter()
     stick, mu = sticks(friction), coefficient(friction)
     spring = check_object_stiffness(object_stiffness)
     check_combination(mu, spring)
+    body = parse_indenter(indenter)
+    check_friction_on(body, friction)
     load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
                       stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
     pressure_kPa, reservoir_mm3, stroke_mm = load.pressure_kPa, load.reservoir_mm3, load.stroke_mm
     points, polytropic_n = load.points, load.polytropic_n
     settings = settings or (model.settings if model is not None else WallSettings())
     model = model or WallModel(geometry, material, settings)
+    if not (model.stadium or body.axisymmetric):
+        raise ParameterError("indenter", body.spec, "plate or sphere:R=MM on a dome (l = 0) "
+                             "in the wall model (its axisymmetric section); the 3D FEM takes "
+                             "every body")
     p_i = pressure_kPa / KPA_PER_MPA
     y = np.linspace(0.0, stroke_mm, points)
     steps = [Inflate(p_i, settings.inflate_increments), CloseValve(reservoir_mm3, polytropic_n)] \
         if p_i > 0 else []
     tick = (lambda done, total: progress()) if progress is not None else None
-    result = solve(model, steps + [Press.through(y[1:], stick=stick, spring=spring, mu=mu)],
+    result = solve(model, steps + [Press.through(y[1:], stick=stick, spring=spring, mu=mu,
+                                                 indenter=body)],
                    settings=settings.newton_settings(), progress=tick)
     walked = _walked(result, pressure_kPa)
     if progress is not None and result.stop is not None and result.stop.record is not None:
@@ -183,6 +194,8 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
     if stick:
         curve.solver.details.update(friction=check_friction(friction),
                                     shear_N=[0.0] + [st.shear for st in pressed])
+    if body.curved:
+        curve = curve.replace(setup={**curve.setup, "indenter": body.spec})
     return with_indenter(curve, spring, [st.indenter for st in pressed])
 
 

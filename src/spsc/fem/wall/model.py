@@ -124,8 +124,8 @@ class _Dome:
         g, H = self.section.volume_gradient(u)
         return g, H, self.section.cavity_edge_dofs
 
-    def contact_area(self, u, plate) -> float:
-        return self.section.contact_area(u, plate)
+    def contact_area(self, u, plate, indenter=None) -> float:
+        return self.section.contact_area(u, plate, indenter=indenter)
 
     def apex(self, u) -> float:
         return float(self.section.positions(u)[self.section.cavity[0], 1])
@@ -226,9 +226,10 @@ class WallModel:
         """Cavity volume (mm³)."""
         return self.part.volume(self.displacements(x))
 
-    def contact_area(self, x, plate: float) -> float:
-        """Outer surface on the plate (mm²)."""
-        return self.part.contact_area(self.displacements(x), plate)
+    def contact_area(self, x, plate: float, indenter=None) -> float:
+        """Outer surface on the plate, or on the curved ``indenter`` whose tip is at
+        ``plate`` (mm²)."""
+        return self.part.contact_area(self.displacements(x), plate, indenter=indenter)
 
     def apex(self, x) -> float:
         """Height of the cavity apex (mm)."""

@@ -130,17 +130,20 @@ class Section:
         return (2 * nodes[:, :, None] + np.arange(2)).reshape(len(nodes), 6)
 
     # -- the outer surface --------------------------------------------------------------------
-    def contact_area(self, u, plate: float, tol: float = 1e-3) -> float:
+    def contact_area(self, u, plate: float, tol: float = 1e-3, indenter=None) -> float:
         """Area (mm²) of the outer surface within ``tol`` (mm) of the plate at height
-        ``plate``: the outer edges' quadrature points on the plate, weighted by their deformed
-        length × measure (the 3D model's definition,
-        :func:`spsc.fem.solid.contact.contact_area`)."""
+        ``plate`` (or of the sphere ``indenter`` with its tip there): the outer edges'
+        quadrature points on it, weighted by their deformed length × measure (the 3D model's
+        definition, :func:`spsc.fem.solid.contact.contact_area`)."""
         x = self.positions(u)[self.outer]
         e = np.stack([x[0:-2:2], x[1:-1:2], x[2::2]], axis=1)
         N, dN = _edge_shape(np.linspace(0.125, 0.875, 4))  # midpoints of 4 sub-intervals
         xq = np.einsum("qa,eai->eqi", N, e)
         ds = np.linalg.norm(np.einsum("qa,eai->eqi", dN, e), axis=-1) * 0.25
-        on = xq[..., 1] >= plate - tol
+        z = xq[..., 1]
+        if indenter is not None and indenter.curved:
+            z = z - indenter.surface(xq[..., 0].reshape(1, -1))[0].reshape(z.shape)
+        on = z >= plate - tol
         return float(np.sum((self.measure(xq[..., 0]) * ds)[on]))
 
 

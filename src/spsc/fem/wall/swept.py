@@ -363,11 +363,15 @@ class SweptWall:
         H[:, :, 1, :, 0] = np.swapaxes(xy, 1, 2)
         return g, H.reshape(npatch, 27, 27), d
 
-    def contact_area(self, u, plate: float, tol: float = 1e-3) -> float:
-        """Area (mm²) of the outer surface within ``tol`` of the plate, whole chamber."""
+    def contact_area(self, u, plate: float, tol: float = 1e-3, indenter=None) -> float:
+        """Area (mm²) of the outer surface within ``tol`` of the plate (or of the curved
+        ``indenter`` with its tip at ``plate``), whole chamber."""
         P, Pt, Pz, *_ = self._surface(self._outer, u)
         dA = np.linalg.norm(np.cross(Pt, Pz), axis=-1)
-        on = P[..., 2] >= plate - tol
+        z = P[..., 2]
+        if indenter is not None and indenter.curved:
+            z = z - indenter.surface(P[..., :2].reshape(-1, 2).T)[0].reshape(z.shape)
+        on = z >= plate - tol
         return float(np.sum((dA * self._weights())[on]))
 
     def apex(self, u) -> float:
