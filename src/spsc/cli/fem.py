@@ -136,6 +136,12 @@ def part_run_from_args(args):
             raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
                                  "not with --part (the part file is the geometry; the mesh "
                                  "size is --mesh-size)")
+    for dest, rest in (("friction", ("0", None)), ("object_stiffness", (None,)),
+                       ("indenter", ("plate", None))):
+        if getattr(args, dest, None) not in rest:
+            raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
+                                 "not with --part (a part is pressed by its rigid "
+                                 "frictionless plate, --plate-at / --plate-normal)")
     for opt, path in (("--json", args.json), ("--csv", args.csv)):
         if path is not None:
             check_output_file(opt, path)

@@ -16,7 +16,7 @@ import math
 from .errors import ParameterError, require
 
 __all__ = ["FRICTION_VALUES", "check_friction", "sticks", "coefficient", "check_combination",
-           "check_object_stiffness", "check_friction_on",
+           "check_object_stiffness", "check_friction_on", "check_body",
            "with_indenter"]
 
 #: what ``--friction`` takes (besides a coefficient μ > 0)
@@ -67,6 +67,21 @@ def check_friction_on(indenter, friction) -> None:
         raise ParameterError("friction", friction, f"0 with the indenter {indenter.spec} "
                              "(friction on a curved body is not built yet; the plate takes "
                              "0, MU or stick)")
+
+
+def check_body(indenter, friction, *, axisymmetric: bool = False):
+    """The :class:`~spsc.core.indenter.Indenter` of ``indenter`` (a spelling), checked with
+    ``friction`` (:func:`check_friction_on`) and, on an ``axisymmetric`` section (the wall
+    model's dome), refused unless it is the plate or a sphere."""
+    from .indenter import parse_indenter
+
+    body = parse_indenter(indenter)
+    check_friction_on(body, friction)
+    if axisymmetric and not body.axisymmetric:
+        raise ParameterError("indenter", body.spec, "plate or sphere:R=MM on a dome (l = 0) "
+                             "in the wall model (its axisymmetric section); the 3D FEM takes "
+                             "every body")
+    return body
 
 
 def check_object_stiffness(value) -> float | None:

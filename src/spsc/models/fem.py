@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from .base import ModelBase, Outcome, option
 from .meshed import (force_option, friction_option, layers_option, mesh_size_option,
-                     object_stiffness_option)
+                     object_stiffness_option, indenter_option)
 
 __all__ = ["FEMCurveModel", "FEMOptions"]
 
@@ -17,13 +17,15 @@ class FEMOptions:
     """``mesh_size`` (mm), ``layers`` through the wall, ``force`` (beyond the size limits),
     ``full`` (the whole chamber, not the quarter on the symmetry planes), ``solver`` (sparse
     linear solver), ``vtu`` (a folder for one VTU per converged step, or None), ``friction``
-    (the plate's: ``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``), ``object_stiffness`` (N/mm, None: rigid)."""
+    (the plate's: ``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``), ``object_stiffness`` (N/mm, None: rigid), ``indenter`` (the body that presses:
+    ``"plate"``, ``"sphere:R=10"``, …, :mod:`spsc.core.indenter`)."""
 
     mesh_size: float = mesh_size_option(1.0)
     layers: int = layers_option(2)
     force: bool = force_option()
     friction: str = friction_option()
     object_stiffness: float | None = object_stiffness_option()
+    indenter: str = indenter_option()
     full: bool = option(False, "--full", "full model instead of the quarter on the symmetry "
                         "planes", kind="flag")
     solver: str = option("auto", "--solver", "sparse linear solver (default auto: pardiso if "
@@ -58,12 +60,14 @@ class FEMCurveModel(ModelBase):
         return load.points - 1 + inflate
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        from spsc.core.contact import (check_combination, check_friction,
+        from spsc.core.contact import (check_body, check_combination, check_friction,
                                        check_object_stiffness, coefficient)
         from spsc.fem.solid.mesh import check_mesh_size, wall_mesh_counts
 
         check_combination(coefficient(check_friction(options.friction)),
                           check_object_stiffness(options.object_stiffness))
+        check_body(options.indenter, options.friction,
+                   axisymmetric=False)
         from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 
         size, layers = check_mesh_size(geometry, options.mesh_size, options.layers)
@@ -80,10 +84,14 @@ class FEMCurveModel(ModelBase):
         spec = ChamberRun(geometry, material, load, mesh_size_mm=options.mesh_size,
                           layers=options.layers, full=bool(options.full),
                           friction=options.friction,
-                          object_stiffness=options.object_stiffness)
+                          object_stiffness=options.object_stiffness,
+                          indenter=options.indenter)
         curve, result, model = run_chamber(spec, settings=Settings(solver=options.solver),
                                            progress=progress, cache_dir=cache_dir)
         extra = {}
         if options.vtu:
-            extra["vtu"] = [p.name for p in write_vtu(model, result, options.vtu)]
+            from spsc.core.indenter import parse_indenter
+
+            extra["vtu"] = [p.name for p in write_vtu(model, result, options.vtu,
+                                                      parse_indenter(options.indenter))]
         return Outcome(curve, extra, (model, result))

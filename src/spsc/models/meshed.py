@@ -7,7 +7,7 @@ from __future__ import annotations
 from .base import option
 
 __all__ = ["mesh_size_option", "layers_option", "force_option", "friction_option",
-           "object_stiffness_option"]
+           "object_stiffness_option", "indenter_option"]
 
 
 def mesh_size_option(default: float | None):
@@ -45,3 +45,13 @@ def object_stiffness_option():
                   "indenter rides on a spring whose far end follows the travel; the curve's "
                   "indenter_travel_mm is its own (default: a rigid object)", kind="number",
                   group="contact", label="object stiffness", unit="N/mm", metavar="N/MM")
+
+
+def indenter_option():
+    """The rigid body that presses, centred on the chamber's axis (:mod:`spsc.core.indenter`)."""
+    return option("plate", "--indenter", "the body that presses, centred on the chamber's "
+                  "axis: plate (default), sphere:R=MM, cylinder:R=MM,axis=x|y or "
+                  "wedge:angle=DEG,axis=x|y[,r=MM] (a rounded edge, r default 0.5); y is its "
+                  "tip's travel; curved bodies are frictionless; the wall model takes a "
+                  "sphere on a dome and every body on a stadium", kind="value",
+                  group="contact", metavar="BODY")

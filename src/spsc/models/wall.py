@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 from .base import ModelBase, Outcome
 from .meshed import (force_option, friction_option, layers_option, mesh_size_option,
-                     object_stiffness_option)
+                     object_stiffness_option, indenter_option)
 
 __all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
 
@@ -17,13 +17,15 @@ __all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
 class WallOptions:
     """``mesh_size`` (mm; None: 0.5 on a dome, 1.0 on a stadium), ``layers`` through the wall,
     ``force``: run beyond the size limits, ``friction``: the plate's, ``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``,
-    ``object_stiffness``: N/mm, None for a rigid object."""
+    ``object_stiffness``: N/mm, None for a rigid object, ``indenter``: the body that presses
+    (``"plate"``, ``"sphere:R=10"``, …, :mod:`spsc.core.indenter`)."""
 
     mesh_size: float | None = mesh_size_option(None)
     layers: int = layers_option(2)
     force: bool = force_option()
     friction: str = friction_option()
     object_stiffness: float | None = object_stiffness_option()
+    indenter: str = indenter_option()
 
 
 def wall_size_check(verb: str, geometry, mesh_size, layers, steps: int, *, force: bool,
@@ -69,11 +71,13 @@ class WallCurveModel(ModelBase):
         return load.points - 1 + inflate
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        from spsc.core.contact import (check_combination, check_friction,
+        from spsc.core.contact import (check_body, check_combination, check_friction,
                                        check_object_stiffness, coefficient)
 
         check_combination(coefficient(check_friction(options.friction)),
                           check_object_stiffness(options.object_stiffness))
+        check_body(options.indenter, options.friction,
+                   axisymmetric=not geometry.l > 0)
         wall_size_check(verb, geometry, options.mesh_size, options.layers,
                         load.points - 1 + (2 if load.pressure_kPa > 0 else 0),
                         force=bool(options.force), quiet=quiet, points=load.points)
@@ -89,4 +93,5 @@ class WallCurveModel(ModelBase):
                                   reservoir_mm3=load.reservoir_mm3, stroke_mm=load.stroke_mm,
                                   points=load.points, polytropic_n=load.polytropic_n,
                                   settings=ws, progress=step, friction=options.friction,
-                                  object_stiffness=options.object_stiffness))
+                                  object_stiffness=options.object_stiffness,
+                                  indenter=options.indenter))

@@ -19,6 +19,7 @@ from .fuzz_studies import (bench_gap_cases, design_argv, design_cases, fit_mater
                            random_design, sweep_cases)
 from .fuzz_sense import sense_cases
 from .fuzz_time import simulate_cases
+from .fuzz_contact import contact_cases
 
 __all__ = ["Case", "KINDS", "classes", "fixtures", "invalid_cases", "random_design",
            "design_argv"]
@@ -39,6 +40,7 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += _report_cases(f, b, tmp)
     cases += simulate_cases(f, tmp)
     cases += bench_gap_cases(f, b)
+    cases += contact_cases(b)
     cases += sense_cases(f, tmp)
     cases += [replace(c, kind="argparse") for c in _argparse_cases(f, b, tmp)]
     return [c if c.kind != "other" else replace(c, kind=_kind(c.why)) for c in cases]
@@ -114,18 +116,7 @@ def _chamber_cases(f, b, tmp) -> list[Case]:
               Case(b["curve-fem"] + ("--vtu", str(f["file"] / "v")), "--vtu under a file",
                    "vtu"),
               Case(b["curve-membrane"][:1] + ("--model", "nothing", "--type", "B"),
-                   "unknown model", "model"),
-              Case(b["curve-wall"] + ("--friction", "inf"), "an infinite coefficient", "friction"),
-              Case(b["curve-wall"] + ("--friction", "0.3", "--object-stiffness", "2"),
-                   "Coulomb with a compliant object", "object_stiffness"),
-              Case(b["curve-fem"] + ("--friction", "slip"), "unknown friction", "friction"),
-              Case(b["fem"] + ("--friction", "-1"), "negative friction", "friction"),
-              Case(b["curve-membrane"] + ("--friction", "stick"), "option of another model",
-                   "friction"),
-              Case(b["curve-membrane"] + ("--object-stiffness", "2"), "option of another model",
-                   "object-stiffness")]
-    for verb in ("fem", "curve-wall"):
-        cases += numbers(b[verb], ("object-stiffness",))
+                   "unknown model", "model")]
     return cases
 
 

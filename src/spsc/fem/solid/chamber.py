@@ -182,11 +182,13 @@ def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
     return with_indenter(curve, run.object_stiffness, [r.indenter for r in pts["presses"]])
 
 
-def contact_forces(model: FEMModel, rec) -> np.ndarray:
-    """The plate's force on each node (n_nodes, 3; N, of the modelled part) at a record: the
-    reaction −r of the nodes on the plate (within 1e-9 mm of it), its z the contact force, its
-    x and y the tangential traction a sticking plate carries (zero on a frictionless one, and
-    left out where a symmetry plane supports the node); zero elsewhere and without a plate. r is evaluated at the record's state and pressure."""
+def contact_forces(model: FEMModel, rec, indenter=None) -> np.ndarray:
+    """The plate's (or the curved ``indenter``'s) force on each node (n_nodes, 3; N, of the
+    modelled part) at a record: the reaction −r of the nodes on it (within 1e-9 mm). On the
+    plate its z is the contact force and its x and y the tangential traction a sticking plate
+    carries (zero on a frictionless one); on a curved body it is along the body's normal.
+    Components a symmetry plane supports are left out; zero elsewhere and without a plate.
+    r is evaluated at the record's state and pressure."""
     out = np.zeros((model.disc.n_nodes, 3))
     if rec.plate is None:
         return out
@@ -194,8 +196,7 @@ def contact_forces(model: FEMModel, rec) -> np.ndarray:
     from ..engine.active_set import heights
 
     dofs = model.contact_dofs
-    on = dofs[heights(model, rec.x, dofs, getattr(rec, "indenter_body", None))
-              >= rec.plate - 1e-9]
+    on = dofs[heights(model, rec.x, dofs, indenter) >= rec.plate - 1e-9]
     if on.size:
         r = model.evaluate(rec.x, Load(pressure=rec.pressure), tangent=False).r
         nodes = on // 3
@@ -205,9 +206,10 @@ def contact_forces(model: FEMModel, rec) -> np.ndarray:
     return out
 
 
-def write_vtu(model: FEMModel, result: Result, directory) -> list[Path]:
+def write_vtu(model: FEMModel, result: Result, directory, indenter=None) -> list[Path]:
     """One VTU per converged record (quadratic tetrahedra, displacement and pressure fields,
-    the plate's force per node ``contact_force_N`` (:func:`contact_forces`), warp by
+    the plate's or the curved ``indenter``'s force per node ``contact_force_N``
+    (:func:`contact_forces`), warp by
     ``displacement`` in ParaView); returns the paths."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
@@ -223,7 +225,7 @@ def write_vtu(model: FEMModel, result: Result, directory) -> list[Path]:
             mid = model.mesh.tets[:, 4 + e]
             p[mid] = 0.5 * (p[model.mesh.tets[:, a]] + p[model.mesh.tets[:, b]])
         grid.point_data["hydrostatic_pressure_MPa"] = p
-        grid.point_data["contact_force_N"] = contact_forces(model, rec)
+        grid.point_data["contact_force_N"] = contact_forces(model, rec, indenter)
         grid.field_data["cavity_pressure_kPa"] = np.array([rec.pressure * 1e3])
         grid.field_data["plate_force_N"] = np.array([rec.force])
         path = directory / f"step-{i:03d}-{rec.kind}.vtu"

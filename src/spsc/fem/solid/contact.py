@@ -10,7 +10,7 @@ import numpy as np
 
 from .element import tri_p2, tri_rule
 
-__all__ = ["group_forces", "contact_forces", "contact_area"]
+__all__ = ["group_forces", "contact_forces", "contact_area", "contact_patch"]
 
 
 def contact_forces(r, active) -> np.ndarray:
@@ -46,3 +46,24 @@ def contact_area(model, x, plate: float, tol: float | None = None, indenter=None
     if tol is None:
         tol = 1e-3
     return float(np.sum(da[z >= plate - tol])) * model.symmetry
+
+
+def contact_patch(model, x, plate: float, indenter=None, tol: float = 1e-3):
+    """The contact patch as the outer facets in the deformed state x: (corners (nf, 3, 3) in
+    mm, the part of each facet's area on the body (nf,), 0–1), for the facets that touch
+    at all, in the modelled part (mirror it for the whole). The same quadrature as
+    :func:`contact_area`, whose sum it is (÷ symmetry)."""
+    xq, w = tri_rule(4)
+    N, dN = tri_p2(xq)
+    pos = model.disc.X + model.displacement(x)
+    f = pos[model.mesh.facets["outer"]]
+    xyz = np.einsum("fai,qa->fqi", f, N)
+    z = xyz[..., 2]
+    if indenter is not None and indenter.curved:
+        z = z - indenter.surface(xyz[..., :2].reshape(-1, 2).T)[0].reshape(z.shape)
+    xs = np.einsum("fai,qa->fqi", f, dN[:, :, 0])
+    xt = np.einsum("fai,qa->fqi", f, dN[:, :, 1])
+    da = np.linalg.norm(np.cross(xs, xt), axis=-1) * w
+    on = (da * (z >= plate - tol)).sum(axis=1) / da.sum(axis=1)
+    touch = on > 0
+    return f[touch, :3], on[touch]

@@ -51,10 +51,8 @@ from spsc.cad.geometry import SPSCGeometry
 from spsc.core.constants import KPA_PER_MPA
 from spsc.core.curve import Curve, SolveInfo
 from spsc.core.gaslaw import GasLaw
-from spsc.core.contact import (check_combination, check_friction, check_friction_on,
+from spsc.core.contact import (check_body, check_combination, check_friction,
                                check_object_stiffness, coefficient, sticks, with_indenter)
-from spsc.core.errors import ParameterError
-from spsc.core.indenter import parse_indenter
 from spsc.core.loadcase import check_load
 from spsc.materials import Material
 
@@ -163,18 +161,14 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
     stick, mu = sticks(friction), coefficient(friction)
     spring = check_object_stiffness(object_stiffness)
     check_combination(mu, spring)
-    body = parse_indenter(indenter)
-    check_friction_on(body, friction)
+    body = check_body(indenter, friction)
     load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
                       stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
     pressure_kPa, reservoir_mm3, stroke_mm = load.pressure_kPa, load.reservoir_mm3, load.stroke_mm
     points, polytropic_n = load.points, load.polytropic_n
     settings = settings or (model.settings if model is not None else WallSettings())
     model = model or WallModel(geometry, material, settings)
-    if not (model.stadium or body.axisymmetric):
-        raise ParameterError("indenter", body.spec, "plate or sphere:R=MM on a dome (l = 0) "
-                             "in the wall model (its axisymmetric section); the 3D FEM takes "
-                             "every body")
+    check_body(body, friction, axisymmetric=not model.stadium)
     p_i = pressure_kPa / KPA_PER_MPA
     y = np.linspace(0.0, stroke_mm, points)
     steps = [Inflate(p_i, settings.inflate_increments), CloseValve(reservoir_mm3, polytropic_n)] \
