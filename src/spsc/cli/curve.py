@@ -228,7 +228,8 @@ def summary(curve) -> None:
     d = info.details
     size = (f" ({d.get('model_part')}, {d['dofs']} unknowns, {d.get('tetrahedra')} tetrahedra)"
             if "dofs" in d else "")
-    body = f", pressed by {s['indenter']}" if "indenter" in s else ""
+    named = s.get("indenter") or (s.get("part") or {}).get("indenter", "plate")
+    body = f", pressed by {named}" if named != "plate" else ""
     print(f"{curve.model} model{size}, material {curve.material}, p_i = {s['p_i_kPa']:g} kPa, "
           f"V_r = {s['reservoir_mm3']:g} mm³{body}")
     apex = (f", apex at {curve.inflated_height_mm:.3f} mm"

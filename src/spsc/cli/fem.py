@@ -136,12 +136,12 @@ def part_run_from_args(args):
             raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
                                  "not with --part (the part file is the geometry; the mesh "
                                  "size is --mesh-size)")
-    for dest, rest in (("friction", ("0", None)), ("object_stiffness", (None,)),
-                       ("indenter", ("plate", None))):
+    for dest, rest in (("friction", ("0", None)), ("object_stiffness", (None,))):
         if getattr(args, dest, None) not in rest:
             raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
-                                 "not with --part (a part is pressed by its rigid "
-                                 "frictionless plate, --plate-at / --plate-normal)")
+                                 "not with --part (a part is pressed by a rigid "
+                                 "frictionless body, --indenter, placed by --plate-at / "
+                                 "--plate-normal)")
     for opt, path in (("--json", args.json), ("--csv", args.csv)):
         if path is not None:
             check_output_file(opt, path)
@@ -185,7 +185,7 @@ def part_run_from_args(args):
                    plate_at=at, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
                    stroke_mm=stroke, points=points, mesh_size_mm=mesh_size,
                    polytropic_n=args.polytropic_n, design=design, contacts=contacts,
-                   motor=bool(args.motor))
+                   motor=bool(args.motor), indenter=args.indenter or "plate")
 
 
 def _estimate(run, surface) -> dict:
@@ -234,14 +234,15 @@ def run_part_cli(args) -> int:
         bar.update(done - bar.n)
 
     try:
-        result = solve(model, run.steps(), settings=Settings(solver=args.solver or "auto"),
+        body = run.body(model, R)
+        result = solve(model, run.steps(body), settings=Settings(solver=args.solver or "auto"),
                        progress=progress)
     finally:
         bar.close()
     curve = part_curve(run, model, result, surface, mesh_seconds=mesh_seconds)
     extra = {}
     if args.vtu:
-        extra["vtu"] = [p.name for p in write_part_vtu(model, result, R, args.vtu)]
+        extra["vtu"] = [p.name for p in write_part_vtu(model, result, R, args.vtu, body)]
     if args.json:
         curve.to_json(args.json, extra=extra or None)
     if args.csv:

@@ -22,7 +22,7 @@ edge along x, rounded with radius r, default 0.5 mm). Keys are case-insensitive.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -42,14 +42,22 @@ WEDGE_EDGE_MM = 0.5
 
 @dataclass(frozen=True)
 class Indenter:
-    """A rigid body centred on the chamber's axis. ``radius`` (mm): the sphere's or the
-    cylinder's, the wedge's edge rounding; ``axis``: the cylinder's axis or the wedge's edge
-    (``"x"`` or ``"y"``); ``angle`` (degrees): the wedge's included angle."""
+    """A rigid body, its tip on the chamber's axis (or over ``at``). ``radius`` (mm): the
+    sphere's or the cylinder's, the wedge's edge rounding; ``axis``: the cylinder's axis or
+    the wedge's edge (``"x"`` or ``"y"``); ``angle`` (degrees): the wedge's included
+    angle."""
 
     kind: str = "plate"
     radius: float = math.inf
     axis: str = "x"
     angle: float = 0.0
+    #: the tip's lateral position (mm; x, y of the press frame): the chamber's axis, or where
+    #: ``--plate-at`` puts it on a part
+    at: tuple = (0.0, 0.0)
+
+    def placed(self, at) -> "Indenter":
+        """This body with its tip over the lateral point ``at`` (x, y in mm)."""
+        return replace(self, at=(float(at[0]), float(at[1])))
 
     @property
     def curved(self) -> bool:
@@ -80,6 +88,11 @@ class Indenter:
         equator)."""
         lateral = np.atleast_2d(np.asarray(lateral, float))
         k, n = lateral.shape
+        if self.at != (0.0, 0.0):
+            if k != 2:
+                raise ParameterError("indenter", self.spec, "on the axis of an axisymmetric "
+                                     "section")
+            lateral = lateral - np.asarray(self.at, float)[:, None]
         gap = np.broadcast_to(np.asarray(gap, float), (n,))
         if self.kind == "plate":
             return np.zeros(n), np.zeros((k, n)), np.zeros((k, k, n))

@@ -102,7 +102,7 @@ def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | 
     mesh_s = time.perf_counter() - t0
     log(f"  {path.stem}: {model.disc.n:,} unknowns, {model.mesh.n_tets:,} tetrahedra "
         f"(mesh {mesh_s:.0f} s)")
-    result = solve(model, run.steps(),
+    result = solve(model, run.steps(run.body(model, R)),
                    progress=lambda d, n: log(f"    step {d}/{n} ({time.perf_counter() - t0:.0f} s)"))
     curve = part_curve(run, model, result, surface, mesh_seconds=mesh_s)
     extra = {}

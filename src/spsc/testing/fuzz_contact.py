@@ -35,8 +35,8 @@ def contact_cases(b) -> list[Case]:
                   "Coulomb with a curved indenter", "friction"),
              Case(b["curve-simplified"] + ("--indenter", "sphere:R=10"),
                   "option of another model", "indenter"),
-             Case(b["fem-part"] + ("--indenter", "sphere:R=10"), "an indenter on a part",
-                  "indenter"),
+             Case(b["fem-part"] + ("--indenter", "cylinder:R=10,axis=z"),
+                  "bad indenter on a part", "indenter"),
              Case(b["fem-part"] + ("--friction", "stick"), "friction on a part", "friction"),
              Case(b["fem-part"] + ("--object-stiffness", "2"), "a compliant object on a part",
                   "object-stiffness")]

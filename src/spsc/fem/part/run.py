@@ -143,7 +143,8 @@ def check_plate(run: PartRun, surface: PartSurface, fixed_mask_of) -> None:
         raise ParameterError("plate-at", run.plate_at, f"a point on the part's surface (it is "
                              f"{dist:.3g} mm from it: the plate misses the part there)")
     cut = float(z[top] - at @ R[2])
-    if cut > max(0.1, run.mesh_size_mm / 2):
+    # a curved body's tip goes over the point; where it first touches, the engine finds
+    if run.indenter == "plate" and cut > max(0.1, run.mesh_size_mm / 2):
         where = ", ".join(f"{c:.3g}" for c in v[top])
         raise ParameterError("plate-at", run.plate_at, f"the point where a plate moving along "
                              f"{run.plate_normal} first touches the part (through this point "
@@ -259,7 +260,7 @@ def run_part(run: PartRun, *, settings: Settings | None = None, progress=None,
     t0 = time.perf_counter()
     model, R, surface = part_model(run, cache_dir=cache_dir)
     mesh_seconds = time.perf_counter() - t0
-    result = solve(model, run.steps(), settings=settings, progress=progress)
+    result = solve(model, run.steps(run.body(model, R)), settings=settings, progress=progress)
     return part_curve(run, model, result, surface, mesh_seconds=mesh_seconds), result, model, R
 
 
@@ -281,7 +282,7 @@ def part_curve(run: PartRun, model: FEMModel, result: Result, surface: PartSurfa
             series[f"force_{name}_N"][k] = f
         if model.insert is not None:
             series[f"force_{model.insert.name}_N"][k] = rec.insert_force
-    part = {"file": Path(run.part).name, "fix": run.fix,
+    part = {"file": Path(run.part).name, "fix": run.fix, "indenter": run.indenter,
             "plate_normal": list(run.plate_normal),
             "plate_at": None if run.plate_at is None else list(run.plate_at),
             "port_plugged": surface.capped,
@@ -311,14 +312,15 @@ def part_curve(run: PartRun, model: FEMModel, result: Result, surface: PartSurfa
                  message=pts["msg"], solver=info, series=series)
 
 
-def write_part_vtu(model: FEMModel, result: Result, R, directory) -> list[Path]:
+def write_part_vtu(model: FEMModel, result: Result, R, directory, body=None) -> list[Path]:
     """One VTU per converged record in part coordinates (the press frame turned back by Rᵀ):
-    quadratic tetrahedra with displacement, hydrostatic pressure, and each contact patch's
-    nodes marked (point data ``contact_<name>``)."""
+    quadratic tetrahedra with displacement, hydrostatic pressure, the pressing body's force
+    per node (``contact_force_N``; ``body``: the placed curved indenter, None: the plate) and
+    each contact patch's nodes marked (point data ``contact_<name>``)."""
     from ..solid.chamber import write_vtu
 
     R = np.asarray(R, float)
-    paths = write_vtu(model, result, directory)
+    paths = write_vtu(model, result, directory, body)
     import pyvista as pv
 
     X = model.disc.X @ R
@@ -326,6 +328,7 @@ def write_part_vtu(model: FEMModel, result: Result, R, directory) -> list[Path]:
         grid = pv.read(path)
         grid.points = X
         grid.point_data["displacement"] = model.displacement(rec.x) @ R
+        grid.point_data["contact_force_N"] = grid.point_data["contact_force_N"] @ R
         for name, nodes in model.groups.items():
             mark = np.zeros(len(X))
             mark[nodes] = 1.0

@@ -60,6 +60,9 @@ class PartRun(WithLoadCase):
     design: dict | None = field(default=None, compare=False)
     contacts: tuple = ()
     motor: bool = False
+    #: the body that presses (:mod:`spsc.core.indenter`): its tip at ``plate_at`` (or where
+    #: the plate first touches), moving along ``plate_normal``
+    indenter: str = "plate"
 
     def __post_init__(self):
         if not isinstance(self.load, LoadCase):
@@ -79,6 +82,9 @@ class PartRun(WithLoadCase):
                 raise ParameterError("plate-at", self.plate_at, "three numbers x,y,z (mm)")
             object.__setattr__(self, "plate_at", tuple(float(v) for v in a))
         parse_selector(self.fix)
+        from spsc.core.indenter import check_indenter
+
+        object.__setattr__(self, "indenter", check_indenter(self.indenter))
         if self.design is not None:
             from .design import check_design
 
@@ -92,8 +98,25 @@ class PartRun(WithLoadCase):
                                      "0,0,-1 with --motor (the motor translates along its own "
                                      "axis, z: a press along it)")
 
-    def steps(self) -> list:
-        return load_steps(self.load, self.inflate_increments)
+    def body(self, model, R):
+        """The :class:`~spsc.core.indenter.Indenter` placed in the press frame of ``model``
+        (turned by ``R``): its tip over ``plate_at``, or over the contact node a plate first
+        touches; None for the plate."""
+        from spsc.core.indenter import parse_indenter
+
+        body = parse_indenter(self.indenter)
+        if not body.curved:
+            return None
+        if self.plate_at is not None:
+            return body.placed((np.asarray(R) @ np.asarray(self.plate_at))[:2])
+        dofs = model.contact_dofs
+        top = dofs[np.argmax(model.contact_height[dofs] + model.contact_gap[dofs])] // 3
+        return body.placed(model.disc.X[top, :2])
+
+    def steps(self, body=None) -> list:
+        """The load path; ``body``: the placed curved indenter (:meth:`body`), None: the
+        plate."""
+        return load_steps(self.load, self.inflate_increments, indenter=body)
 
 
 def part_run(part, material: Material, fix: str, *, pressure_kPa: float = 40.0,
