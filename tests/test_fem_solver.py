@@ -129,6 +129,21 @@ def test_open_chamber_and_curve_json(tmp_path):
     np.testing.assert_allclose(last[:, 2].sum() * model.symmetry, result.records[-1].force,
                                rtol=1e-9)
     assert np.all(last[:, 2] >= -1e-9) and np.abs(last[:, :2]).max() < 1e-6 * last[:, 2].max()
+    # the recovered contact pressure integrates to the plate force over the deformed surface
+    # (an identity of the projection: the P2 shape functions sum to 1), with no shear
+    grid = pv.read(paths[-1])
+    p = grid.point_data["contact_pressure_MPa"]
+    from spsc.fem.solid.element import tri_p2, tri_rule
+
+    xq, w = tri_rule(4)
+    N, dN = tri_p2(xq)
+    facets = model.mesh.facets["outer"]
+    f = (model.disc.X + model.displacement(result.records[-1].x))[facets]
+    da = np.linalg.norm(np.cross(np.einsum("fai,qa->fqi", f, dN[:, :, 0]),
+                                 np.einsum("fai,qa->fqi", f, dN[:, :, 1])), axis=-1) * w
+    integral = np.einsum("fq,qa,fa->", da, N, p[facets])
+    np.testing.assert_allclose(integral * model.symmetry, result.records[-1].force, rtol=1e-9)
+    assert p.max() > 0.01 and np.abs(grid.point_data["contact_shear_MPa"]).max() < 1e-9
 
 
 def test_failure_keeps_converged_points_and_says_why(tmp_path):

@@ -459,3 +459,28 @@ def test_a_curved_body_on_a_part_is_recorded_and_friction_refused(dome_stl, caps
            "friction")
     _fails(capsys, ["fem", "--part", str(dome_stl), "--fix", "z<=0", "--indenter", "ball"],
            "indenter")
+
+
+@pytest.mark.slow
+def test_a_tilted_plate_pushes_along_its_normal(dome_part, tmp_path):
+    """--indenter plate:tilt=10,axis=y on the dome part (full: no symmetry to break): the
+    frictionless plate's nodal forces sum to a force along its normal, Σf_x / Σf_z =
+    −tan 10° (to 1e-8), balanced by the mount's lateral reaction."""
+    from spsc.core.indenter import parse_indenter
+    from spsc.fem.solid.chamber import contact_forces
+
+    s, mesh = dome_part
+    run = part_run(str(tmp_path / "d.stl"), MAT, "z<=0", mesh_size_mm=SIZE,
+                  indenter="plate:tilt=10,axis=y", stroke_mm=0.6, points=3, pressure_kPa=10)
+    model, R, _ = part_model(run, surface=s, mesh=mesh)
+    body = run.body(model, R)
+    res = solve(model, run.steps(body), settings=Settings())
+    assert res.converged, res.message
+    rec = res.records[-1]
+    f = contact_forces(model, rec, body).sum(axis=0)
+    assert rec.force > 0.1
+    assert_allclose(f[0] / f[2], -math.tan(math.radians(10)), rtol=1e-8)
+    assert_allclose(f[2], rec.force, rtol=1e-9)
+    r = model.evaluate(rec.x, Load(pressure=rec.pressure), tangent=False).r
+    fixed_x = model.fixed[: model.disc.n_u].reshape(-1, 3)[:, 0]
+    assert_allclose(r[: model.disc.n_u].reshape(-1, 3)[fixed_x, 0].sum(), f[0], rtol=1e-5)

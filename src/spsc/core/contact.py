@@ -69,10 +69,11 @@ def check_friction_on(indenter, friction) -> None:
                              "0, MU or stick)")
 
 
-def check_body(indenter, friction, *, axisymmetric: bool = False):
+def check_body(indenter, friction, *, axisymmetric: bool = False, quarter: bool = False):
     """The :class:`~spsc.core.indenter.Indenter` of ``indenter`` (a spelling), checked with
-    ``friction`` (:func:`check_friction_on`) and, on an ``axisymmetric`` section (the wall
-    model's dome), refused unless it is the plate or a sphere."""
+    ``friction`` (:func:`check_friction_on`); on an ``axisymmetric`` section (the wall
+    model's dome) refused unless it is the plate or a sphere, on a ``quarter`` model unless
+    it is symmetric about both planes (not a tilted plate)."""
     from .indenter import parse_indenter
 
     body = parse_indenter(indenter)
@@ -81,6 +82,9 @@ def check_body(indenter, friction, *, axisymmetric: bool = False):
         raise ParameterError("indenter", body.spec, "plate or sphere:R=MM on a dome (l = 0) "
                              "in the wall model (its axisymmetric section); the 3D FEM takes "
                              "every body")
+    if quarter and not body.mirrored:
+        raise ParameterError("indenter", body.spec, "a body symmetric about x = 0 and y = 0 "
+                             "on a quarter model (a tilted plate needs the 3D FEM's --full)")
     return body
 
 

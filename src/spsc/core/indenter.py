@@ -14,7 +14,8 @@ by it (the offset of a sphere is a sphere), so the node stays below
 S_gap, its gradient and its Hessian at the nodes' current lateral positions; the engine
 eliminates the node's height with them (:mod:`spsc.fem.engine.leaning`).
 
-Spelling: ``plate``; ``sphere:R=10``; ``cylinder:R=10,axis=x`` (the cylinder's axis along x:
+Spelling: ``plate``; ``plate:tilt=5,axis=y`` (the plate turned 5° about y, still lowered
+along −z: a quarter model cannot carry it); ``sphere:R=10``; ``cylinder:R=10,axis=x`` (the cylinder's axis along x:
 it presses a line across y); ``wedge:angle=60,axis=x,r=0.5`` (included angle in degrees, the
 edge along x, rounded with radius r, default 0.5 mm). Keys are case-insensitive.
 """
@@ -33,8 +34,8 @@ __all__ = ["Indenter", "parse_indenter", "check_indenter", "INDENTER_KINDS"]
 #: the bodies ``--indenter`` names
 INDENTER_KINDS = ("plate", "sphere", "cylinder", "wedge")
 
-_ALLOWED = ("plate, sphere:R=MM, cylinder:R=MM,axis=x|y or wedge:angle=DEG,axis=x|y[,r=MM] "
-            "(R > 0, 0 < angle < 180, r >= 0)")
+_ALLOWED = ("plate[:tilt=DEG,axis=x|y], sphere:R=MM, cylinder:R=MM,axis=x|y or "
+            "wedge:angle=DEG,axis=x|y[,r=MM] (|tilt| < 45, R > 0, 0 < angle < 180, r >= 0)")
 
 #: the default rounding of a wedge's edge (mm): a printed or machined edge is never sharp
 WEDGE_EDGE_MM = 0.5
@@ -44,8 +45,8 @@ WEDGE_EDGE_MM = 0.5
 class Indenter:
     """A rigid body, its tip on the chamber's axis (or over ``at``). ``radius`` (mm): the
     sphere's or the cylinder's, the wedge's edge rounding; ``axis``: the cylinder's axis or
-    the wedge's edge (``"x"`` or ``"y"``); ``angle`` (degrees): the wedge's included
-    angle."""
+    the wedge's edge, or the tilted plate's turning axis (``"x"`` or ``"y"``); ``angle``
+    (degrees): the wedge's included angle, or the plate's tilt (0: level)."""
 
     kind: str = "plate"
     radius: float = math.inf
@@ -61,19 +62,28 @@ class Indenter:
 
     @property
     def curved(self) -> bool:
-        """Whether the body is not the flat plate."""
-        return self.kind != "plate"
+        """Whether the body is not the level plate (a curved body or a tilted plate: its
+        contact follows the surface, :mod:`spsc.fem.engine.leaning`)."""
+        return self.kind != "plate" or self.angle != 0.0
 
     @property
     def axisymmetric(self) -> bool:
-        """Whether the body is symmetric about the chamber's axis (the plate, the sphere)."""
-        return self.kind in ("plate", "sphere")
+        """Whether the body is symmetric about the chamber's axis (the level plate, the
+        sphere)."""
+        return self.kind == "sphere" or not self.curved
+
+    @property
+    def mirrored(self) -> bool:
+        """Whether the body is symmetric about the planes x = 0 and y = 0 (a quarter model
+        can carry it): all but a tilted plate, with their tip on the axis."""
+        return (self.kind != "plate" or self.angle == 0.0) and self.at == (0.0, 0.0)
 
     @property
     def spec(self) -> str:
         """The canonical spelling (as ``--indenter`` takes it)."""
         if self.kind == "plate":
-            return "plate"
+            return "plate" if self.angle == 0.0 else \
+                f"plate:tilt={self.angle:g},axis={self.axis}"
         if self.kind == "sphere":
             return f"sphere:R={self.radius:g}"
         if self.kind == "cylinder":
@@ -94,14 +104,15 @@ class Indenter:
                                      "section")
             lateral = lateral - np.asarray(self.at, float)[:, None]
         gap = np.broadcast_to(np.asarray(gap, float), (n,))
-        if self.kind == "plate":
+        if not self.curved:
             return np.zeros(n), np.zeros((k, n)), np.zeros((k, k, n))
         if self.kind == "sphere":
             return _round(lateral, self.radius + gap)
         if k != 2:
             raise ParameterError("indenter", self.spec, "plate or sphere:R=MM on an "
-                                 "axisymmetric section (a cylinder or a wedge is not "
-                                 "axisymmetric)")
+                                 "axisymmetric section")
+        if self.kind == "plate":
+            return _tilted(lateral, math.radians(self.angle), self.axis, gap)
         across = 1 if self.axis == "x" else 0  # the coordinate across the axis
         d = lateral[across:across + 1]
         S, dS, d2S = _round(d, self.radius + gap) if self.kind == "cylinder" \
@@ -123,6 +134,17 @@ def _round(p, R):
     k = p.shape[0]
     hess = np.eye(k)[:, :, None] / s + p[:, None, :] * p[None, :, :] / s ** 3
     return S, grad, hess
+
+
+def _tilted(p, tilt, axis, gap):
+    """A plate turned by ``tilt`` (rad) about the x or y ``axis``: z = tip + tan(tilt) times
+    the coordinate across the axis; offset by the gap along its normal, g / cos(tilt) below."""
+    across = 1 if axis == "x" else 0
+    n = p.shape[1]
+    S = math.tan(tilt) * p[across] - gap * (1.0 / math.cos(tilt) - 1.0)
+    grad = np.zeros((2, n))
+    grad[across] = math.tan(tilt)
+    return S, grad, np.zeros((2, 2, n))
 
 
 def _wedge(d, r, half):
@@ -169,7 +191,7 @@ def parse_indenter(value) -> Indenter:
         if not eq:
             raise ParameterError("indenter", value, _ALLOWED)
         keys[key.strip().lower()] = val.strip()
-    wanted = {"plate": set(), "sphere": {"r"}, "cylinder": {"r", "axis"},
+    wanted = {"plate": {"tilt", "axis"}, "sphere": {"r"}, "cylinder": {"r", "axis"},
               "wedge": {"angle", "axis", "r"}}[kind]
     if set(keys) - wanted:
         raise ParameterError("indenter", value, _ALLOWED)
@@ -177,7 +199,10 @@ def parse_indenter(value) -> Indenter:
     if axis not in ("x", "y"):
         raise ParameterError("indenter", value, _ALLOWED)
     if kind == "plate":
-        return Indenter()
+        tilt = _number("tilt", keys.get("tilt", 0.0), value)
+        if not -45.0 < tilt < 45.0:
+            raise ParameterError("indenter", value, _ALLOWED)
+        return Indenter(axis=axis, angle=tilt) if tilt else Indenter()
     if kind == "wedge":
         if "angle" not in keys:
             raise ParameterError("indenter", value, _ALLOWED)

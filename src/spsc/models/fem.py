@@ -66,8 +66,7 @@ class FEMCurveModel(ModelBase):
 
         check_combination(coefficient(check_friction(options.friction)),
                           check_object_stiffness(options.object_stiffness))
-        check_body(options.indenter, options.friction,
-                   axisymmetric=False)
+        check_body(options.indenter, options.friction, quarter=not options.full)
         from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 
         size, layers = check_mesh_size(geometry, options.mesh_size, options.layers)

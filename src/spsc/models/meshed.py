@@ -50,8 +50,8 @@ def object_stiffness_option():
 def indenter_option():
     """The rigid body that presses, centred on the chamber's axis (:mod:`spsc.core.indenter`)."""
     return option("plate", "--indenter", "the body that presses, centred on the chamber's "
-                  "axis: plate (default), sphere:R=MM, cylinder:R=MM,axis=x|y or "
-                  "wedge:angle=DEG,axis=x|y[,r=MM] (a rounded edge, r default 0.5); y is its "
-                  "tip's travel; curved bodies are frictionless; the wall model takes a "
-                  "sphere on a dome and every body on a stadium", kind="value",
-                  group="contact", metavar="BODY")
+                  "axis: plate (default), plate:tilt=DEG,axis=x|y (fem --full), sphere:R=MM, "
+                  "cylinder:R=MM,axis=x|y or wedge:angle=DEG,axis=x|y[,r=MM] (a rounded "
+                  "edge, r default 0.5); y is its tip's travel; all but the level plate are "
+                  "frictionless; the wall model takes a sphere on a dome and every symmetric "
+                  "body on a stadium", kind="value", group="contact", metavar="BODY")

@@ -77,7 +77,7 @@ class WallCurveModel(ModelBase):
         check_combination(coefficient(check_friction(options.friction)),
                           check_object_stiffness(options.object_stiffness))
         check_body(options.indenter, options.friction,
-                   axisymmetric=not geometry.l > 0)
+                   axisymmetric=not geometry.l > 0, quarter=True)
         wall_size_check(verb, geometry, options.mesh_size, options.layers,
                         load.points - 1 + (2 if load.pressure_kPa > 0 else 0),
                         force=bool(options.force), quiet=quiet, points=load.points)

@@ -11,7 +11,8 @@ __all__ = ["contact_cases"]
 #: indenter spellings that are not one (:mod:`spsc.core.indenter`)
 BAD_INDENTERS = ("ball:R=3", "sphere", "sphere:R=0", "sphere:R=-2", "sphere:R=inf",
                  "cylinder:R=5,axis=z", "wedge:angle=0", "wedge:angle=60,r=-1",
-                 "sphere:R=3,axis=x", "plate:R=2", "sphere:R=", "")
+                 "sphere:R=3,axis=x", "plate:R=2", "sphere:R=", "", "plate:tilt=45",
+                 "plate:tilt=x")
 
 
 def contact_cases(b) -> list[Case]:
@@ -33,6 +34,10 @@ def contact_cases(b) -> list[Case]:
                   "friction with a curved indenter", "friction"),
              Case(b["fem"] + ("--indenter", "wedge:angle=60", "--friction", "0.3"),
                   "Coulomb with a curved indenter", "friction"),
+             Case(b["curve-fem"] + ("--indenter", "plate:tilt=5,axis=y"),
+                  "a tilted plate on the quarter model", "indenter"),
+             Case(b["curve-wall"] + ("--indenter", "plate:tilt=5"),
+                  "a tilted plate on the wall model", "indenter"),
              Case(b["curve-simplified"] + ("--indenter", "sphere:R=10"),
                   "option of another model", "indenter"),
              Case(b["fem-part"] + ("--indenter", "cylinder:R=10,axis=z"),

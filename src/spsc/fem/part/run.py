@@ -328,7 +328,8 @@ def write_part_vtu(model: FEMModel, result: Result, R, directory, body=None) -> 
         grid = pv.read(path)
         grid.points = X
         grid.point_data["displacement"] = model.displacement(rec.x) @ R
-        grid.point_data["contact_force_N"] = grid.point_data["contact_force_N"] @ R
+        for name in ("contact_force_N", "contact_shear_MPa"):
+            grid.point_data[name] = grid.point_data[name] @ R
         for name, nodes in model.groups.items():
             mark = np.zeros(len(X))
             mark[nodes] = 1.0

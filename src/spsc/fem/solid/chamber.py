@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.core.contact import (check_combination, check_friction, check_friction_on,
+from spsc.core.contact import (check_body, check_combination, check_friction,
                                check_object_stiffness, coefficient, with_indenter)
 from spsc.core.indenter import parse_indenter
 from spsc.core.errors import ParameterError
@@ -24,6 +24,7 @@ from spsc.core.curve import Curve, SolveInfo
 from spsc.materials import Material
 
 from ..engine import Result, Settings, load_steps, solve
+from .contact import contact_tractions
 from .element import TET_EDGES
 from .mesh import cached_mesh, check_mesh_size, spsc_wall
 from .model import FEMModel
@@ -66,8 +67,7 @@ class ChamberRun(WithLoadCase):
         object.__setattr__(self, "object_stiffness",
                            check_object_stiffness(self.object_stiffness))
         check_combination(coefficient(self.friction), self.object_stiffness)
-        body = parse_indenter(self.indenter)
-        check_friction_on(body, self.friction)
+        body = check_body(self.indenter, self.friction, quarter=not self.full)
         object.__setattr__(self, "indenter", body.spec)
 
     def steps(self) -> list:
@@ -209,8 +209,10 @@ def contact_forces(model: FEMModel, rec, indenter=None) -> np.ndarray:
 def write_vtu(model: FEMModel, result: Result, directory, indenter=None) -> list[Path]:
     """One VTU per converged record (quadratic tetrahedra, displacement and pressure fields,
     the plate's or the curved ``indenter``'s force per node ``contact_force_N``
-    (:func:`contact_forces`), warp by
-    ``displacement`` in ParaView); returns the paths."""
+    (:func:`contact_forces`), the contact pressure ``contact_pressure_MPa`` and tangential
+    traction ``contact_shear_MPa`` recovered from it
+    (:func:`~spsc.fem.solid.contact.contact_tractions`), warp by ``displacement`` in
+    ParaView); returns the paths."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     paths = []
@@ -225,7 +227,11 @@ def write_vtu(model: FEMModel, result: Result, directory, indenter=None) -> list
             mid = model.mesh.tets[:, 4 + e]
             p[mid] = 0.5 * (p[model.mesh.tets[:, a]] + p[model.mesh.tets[:, b]])
         grid.point_data["hydrostatic_pressure_MPa"] = p
-        grid.point_data["contact_force_N"] = contact_forces(model, rec, indenter)
+        forces = contact_forces(model, rec, indenter)
+        grid.point_data["contact_force_N"] = forces
+        pressure, shear = contact_tractions(model, rec.x, forces, indenter)
+        grid.point_data["contact_pressure_MPa"] = pressure
+        grid.point_data["contact_shear_MPa"] = shear
         grid.field_data["cavity_pressure_kPa"] = np.array([rec.pressure * 1e3])
         grid.field_data["plate_force_N"] = np.array([rec.force])
         path = directory / f"step-{i:03d}-{rec.kind}.vtu"

@@ -7,10 +7,13 @@ outer surface. The active set itself is the engine's (:mod:`spsc.fem.engine.acti
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import spsolve
 
 from .element import tri_p2, tri_rule
 
-__all__ = ["group_forces", "contact_forces", "contact_area", "contact_patch"]
+__all__ = ["group_forces", "contact_forces", "contact_area", "surface_mass",
+           "contact_tractions"]
 
 
 def contact_forces(r, active) -> np.ndarray:
@@ -48,22 +51,47 @@ def contact_area(model, x, plate: float, tol: float | None = None, indenter=None
     return float(np.sum(da[z >= plate - tol])) * model.symmetry
 
 
-def contact_patch(model, x, plate: float, indenter=None, tol: float = 1e-3):
-    """The contact patch as the outer facets in the deformed state x: (corners (nf, 3, 3) in
-    mm, the part of each facet's area on the body (nf,), 0–1), for the facets that touch
-    at all, in the modelled part (mirror it for the whole). The same quadrature as
-    :func:`contact_area`, whose sum it is (÷ symmetry)."""
+def surface_mass(model, x) -> sp.csr_matrix:
+    """The P2 mass matrix of the deformed outer surface, M_ab = ∫ N_a N_b dA (mm², nodes of
+    the modelled part; zero rows off the surface)."""
     xq, w = tri_rule(4)
     N, dN = tri_p2(xq)
-    pos = model.disc.X + model.displacement(x)
-    f = pos[model.mesh.facets["outer"]]
-    xyz = np.einsum("fai,qa->fqi", f, N)
-    z = xyz[..., 2]
-    if indenter is not None and indenter.curved:
-        z = z - indenter.surface(xyz[..., :2].reshape(-1, 2).T)[0].reshape(z.shape)
+    facets = model.mesh.facets["outer"]
+    f = (model.disc.X + model.displacement(x))[facets]
     xs = np.einsum("fai,qa->fqi", f, dN[:, :, 0])
     xt = np.einsum("fai,qa->fqi", f, dN[:, :, 1])
     da = np.linalg.norm(np.cross(xs, xt), axis=-1) * w
-    on = (da * (z >= plate - tol)).sum(axis=1) / da.sum(axis=1)
-    touch = on > 0
-    return f[touch, :3], on[touch]
+    Me = np.einsum("fq,qa,qb->fab", da, N, N)
+    rows = np.repeat(facets, 6, axis=1).ravel()
+    cols = np.tile(facets, (1, 6)).ravel()
+    n = model.disc.n_nodes
+    return sp.csr_matrix((Me.ravel(), (rows, cols)), shape=(n, n))
+
+
+def contact_tractions(model, x, forces, indenter=None):
+    """The contact traction on the outer surface, recovered from the nodal contact forces
+    ``forces`` (n_nodes, 3; N, as :func:`spsc.fem.solid.chamber.contact_forces`: the part
+    on the body) by L2 projection onto the P2 surface, M t = f: (contact pressure (n_nodes,)
+    in MPa along the body's normal, compressive > 0; tangential traction (n_nodes, 3) in
+    MPa, what a sticking plate carries). Over the whole outer surface, whose shape functions sum to 1: ∫ p dA under a
+    plate is its force; the P2 projection rings a little past the contact's edge."""
+    forces = np.asarray(forces, float)
+    pressure, shear = np.zeros(len(forces)), np.zeros_like(forces)
+    touched = np.flatnonzero(np.any(forces != 0.0, axis=1))
+    if touched.size == 0:
+        return pressure, shear
+    near = np.unique(model.mesh.facets["outer"])
+    M = surface_mass(model, x)[near][:, near].tocsc()
+    t = np.zeros_like(forces)
+    t[near] = spsolve(M, forces[near])
+    normal = np.zeros_like(forces)
+    normal[:, 2] = 1.0  # the plate's, out of the part into the body (the forces' sense)
+    if indenter is not None and indenter.curved:
+        pos = model.disc.X[near] + model.displacement(x)[near]
+        grad = indenter.surface(pos[:, :2].T)[1].T
+        ok = np.all(np.isfinite(grad), axis=1)
+        n = np.column_stack([-grad, np.ones(len(near))])
+        normal[near[ok]] = n[ok] / np.linalg.norm(n[ok], axis=1)[:, None]
+    pressure = np.einsum("ni,ni->n", t, normal)
+    shear = t - pressure[:, None] * normal
+    return pressure, shear

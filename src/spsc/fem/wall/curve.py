@@ -168,7 +168,7 @@ def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: flo
     points, polytropic_n = load.points, load.polytropic_n
     settings = settings or (model.settings if model is not None else WallSettings())
     model = model or WallModel(geometry, material, settings)
-    check_body(body, friction, axisymmetric=not model.stadium)
+    check_body(body, friction, axisymmetric=not model.stadium, quarter=True)
     p_i = pressure_kPa / KPA_PER_MPA
     y = np.linspace(0.0, stroke_mm, points)
     steps = [Inflate(p_i, settings.inflate_increments), CloseValve(reservoir_mm3, polytropic_n)] \
