@@ -14,9 +14,13 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 
-__all__ = ["load_mesh", "MESH_SUFFIXES"]
+__all__ = ["load_mesh", "load_surface", "MESH_SUFFIXES", "SURFACE_SUFFIXES", "STEP_TOLERANCE_MM"]
 
 MESH_SUFFIXES = (".stl", ".3mf")
+#: what :func:`load_surface` reads: the meshes and STEP solids
+SURFACE_SUFFIXES = (".stl", ".3mf", ".step", ".stp")
+#: chord sag of a STEP solid's tessellation (mm)
+STEP_TOLERANCE_MM = 0.005
 #: 3MF unit -> mm (lib3mf ModelUnit enum names)
 _UNIT_MM = {"MicroMeter": 1e-3, "MilliMeter": 1.0, "CentiMeter": 10.0, "Meter": 1000.0,
             "Inch": 25.4, "Foot": 304.8}
@@ -46,6 +50,31 @@ def load_mesh(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
         raise ParameterError("file", str(path), f"a readable {suffix[1:].upper()} triangle mesh "
                              "(no triangles or non-finite coordinates)")
     return weld(v, f)
+
+
+def load_surface(path: str | os.PathLike, name: str = "part") -> tuple[np.ndarray, np.ndarray]:
+    """(vertices, faces) of an STL, 3MF or STEP file (STEP tessellated with a chord sag of
+    :data:`STEP_TOLERANCE_MM`); one-line ParameterError naming ``name`` otherwise."""
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in SURFACE_SUFFIXES:
+        raise ParameterError(name, str(path), "an .stl, .3mf, .step or .stp file")
+    if not path.is_file():
+        raise ParameterError(name, str(path), "an existing file")
+    if suffix in MESH_SUFFIXES:
+        return load_mesh(path)
+    import cadquery as cq
+
+    from .export import tessellate
+
+    try:
+        shape = cq.importers.importStep(str(path)).val()
+    except Exception as exc:  # OCCT raises its own types for unreadable files
+        raise ParameterError(name, str(path), f"a readable STEP file ({exc})") from None
+    if not isinstance(shape, cq.Shape) or shape.Volume() <= 0:
+        raise ParameterError(name, str(path), "a STEP file holding one solid")
+    mesh = tessellate(shape, STEP_TOLERANCE_MM)
+    return mesh.vertices, mesh.faces
 
 
 #: Vertices equal to this many decimals of a mm are one vertex: OCC writes the pole of a sphere

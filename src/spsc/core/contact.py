@@ -84,7 +84,8 @@ def check_body(indenter, friction, *, axisymmetric: bool = False, quarter: bool 
                              "every body")
     if quarter and not body.mirrored:
         raise ParameterError("indenter", body.spec, "a body symmetric about x = 0 and y = 0 "
-                             "on a quarter model (a tilted plate needs the 3D FEM's --full)")
+                             "on a quarter model (a tilted plate or a body from a file needs "
+                             "the 3D FEM's --full)")
     return body
 
 

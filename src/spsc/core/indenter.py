@@ -15,7 +15,8 @@ S_gap, its gradient and its Hessian at the nodes' current lateral positions; the
 eliminates the node's height with them (:mod:`spsc.fem.engine.leaning`).
 
 Spelling: ``plate``; ``plate:tilt=5,axis=y`` (the plate turned 5° about y, still lowered
-along −z: a quarter model cannot carry it); ``sphere:R=10``; ``cylinder:R=10,axis=x`` (the cylinder's axis along x:
+along −z: a quarter model cannot carry it); ``FILE.stl|.3mf|.step`` (any rigid body, its lower
+surface read as a height field, :mod:`spsc.cad.heightfield`); ``sphere:R=10``; ``cylinder:R=10,axis=x`` (the cylinder's axis along x:
 it presses a line across y); ``wedge:angle=60,axis=x,r=0.5`` (included angle in degrees, the
 edge along x, rounded with radius r, default 0.5 mm). Keys are case-insensitive.
 """
@@ -34,8 +35,12 @@ __all__ = ["Indenter", "parse_indenter", "check_indenter", "INDENTER_KINDS"]
 #: the bodies ``--indenter`` names
 INDENTER_KINDS = ("plate", "sphere", "cylinder", "wedge")
 
-_ALLOWED = ("plate[:tilt=DEG,axis=x|y], sphere:R=MM, cylinder:R=MM,axis=x|y or "
-            "wedge:angle=DEG,axis=x|y[,r=MM] (|tilt| < 45, R > 0, 0 < angle < 180, r >= 0)")
+_ALLOWED = ("plate[:tilt=DEG,axis=x|y], sphere:R=MM, cylinder:R=MM,axis=x|y, "
+            "wedge:angle=DEG,axis=x|y[,r=MM] (|tilt| < 45, R > 0, 0 < angle < 180, r >= 0) "
+            "or a body's FILE.stl|.3mf|.step")
+
+#: the files a rigid body is read from (:mod:`spsc.cad.heightfield`)
+FILE_SUFFIXES = (".stl", ".3mf", ".step", ".stp")
 
 #: the default rounding of a wedge's edge (mm): a printed or machined edge is never sharp
 WEDGE_EDGE_MM = 0.5
@@ -55,6 +60,9 @@ class Indenter:
     #: the tip's lateral position (mm; x, y of the press frame): the chamber's axis, or where
     #: ``--plate-at`` puts it on a part
     at: tuple = (0.0, 0.0)
+    #: a body from a file (kind ``"file"``: its lower surface is read by
+    #: :func:`spsc.cad.heightfield.resolve`)
+    path: str = ""
 
     def placed(self, at) -> "Indenter":
         """This body with its tip over the lateral point ``at`` (x, y in mm)."""
@@ -76,11 +84,14 @@ class Indenter:
     def mirrored(self) -> bool:
         """Whether the body is symmetric about the planes x = 0 and y = 0 (a quarter model
         can carry it): all but a tilted plate, with their tip on the axis."""
-        return (self.kind != "plate" or self.angle == 0.0) and self.at == (0.0, 0.0)
+        return (self.kind != "plate" or self.angle == 0.0) and self.at == (0.0, 0.0) \
+            and self.kind != "file"
 
     @property
     def spec(self) -> str:
         """The canonical spelling (as ``--indenter`` takes it)."""
+        if self.kind == "file":
+            return self.path
         if self.kind == "plate":
             return "plate" if self.angle == 0.0 else \
                 f"plate:tilt={self.angle:g},axis={self.axis}"
@@ -106,6 +117,8 @@ class Indenter:
         gap = np.broadcast_to(np.asarray(gap, float), (n,))
         if not self.curved:
             return np.zeros(n), np.zeros((k, n)), np.zeros((k, k, n))
+        if self.kind == "file":
+            raise ValueError(f"the body {self.path} is read first (spsc.cad.heightfield.resolve)")
         if self.kind == "sphere":
             return _round(lateral, self.radius + gap)
         if k != 2:
@@ -181,6 +194,13 @@ def parse_indenter(value) -> Indenter:
     if isinstance(value, Indenter):
         return value
     text = str(value).strip()
+    if text.lower().endswith(FILE_SUFFIXES):
+        from pathlib import Path
+
+        if not Path(text).is_file():
+            raise ParameterError("indenter", value, "an existing .stl, .3mf or .step file, "
+                                 "or " + _ALLOWED)
+        return Indenter("file", path=text)
     kind, _, rest = text.partition(":")
     kind = kind.strip().lower()
     if kind not in INDENTER_KINDS:

@@ -89,8 +89,9 @@ class FEMCurveModel(ModelBase):
                                            progress=progress, cache_dir=cache_dir)
         extra = {}
         if options.vtu:
+            from spsc.cad.heightfield import resolve
             from spsc.core.indenter import parse_indenter
 
             extra["vtu"] = [p.name for p in write_vtu(model, result, options.vtu,
-                                                      parse_indenter(options.indenter))]
+                                                      resolve(parse_indenter(options.indenter)))]
         return Outcome(curve, extra, (model, result))

@@ -51,7 +51,8 @@ def indenter_option():
     """The rigid body that presses, centred on the chamber's axis (:mod:`spsc.core.indenter`)."""
     return option("plate", "--indenter", "the body that presses, centred on the chamber's "
                   "axis: plate (default), plate:tilt=DEG,axis=x|y (fem --full), sphere:R=MM, "
-                  "cylinder:R=MM,axis=x|y or wedge:angle=DEG,axis=x|y[,r=MM] (a rounded "
-                  "edge, r default 0.5); y is its tip's travel; all but the level plate are "
+                  "cylinder:R=MM,axis=x|y, wedge:angle=DEG,axis=x|y[,r=MM] (a rounded "
+                  "edge, r default 0.5) or any body's FILE.stl|.3mf|.step (fem --full); "
+                  "y is its tip's travel; all but the level plate are "
                   "frictionless; the wall model takes a sphere on a dome and every symmetric "
                   "body on a stadium", kind="value", group="contact", metavar="BODY")

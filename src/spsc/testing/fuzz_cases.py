@@ -40,7 +40,7 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += _report_cases(f, b, tmp)
     cases += simulate_cases(f, tmp)
     cases += bench_gap_cases(f, b)
-    cases += contact_cases(b)
+    cases += contact_cases(f, b)
     cases += sense_cases(f, tmp)
     cases += [replace(c, kind="argparse") for c in _argparse_cases(f, b, tmp)]
     return [c if c.kind != "other" else replace(c, kind=_kind(c.why)) for c in cases]

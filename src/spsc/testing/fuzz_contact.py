@@ -15,8 +15,9 @@ BAD_INDENTERS = ("ball:R=3", "sphere", "sphere:R=0", "sphere:R=-2", "sphere:R=in
                  "plate:tilt=x")
 
 
-def contact_cases(b) -> list[Case]:
-    """``b``: the verbs' valid base invocations (:func:`~.fuzz_fixtures.bases`)."""
+def contact_cases(f, b) -> list[Case]:
+    """``f``: the fixtures (:func:`~.fuzz_fixtures.fixtures`), ``b``: the verbs' valid base
+    invocations (:func:`~.fuzz_fixtures.bases`)."""
     dome = ("--l", "0")
     cases = [Case(b["curve-wall"] + ("--friction", "inf"), "an infinite coefficient",
                   "friction"),
@@ -38,6 +39,10 @@ def contact_cases(b) -> list[Case]:
                   "a tilted plate on the quarter model", "indenter"),
              Case(b["curve-wall"] + ("--indenter", "plate:tilt=5"),
                   "a tilted plate on the wall model", "indenter"),
+             Case(b["curve-fem"] + ("--indenter", str(f["file"] / "missing.stl")),
+                  "a body's file that is missing", "indenter"),
+             Case(b["fem"] + ("--indenter", str(f["part.stl"])),
+                  "a body from a file on the quarter model", "indenter"),
              Case(b["curve-simplified"] + ("--indenter", "sphere:R=10"),
                   "option of another model", "indenter"),
              Case(b["fem-part"] + ("--indenter", "cylinder:R=10,axis=z"),

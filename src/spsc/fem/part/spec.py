@@ -102,9 +102,10 @@ class PartRun(WithLoadCase):
         """The :class:`~spsc.core.indenter.Indenter` placed in the press frame of ``model``
         (turned by ``R``): its tip over ``plate_at``, or over the contact node a plate first
         touches; None for the plate."""
+        from spsc.cad.heightfield import resolve
         from spsc.core.indenter import parse_indenter
 
-        body = parse_indenter(self.indenter)
+        body = resolve(parse_indenter(self.indenter))
         if not body.curved:
             return None
         if self.plate_at is not None:

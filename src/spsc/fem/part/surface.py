@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
+from spsc.cad.meshload import SURFACE_SUFFIXES
 from spsc.core.errors import ParameterError
 
 from ..solid.element import tet_p2
@@ -38,9 +39,8 @@ from ..solid.tetwild import p1_to_p2
 __all__ = ["PART_SUFFIXES", "PartSurface", "read_surface", "part_surface", "load_part",
            "part_mesh"]
 
-PART_SUFFIXES = (".stl", ".3mf", ".step", ".stp")
-#: chord sag (mm) of a STEP part's tessellation for the FEM
-STEP_TOLERANCE_MM = 0.005
+#: the part files the FEM reads (STL, 3MF, STEP)
+PART_SUFFIXES = SURFACE_SUFFIXES
 
 
 @dataclass(frozen=True, eq=False)
@@ -74,30 +74,12 @@ class PartSurface:
 
 
 def read_surface(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
-    """(vertices, faces) of an STL, 3MF or STEP file (STEP tessellated with a chord sag of
-    :data:`STEP_TOLERANCE_MM`); one-line ParameterError naming ``part`` otherwise."""
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix not in PART_SUFFIXES:
-        raise ParameterError("part", str(path), "an .stl, .3mf, .step or .stp file")
-    if not path.is_file():
-        raise ParameterError("part", str(path), "an existing file")
-    if suffix in (".stl", ".3mf"):
-        from spsc.cad.meshload import load_mesh
+    """(vertices, faces) of an STL, 3MF or STEP file
+    (:func:`spsc.cad.meshload.load_surface`); one-line ParameterError naming ``part``
+    otherwise."""
+    from spsc.cad.meshload import load_surface
 
-        return load_mesh(path)
-    import cadquery as cq
-
-    from spsc.cad.export import tessellate
-
-    try:
-        shape = cq.importers.importStep(str(path)).val()
-    except Exception as exc:  # OCCT raises its own types for unreadable files
-        raise ParameterError("part", str(path), f"a readable STEP file ({exc})") from None
-    if not isinstance(shape, cq.Shape) or shape.Volume() <= 0:
-        raise ParameterError("part", str(path), "a STEP file holding one solid")
-    mesh = tessellate(shape, STEP_TOLERANCE_MM)
-    return mesh.vertices, mesh.faces
+    return load_surface(path, "part")
 
 
 def part_surface(vertices, faces, *, port: dict | None = None, source: str = "part",

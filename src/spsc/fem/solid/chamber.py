@@ -16,6 +16,7 @@ import numpy as np
 
 from spsc.core.contact import (check_body, check_combination, check_friction,
                                check_object_stiffness, coefficient, with_indenter)
+from spsc.cad.heightfield import resolve
 from spsc.core.indenter import parse_indenter
 from spsc.core.errors import ParameterError
 from spsc.core.loadcase import LoadCase, WithLoadCase, check_load
@@ -73,7 +74,7 @@ class ChamberRun(WithLoadCase):
     def steps(self) -> list:
         return load_steps(self.load, self.inflate_increments, stick=self.friction != "0",
                           spring=self.object_stiffness, mu=coefficient(self.friction),
-                          indenter=parse_indenter(self.indenter))
+                          indenter=resolve(parse_indenter(self.indenter)))
 
 
 def chamber_run(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
