@@ -13,7 +13,7 @@ paper's bench it explains.
    The curves run on Dask (``--workers``, default one per core).
 
     python bench/bench_friction.py [--part increments,work,fem,headline] [--frictions 0,0.3,0.6,stick]
-                                   [--workers N] [--json F]
+                                   [--workers N] [--material NAME|FILE.json] [--json F]
 """
 
 from __future__ import annotations
@@ -111,13 +111,13 @@ def fem() -> dict:
     return out
 
 
-def _curve(t, p, mode, friction):
-    c = wall_curve(preset(t), material("tpu60a"), pressure_kPa=p, reservoir_mm3=MODES[mode],
+def _curve(t, p, mode, friction, mat="tpu60a"):
+    c = wall_curve(preset(t), material(mat), pressure_kPa=p, reservoir_mm3=MODES[mode],
                    stroke_mm=6.0, points=25, friction=friction)
     return (t, p, mode, friction), c
 
 
-def headline(workers, frictions=("0", "stick"), types="ABCD") -> dict:
+def headline(workers, frictions=("0", "stick"), types="ABCD", mat="tpu60a") -> dict:
     from spsc.study.executor import dask_client
     from spsc.study.metrics import headline as means
 
@@ -125,7 +125,7 @@ def headline(workers, frictions=("0", "stick"), types="ABCD") -> dict:
             for t in types for p in PRESSURES]
     t0 = time.perf_counter()
     with dask_client(workers) as client:
-        futures = [client.submit(_curve, *j, pure=False) for j in jobs]
+        futures = [client.submit(_curve, *j, mat, pure=False) for j in jobs]
         curves = dict(f.result() for f in futures)
     seconds = time.perf_counter() - t0
     out = {}
@@ -139,8 +139,8 @@ def headline(workers, frictions=("0", "stick"), types="ABCD") -> dict:
         partial = [k for k, c in curves.items() if k[3] == fr and not c.solver.converged]
         row["partial"] = [list(k) for k in partial]
         out[fr] = row
-    print(f"4. the wall model's Table 1 means of types {types}, {len(jobs)} curves in "
-          f"{seconds:.0f} s")
+    print(f"4. the wall model's Table 1 means of types {types} ({mat}), {len(jobs)} curves "
+          f"in {seconds:.0f} s")
     print("   friction      | k high | k low | S high | S low  (N/mm, kPa/mm)")
     for name, row in (("bench (paper)", BENCH), *((fr, out[fr]) for fr in frictions)):
         print(f"   {name:<13} | {row['stiffness_high']:6.2f} | {row['stiffness_low']:5.2f} | "
@@ -164,6 +164,8 @@ def main(argv=None) -> int:
     ap.add_argument("--types", default="ABCD", help="the Table 1 types of the means")
     ap.add_argument("--frictions", default="0,0.3,0.6,stick",
                     help="the plates of the Table 1 means (0, a Coulomb coefficient, stick)")
+    ap.add_argument("--material", default="tpu60a",
+                    help="the material of the Table 1 means (a catalogue name or FILE.json)")
     ap.add_argument("--json")
     args = ap.parse_args(argv)
     parts = args.part.split(",")
@@ -175,7 +177,8 @@ def main(argv=None) -> int:
     if "fem" in parts:
         out["fem"] = fem()
     if "headline" in parts:
-        out["headline"] = headline(args.workers, tuple(args.frictions.split(",")), args.types)
+        out["headline"] = headline(args.workers, tuple(args.frictions.split(",")), args.types,
+                                   args.material)
     if args.json:
         with open(args.json, "w") as fh:
             json.dump(out, fh, indent=1, default=float)

@@ -341,3 +341,17 @@ def test_a_body_from_a_file_is_its_lower_surface(sphere_stl):
     assert "--full" in str(err.value)
     with pytest.raises(ParameterError):
         parse_indenter(str(sphere_stl) + ".missing.stl")
+
+
+def test_a_compliant_sphere_is_the_rigid_sphere_at_its_own_travel(dome):
+    """A 10 mm sphere on a 3 N/mm spring: the rigid sphere pressed to the indenter's recorded
+    travels gives the spring's forces (the identity of issue 27, to 1e-6 of the force)."""
+    c = wall_curve(DOME, material("tpu60a"), pressure_kPa=40, stroke_mm=2, points=5,
+                   indenter="sphere:R=10", object_stiffness=3.0)
+    travel = c.series["indenter_travel_mm"][1:]
+    res = solve(dome, [Inflate(0.04, 4), CloseValve(0.0, 1.0),
+                       Press.through(travel, indenter=SPHERE)])
+    assert res.converged, res.message
+    rigid = np.array([r.force for r in res.of("press")])
+    assert_allclose(rigid, c.force_N[1:], rtol=1e-6)
+    assert_allclose(c.y_mm[1:] - travel, c.force_N[1:] / 3.0, rtol=1e-6)  # the balance's tolerance

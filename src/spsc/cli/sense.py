@@ -37,9 +37,14 @@ def register(subparsers) -> None:
                    "sense.png (created; optional with --follow)")
     add_geometry_options(p)
     g = p.add_argument_group("the chamber and its circuit")
-    g.add_argument("--material", default="tpu60a", metavar="NAME|FILE.json",
-                   help="catalogue material or a material file (spsc calibrate --out)")
-    g.add_argument("--pressure", type=number("pressure", "kPa gauge"), default=40.0,
+    g.add_argument("--design", metavar="FILE.design.json", default=None,
+                   help="the chamber of a design file instead of --type: a bladder's "
+                   "(spsc bladder) or spsc design's design.json (its best design, with its "
+                   "material and setup pressure unless given)")
+    g.add_argument("--material", default=None, metavar="NAME|FILE.json",
+                   help="catalogue material or a material file (spsc calibrate --out; "
+                   "default tpu60a)")
+    g.add_argument("--pressure", type=number("pressure", "kPa gauge"), default=None,
                    metavar="KPA", help="setup pressure, kPa gauge (default 40)")
     g.add_argument("--reservoir", type=number("reservoir", "mm³"), default=40000.0,
                    metavar="MM3", help="reservoir volume, mm³ (default 40000, the paper's)")
@@ -91,7 +96,8 @@ def _check_chamber(args):
     from spsc.materials import material
     from spsc.models.wall import wall_size_check
 
-    geometry = geometry_from_args(args)
+    geometry = _geometry(args)
+    args.chamber = geometry.as_dict()  # recorded in events.json
     material(args.material)
     check_load(geometry, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
                stroke_mm=args.stroke, points=2, polytropic_n=1.0)
@@ -99,6 +105,29 @@ def _check_chamber(args):
     from spsc.study.executor import check_cluster
 
     args.workers, args.scheduler = check_cluster(args.workers, args.scheduler)
+    return geometry
+
+
+def _geometry(args):
+    """The chamber of ``--design`` (its material and pressure filling what is not given) or
+    of the geometry options; ``--material`` and ``--pressure`` get their defaults."""
+    if args.design is None:
+        geometry = geometry_from_args(args)
+    else:
+        from spsc.cli.options import PARAMS
+
+        given = [k for k in ("type", *PARAMS) if getattr(args, k, None) is not None]
+        if given:
+            raise ParameterError("--" + given[0], getattr(args, given[0]),
+                                 "not with --design (the design file is the chamber)")
+        from spsc.cli.design_file import design_chamber
+
+        chamber = design_chamber(args.design)
+        geometry = chamber.geometry
+        args.material = args.material or chamber.material
+        args.pressure = args.pressure if args.pressure is not None else chamber.pressure_kPa
+    args.material = args.material or "tpu60a"
+    args.pressure = 40.0 if args.pressure is None else args.pressure
     return geometry
 
 
@@ -241,7 +270,8 @@ def _finish(args, stream, states, pressures, joints, commands) -> int:
     meta = {"samples": len(table), "noise_kPa": prm.estimator.noise_kPa,
             "model_error": prm.estimator.model_error, "detector": prm.contact.method,
             "rate_Hz": prm.rate_Hz, "setup_kPa": prm.estimator.setup_kPa,
-            "reservoir_mm3": prm.estimator.reservoir_mm3, "material": args.material}
+            "reservoir_mm3": prm.estimator.reservoir_mm3, "material": args.material,
+            "geometry": getattr(args, "chamber", None), "design": args.design}
     files = write(out, table, stream.events, meta)
     if commands:
         files.append(out / "commands.json")

@@ -78,7 +78,14 @@ def sense_cases(f: dict, tmp: Path) -> list[Case]:
                     "--haptic-fraction", "1.5"), "fraction above 1", "haptic fraction",
                    "range"),
               Case(base + ("--haptic", str(logs["good"])), "haptic file not a calibration",
-                   "haptic calibration", "input file")]
+                   "haptic calibration", "input file"),
+              Case(("sense", str(logs["good"]), "--out", out, "--design",
+                    str(tmp / "none.design.json")), "missing design file", "design",
+                   "input file"),
+              Case(("sense", str(logs["good"]), "--out", out, "--design", str(logs["good"])),
+                   "a design file that is not json", "design", "input file"),
+              Case(base + ("--design", str(logs["good"])), "--design with --type", "type",
+                   "combination")]
     for opt, bad in (("model-error", ("-0.1", "1")), ("smoothing", ("-1", "11")),
                      ("noise", ("0", "-1")), ("stiff-mm-per-deg", ("0", "-1"))):
         cases += [Case(base + (f"--{opt}", v), f"--{opt} {v}", opt, "range") for v in bad]
