@@ -355,3 +355,24 @@ def test_a_compliant_sphere_is_the_rigid_sphere_at_its_own_travel(dome):
     rigid = np.array([r.force for r in res.of("press")])
     assert_allclose(rigid, c.force_N[1:], rtol=1e-6)
     assert_allclose(c.y_mm[1:] - travel, c.force_N[1:] / 3.0, rtol=1e-6)  # the balance's tolerance
+
+
+def test_a_flat_bottomed_body_is_placed_by_its_centre(tmp_path):
+    """A box's flat bottom: the tip is the bottom's centre (not an arbitrary corner of it)."""
+    import cadquery as cq
+
+    from spsc.cad.export import tessellate, write_stl
+    from spsc.cad.heightfield import height_field
+
+    box = cq.Workplane().box(6.0, 4.0, 2.0).translate((1.0, -2.0, 5.0)).val()
+    field = height_field(write_stl(tessellate(box, 0.01), tmp_path / "box.stl"))
+    assert_allclose(field.tip, (1.0, -2.0, 4.0), atol=0.03)
+
+
+def test_a_body_that_meets_no_node_is_refused_in_one_line():
+    """A small sphere placed beside the stadium meets none of its contact nodes."""
+    model = WallModel(preset("B"), material("tpu60a"))
+    far = parse_indenter("sphere:R=1").placed((50.0, 50.0))
+    with pytest.raises(ParameterError) as err:
+        solve(model, [Press.through([0.5], indenter=far)])
+    assert "indenter" in str(err.value) and "\n" not in str(err.value)

@@ -5,7 +5,8 @@ smooth height field over the plate's plane, pressing as the analytic bodies of
 The body's triangles are rasterised onto a lateral grid (each grid point takes the lowest
 triangle above or below it: the surface a body lowered along −z first meets), and a bicubic
 interpolating spline through the grid gives S, ∇S and ∇²S. The body is placed with its lowest
-point (its tip) over the chamber's axis, or over ``--plate-at`` on a part, in the file's own
+point (its tip; the centre of a flat bottom, the centroid of the points within 1 nm of the
+lowest) over the chamber's axis, or over ``--plate-at`` on a part, in the file's own
 orientation (z up: it moves along −z). Points outside its footprint (and within one grid cell
 of its edge, where the surface turns vertical) have no lower surface: S = +inf there.
 
@@ -29,8 +30,12 @@ from spsc.core.indenter import Indenter
 
 __all__ = ["HeightField", "height_field", "resolve"]
 
-#: grid points across the body's smaller lateral extent (at most 0.05 mm apart)
+#: grid points across the body's smaller lateral extent (at most 0.05 mm apart), and at most
+#: MAX_CELLS along either side (a large body gets a coarser grid)
 CELLS = 400
+MAX_CELLS = 2000
+#: points this close to the lowest (mm) make the tip: their centroid (a flat bottom's centre)
+TIP_BAND_MM = 1e-6
 #: the Gaussian smoothing of the rasterised surface (grid cells)
 SMOOTH = 2.0
 
@@ -127,7 +132,7 @@ def height_field(path) -> HeightField:
     span = hi[:2] - lo[:2]
     if np.any(span <= 0):
         raise ParameterError("indenter", str(path), "a solid body (it is flat in x or y)")
-    h = min(float(span.min()) / CELLS, 0.05)
+    h = max(min(float(span.min()) / CELLS, 0.05), float(span.max()) / MAX_CELLS)
     xs = np.arange(lo[0], hi[0] + h, h)
     ys = np.arange(lo[1], hi[1] + h, h)
     z = _lower_envelope(v[f], xs, ys)
@@ -142,8 +147,10 @@ def height_field(path) -> HeightField:
     # body are then those of the body it approximates, not of its facets
     filled = gaussian_filter(z[tuple(idx)], SMOOTH, mode="nearest")
     spline = RectBivariateSpline(xs, ys, filled, kx=3, ky=3, s=0)
-    k = np.unravel_index(np.argmin(np.where(inside, z, np.inf)), z.shape)
-    tip = (float(xs[k[0]]), float(ys[k[1]]), float(spline.ev(xs[k[0]], ys[k[1]])))
+    low = np.where(inside, z, np.inf)
+    i, j = np.nonzero(low <= low.min() + TIP_BAND_MM)
+    x0, y0 = float(xs[i].mean()), float(ys[j].mean())
+    tip = (x0, y0, float(spline.ev(x0, y0)))
     return HeightField(str(path), spline, xs, ys, inside, tip)
 
 

@@ -62,7 +62,10 @@ def load_surface(path: str | os.PathLike, name: str = "part") -> tuple[np.ndarra
     if not path.is_file():
         raise ParameterError(name, str(path), "an existing file")
     if suffix in MESH_SUFFIXES:
-        return load_mesh(path)
+        try:
+            return load_mesh(path)
+        except ParameterError as exc:
+            raise ParameterError(name, str(path), exc.allowed) from None
     import cadquery as cq
 
     from .export import tessellate

@@ -126,6 +126,21 @@ def _sites(design: dict | None) -> dict:
     return dict(((design or {}).get("fem") or {}).get("sites") or {})
 
 
+def _refuse_friction(args) -> None:
+    """Friction and a compliant object are not built for parts: refused in one line."""
+    from spsc.core.contact import check_friction
+
+    for dest, rest in (("friction", ("0", None)), ("object_stiffness", (None,))):
+        value = getattr(args, dest, None)
+        if dest == "friction" and value is not None:
+            value = check_friction(value)
+        if value not in rest:
+            raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
+                                 "not with --part (a part is pressed by a rigid "
+                                 "frictionless body, --indenter, placed by --plate-at / "
+                                 "--plate-normal)")
+
+
 def part_run_from_args(args):
     """The PartRun of an invocation: every check before any work (one-line ParameterError)."""
     from spsc.fem.part.run import ContactPatch, part_run
@@ -136,12 +151,7 @@ def part_run_from_args(args):
             raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
                                  "not with --part (the part file is the geometry; the mesh "
                                  "size is --mesh-size)")
-    for dest, rest in (("friction", ("0", None)), ("object_stiffness", (None,))):
-        if getattr(args, dest, None) not in rest:
-            raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
-                                 "not with --part (a part is pressed by a rigid "
-                                 "frictionless body, --indenter, placed by --plate-at / "
-                                 "--plate-normal)")
+    _refuse_friction(args)
     for opt, path in (("--json", args.json), ("--csv", args.csv)):
         if path is not None:
             check_output_file(opt, path)

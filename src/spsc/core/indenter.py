@@ -36,11 +36,15 @@ __all__ = ["Indenter", "parse_indenter", "check_indenter", "INDENTER_KINDS"]
 INDENTER_KINDS = ("plate", "sphere", "cylinder", "wedge")
 
 _ALLOWED = ("plate[:tilt=DEG,axis=x|y], sphere:R=MM, cylinder:R=MM,axis=x|y, "
-            "wedge:angle=DEG,axis=x|y[,r=MM] (|tilt| < 45, R > 0, 0 < angle < 180, r >= 0) "
+            "wedge:angle=DEG,axis=x|y[,r=MM] (|tilt| < 45, 0 < R <= 1e7, 0 < angle < 180, "
+            "r >= 0) "
             "or a body's FILE.stl|.3mf|.step")
 
 #: the files a rigid body is read from (:mod:`spsc.cad.heightfield`)
 FILE_SUFFIXES = (".stl", ".3mf", ".step", ".stp")
+
+#: the largest radius a sphere or a cylinder takes (mm): beyond, use the plate
+MAX_RADIUS_MM = 1e7
 
 #: the default rounding of a wedge's edge (mm): a printed or machined edge is never sharp
 WEDGE_EDGE_MM = 0.5
@@ -94,12 +98,12 @@ class Indenter:
             return self.path
         if self.kind == "plate":
             return "plate" if self.angle == 0.0 else \
-                f"plate:tilt={self.angle:g},axis={self.axis}"
+                f"plate:tilt={_text(self.angle)},axis={self.axis}"
         if self.kind == "sphere":
-            return f"sphere:R={self.radius:g}"
+            return f"sphere:R={_text(self.radius)}"
         if self.kind == "cylinder":
-            return f"cylinder:R={self.radius:g},axis={self.axis}"
-        return f"wedge:angle={self.angle:g},axis={self.axis},r={self.radius:g}"
+            return f"cylinder:R={_text(self.radius)},axis={self.axis}"
+        return f"wedge:angle={_text(self.angle)},axis={self.axis},r={_text(self.radius)}"
 
     def surface(self, lateral, gap=0.0):
         """(S, ∇S, ∇²S) of the body offset by ``gap`` (mm, per node) at the lateral positions
@@ -136,13 +140,20 @@ class Indenter:
         return S, grad, hess
 
 
+def _text(v: float) -> str:
+    """The shortest spelling that reads back to ``v`` (``10`` for 10.0)."""
+    s = repr(float(v))
+    return s[:-2] if s.endswith(".0") else s
+
+
 def _round(p, R):
     """A sphere (k = 2 or 1) or a cylinder (one coordinate) of radius R (n,) about p = 0:
-    S = R − √(R² − |p|²)."""
+    S = R − √(R² − |p|²), evaluated as |p|² / (R + √(R² − |p|²)) (no cancellation for a
+    large R)."""
     rho2 = np.sum(p * p, axis=0)
     inside = rho2 < R * R
     s = np.sqrt(np.where(inside, R * R - rho2, 1.0))
-    S = np.where(inside, R - s, np.inf)
+    S = np.where(inside, rho2 / (R + s), np.inf)
     grad = p / s
     k = p.shape[0]
     hess = np.eye(k)[:, :, None] / s + p[:, None, :] * p[None, :, :] / s ** 3
@@ -234,7 +245,7 @@ def parse_indenter(value) -> Indenter:
     if "r" not in keys:
         raise ParameterError("indenter", value, _ALLOWED)
     R = _number("r", keys["r"], value)
-    if R <= 0:
+    if not 0 < R <= MAX_RADIUS_MM:
         raise ParameterError("indenter", value, _ALLOWED)
     return Indenter(kind, R, axis)
 

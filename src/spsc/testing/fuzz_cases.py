@@ -156,7 +156,7 @@ def _part_cases(f, b, tmp) -> list[Case]:
                    "part"),
               Case(("fem", "--part", str(f["obj"]), "--fix", "z<0"), "an .obj part", "part"),
               Case(("fem", "--part", str(f["text.stl"]), "--fix", "z<0"), "a text .stl",
-                   "file"),
+                   "part"),
               Case(("fem", "--part", str(f["open.stl"]), "--fix", "z<0"), "an open surface",
                    "part"),
               Case(("fem", "--part", str(f["stl"]), "--fix", "z<0"), "a part with no cavity",

@@ -90,6 +90,12 @@ class Constraints:
         prescribed ones."""
         return np.concatenate([self.lean, self.presc]) if self.lean.size else self.presc
 
+    def nearly_settled(self, tol: float) -> bool:
+        """Every constraint holds, a curved body's to ``tol`` (mm: its second-order rest,
+        which cannot change which nodes touch nor make the residual a poor merit)."""
+        return self.settled or (bool(self.lean.size) and self.held_settled
+                                and np.max(np.abs(self.ljump)) <= tol)
+
     @property
     def held_settled(self) -> bool:
         """The plate's and the tie's constraints hold (jumps ≤ 1e-12 mm)."""

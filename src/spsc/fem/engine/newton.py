@@ -141,11 +141,7 @@ class _Newton:
 
     def near(self, it, con, converged) -> bool:
         """Whether the active sets are updated in this iteration."""
-        # a curved body's jumps are the linearisation's second-order rest: within the
-        # contact tolerance they cannot change which nodes touch
-        settled = con.settled or (con.lean.size and np.max(np.abs(con.ljump)) <=
-                                  self.s.contact_tolerance and con.held_settled)
-        if not (settled and it > 1):
+        if not (con.nearly_settled(self.s.contact_tolerance) and it > 1):
             return False
         if self.s.semismooth:
             return (self.load.plate is not None or self.model.tie is not None) and (
@@ -186,9 +182,9 @@ class _Newton:
         else:
             if self.restriction is None or self.restriction.key != key:
                 self.restriction = restriction(ev.K, free, con, self.s.solver in FULL_INPUT,
-                                               ev.r)
+                                               self.model.system_residual(ev))
             elif con.lean.size:  # the slopes move with the nodes
-                self.restriction.bind(con, ev.r)
+                self.restriction.bind(con, self.model.system_residual(ev))
             st = linear_step(self.model, ev, self.restriction, free, con, self.s,
                              multipliers=wanted)
             self.factored, self.modes, self.lam = st.key, st.unstable_modes, st.multipliers
@@ -206,7 +202,8 @@ class _Newton:
         modes = self.modes if self.factored == key else None
         if self.factored != key and self.s.fresh_inertia:
             ev = self.full(ev)
-            red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT, ev.r)
+            red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT,
+                              self.model.system_residual(ev))
             gc = red.take(con.condense(gas_vector(self.model, ev, con.n)))
             modes = inertia(self.model, red, ev, gc, self.s)
         grip = None if self.grip is None else hold(self.model, self.grip, self.x, self.active)

@@ -55,5 +55,6 @@ def line_search(model, x, step, free, load, con, rt, settings, *, tangent: bool 
         return 1.0, None
     if settings.search == "admissible":
         return _admissible(model, x, step)
-    base = np.linalg.norm(rt[free]) if con.settled else np.inf
+    base = np.linalg.norm(rt[free]) if con.nearly_settled(settings.contact_tolerance) \
+        else np.inf
     return _residual(model, x, step, free, load, base, con, tangent)

@@ -134,7 +134,8 @@ def unstable_mode(model, sol, load, settings, iterations: int = 8) -> np.ndarray
     nw = _Newton(model, load, settings, sol.x, sol.active, sol.engaged, sol.grip)
     con, free = nw.constrain()
     ev = sol.with_tangent(model, load).evaluation
-    red = restriction(ev.K, free, con, settings.solver in FULL_INPUT, ev.r)
+    red = restriction(ev.K, free, con, settings.solver in FULL_INPUT,
+                      model.system_residual(ev))
     factor = factorize(red.matrix(ev.K), settings.solver, upper=red.upper)
     gc = red.take(con.condense(gas_vector(model, ev, con.n)))
     v = red.take(np.random.default_rng(0).standard_normal(con.n))

@@ -93,6 +93,12 @@ class _Walk:
         if isinstance(step, Press):
             z0 = first_contact(self.model, self.x, step.indenter) if load.plate is None \
                 else load.plate
+            if not np.isfinite(z0):
+                from spsc.core.errors import ParameterError
+
+                raise ParameterError("indenter", step.indenter.spec, "a body that meets the "
+                                     "model's outer surface (no contact node lies under it: "
+                                     "place it with --plate-at, or a larger body)")
             self.at_travel = lambda y: Load(load.pressure, load.gas, z0 - y, stick=step.stick,
                                             indenter=step.indenter)
             return (lambda t: self.at_travel(step.travel_at(t)), "press", step.targets())
