@@ -339,7 +339,9 @@ def test_dropping_the_mount_bulk_changes_nothing(dome_part):
     s, mesh = dome_part
     mask = parse_selector("z<=-0.5")(mesh.nodes, 0.02)
     kept, clamped = drop_clamped(mesh, mask)
-    assert kept.n_tets < mesh.n_tets and len(clamped) < mask.sum()
+    # fTetWild's mesh varies between runs: at least one element is wholly clamped, and the
+    # nodes only such elements hold (none, on some meshes) leave with them
+    assert kept.n_tets < mesh.n_tets and len(clamped) <= mask.sum()
     full = FEMModel.build(mesh, MAT, supports={}, clamped=np.flatnonzero(mask))
     slim = FEMModel.build(kept, MAT, supports={}, clamped=clamped)
     ra, rb = _run(full), _run(slim)
