@@ -96,7 +96,7 @@ class _Newton:
 
     def constrain(self):
         """(Constraints, free mask) of the current sets at x."""
-        m, x, tie = self.model, self.x, self.model.tie
+        m, x = self.model, self.x
         presc = np.asarray(self.active, int)
         if curved(self.load.indenter) and presc.size:
             return self.lean(presc)
@@ -105,25 +105,28 @@ class _Newton:
             self.grip = release(m, self.grip, presc)
             held, moved = stuck(self.grip, x)
             presc, jump = np.concatenate([presc, held]), np.concatenate([jump, moved])
-        slaves, sjump = tie.constraints(x, self.engaged) if tie is not None \
-            else (np.zeros(0, int), np.zeros(0))
-        con = Constraints(len(m.fixed), presc, jump, slaves, sjump,
-                          tie.master if tie is not None else -1)
+        con = Constraints(len(m.fixed), presc, jump, *self.tied())
         return con, con.free(m.fixed)
+
+    def tied(self):
+        """(slaves, their jumps, master) of the tie at x; empty without one."""
+        tie = self.model.tie
+        if tie is None:
+            return np.zeros(0, int), np.zeros(0), -1
+        slaves, sjump = tie.constraints(self.x, self.engaged)
+        return slaves, sjump, tie.master
 
     def lean(self, active):
         """(Constraints, free mask) under a curved indenter: the active heights lean on
         their lateral unknowns (:mod:`.leaning`)."""
-        m, x, tie = self.model, self.x, self.model.tie
+        m, x = self.model, self.x
         S, dS, d2S, lat = surface(m, x, active, self.load.indenter)
         if not np.all(np.isfinite(S)):
             raise NewtonFailure("a node on the indenter passed beyond its equator (the body "
                                 "has no lower surface there)")
-        slaves, sjump = tie.constraints(x, self.engaged) if tie is not None \
-            else (np.zeros(0, int), np.zeros(0))
         ljump = jumps(m, x, self.load.plate, active, self.load.indenter)
-        con = Constraints(len(m.fixed), np.zeros(0, int), np.zeros(0), slaves, sjump,
-                          tie.master if tie is not None else -1, active, ljump, lat, dS, d2S)
+        con = Constraints(len(m.fixed), np.zeros(0, int), np.zeros(0), *self.tied(), active,
+                          ljump, lat, dS, d2S)
         return con, con.free(m.fixed)
 
     def measure(self, ev, rt, free) -> None:

@@ -30,22 +30,28 @@ def group_forces(model, r, active) -> dict:
             for name, nodes in model.groups.items()}
 
 
+def _outer_quadrature(model, x):
+    """The deformed outer facets' quadrature: (facets (nf, 6), points (nf, nq, 3) in mm,
+    weights × area (nf, nq) in mm², the P2 shape functions at the points (nq, 6))."""
+    xq, w = tri_rule(4)
+    N, dN = tri_p2(xq)
+    facets = model.mesh.facets["outer"]
+    f = (model.disc.X + model.displacement(x))[facets]
+    xyz = np.einsum("fai,qa->fqi", f, N)
+    xs = np.einsum("fai,qa->fqi", f, dN[:, :, 0])
+    xt = np.einsum("fai,qa->fqi", f, dN[:, :, 1])
+    return facets, xyz, np.linalg.norm(np.cross(xs, xt), axis=-1) * w, N
+
+
 def contact_area(model, x, plate: float, tol: float | None = None, indenter=None) -> float:
     """Outer-surface area (mm², full part) touching the plate (or the curved ``indenter``
     whose tip is at ``plate``): the quadrature weights of the outer facets whose points lie
     within ``tol`` (mm, default 1e-3) of it. Facets with all six nodes active lie exactly on a
     plate; partly touching facets count in part."""
-    xq, w = tri_rule(4)
-    N, dN = tri_p2(xq)
-    pos = model.disc.X + model.displacement(x)
-    f = pos[model.mesh.facets["outer"]]
-    xyz = np.einsum("fai,qa->fqi", f, N)
+    _, xyz, da, _ = _outer_quadrature(model, x)
     z = xyz[..., 2]
     if indenter is not None and indenter.curved:
         z = z - indenter.surface(xyz[..., :2].reshape(-1, 2).T)[0].reshape(z.shape)
-    xs = np.einsum("fai,qa->fqi", f, dN[:, :, 0])
-    xt = np.einsum("fai,qa->fqi", f, dN[:, :, 1])
-    da = np.linalg.norm(np.cross(xs, xt), axis=-1) * w
     if tol is None:
         tol = 1e-3
     return float(np.sum(da[z >= plate - tol])) * model.symmetry
@@ -54,13 +60,7 @@ def contact_area(model, x, plate: float, tol: float | None = None, indenter=None
 def surface_mass(model, x) -> sp.csr_matrix:
     """The P2 mass matrix of the deformed outer surface, M_ab = ∫ N_a N_b dA (mm², nodes of
     the modelled part; zero rows off the surface)."""
-    xq, w = tri_rule(4)
-    N, dN = tri_p2(xq)
-    facets = model.mesh.facets["outer"]
-    f = (model.disc.X + model.displacement(x))[facets]
-    xs = np.einsum("fai,qa->fqi", f, dN[:, :, 0])
-    xt = np.einsum("fai,qa->fqi", f, dN[:, :, 1])
-    da = np.linalg.norm(np.cross(xs, xt), axis=-1) * w
+    facets, _, da, N = _outer_quadrature(model, x)
     Me = np.einsum("fq,qa,qb->fab", da, N, N)
     rows = np.repeat(facets, 6, axis=1).ravel()
     cols = np.tile(facets, (1, 6)).ravel()
