@@ -121,12 +121,13 @@ bench-time: $(STAMP)
 bench-sense: $(STAMP)
 	$(BIN)/python bench/bench_sense.py
 
+# the bench gap factor by factor (wall model, about 90 min, 75 of them the Coulomb rows),
+# shown by make report; MATERIAL_ROW=FIT.json adds the row of your material fit
+bench-gap: $(STAMP)
+	$(BIN)/spsc bench-gap --out build/bench-gap $(if $(MATERIAL_ROW),--material-row $(MATERIAL_ROW))
+
 # the plate's friction: increments, work, wall against 3D FEM, the Table 1 means with
 # mu = 0, 0.3, 0.6 and stick (the Coulomb curves are slow: about an hour on 2 cores)
-# the bench gap factor by factor (wall model, about 14 min), shown by make report
-bench-gap: $(STAMP)
-	$(BIN)/spsc bench-gap --out build/bench-gap
-
 bench-friction: $(STAMP)
 	mkdir -p build/bench
 	$(BIN)/python bench/bench_friction.py --json build/bench/friction.json

@@ -14,8 +14,10 @@ from spsc.core.curve import Curve
 from spsc.studies import bench_gap
 
 #: a fake chamber per run set: F = a y + C y², P = p_i + b y (any type and mode)
-A = {"long": 4.0, "stick": 4.2, "thin": 3.6, "thick": 4.4, "stiffest": 4.6}
-B = {"long": 4.0, "stick": 3.5, "thin": 4.1, "thick": 3.9, "stiffest": 3.4}
+A = {"long": 4.0, "mu0.3": 4.05, "mu0.6": 4.1, "stick": 4.2, "thin": 3.6, "thick": 4.4,
+     "stiffest": 4.6, "material:fit": 5.0, "stiffest:fit": 6.5}
+B = {"long": 4.0, "mu0.3": 3.8, "mu0.6": 3.7, "stick": 3.5, "thin": 4.1, "thick": 3.9,
+     "stiffest": 3.4, "material:fit": 4.8, "stiffest:fit": 4.4}
 C = 0.1
 #: the paper's (sec. 3.1)
 BENCH = {"stiffness_high": 8.0, "stiffness_low": 5.0, "sensitivity_high": 6.1,
@@ -25,15 +27,31 @@ BENCH = {"stiffness_high": 8.0, "stiffness_low": 5.0, "sensitivity_high": 6.1,
 def _fake(spec, type_name, pressure_kPa, mode, material_name):
     y = np.linspace(0.0, spec.stroke, int(round(spec.stroke * bench_gap.POINTS_PER_MM)) + 1)
     scale = 0.5 if mode == "low" else 1.0
+    assert spec.material.endswith("fit.json") == spec.name.endswith(":fit")
     return Curve(y, scale * (A[spec.name] * y + C * y ** 2), pressure_kPa + scale * B[spec.name] * y,
                  y, y, model="wall", geometry={}, material=material_name, setup={},
                  nominal_volume_mm3=1.0, inflated_volume_mm3=1.0, inflated_height_mm=13.0)
 
 
+#: where the fit's data came from: the data file's '#' line, kept in the material file
+CITED = "TPU 60A tension tests, example.org/data (mean of 3)"
+
+
+def _fit_file(folder):
+    from spsc.materials.file import material_record
+
+    path = folder / "fit.json"
+    path.write_text(json.dumps(material_record(
+        "fit", "neo-hookean", {"C10": 1.2}, source="spsc fit-material: fitted to t.csv",
+        data=[{"file": "t.csv", "notes": [CITED]}])))
+    return path
+
+
 @pytest.fixture
 def summary(tmp_path, monkeypatch):
     monkeypatch.setattr(bench_gap, "curve_of", _fake)
-    return bench_gap.run_gap(tmp_path, BENCH, types="AB", pressures=(10.0, 40.0))
+    return bench_gap.run_gap(tmp_path, BENCH, types="AB", pressures=(10.0, 40.0),
+                             materials=[_fit_file(tmp_path)])
 
 
 def test_each_row_is_the_mean_slope_of_its_runs_over_its_window(summary):
@@ -50,8 +68,25 @@ def test_each_row_is_the_mean_slope_of_its_runs_over_its_window(summary):
                     100 * ((A["stick"] + 6 * C) / (A["long"] + 6 * C) - 1), rtol=1e-12)
     assert_allclose(rows["baseline"]["against_bench_pct"]["stiffness_high"],
                     100 * ((A["long"] + 6 * C) / 8.0 - 1), rtol=1e-12)
+    assert_allclose(rows["mu_0.6"]["stiffness_low"], 0.5 * (A["mu0.6"] + 6 * C), rtol=1e-12)
+    assert_allclose(rows["material_fit"]["sensitivity_low"], 0.5 * B["material:fit"],
+                    rtol=1e-12)
+    assert_allclose(rows["stiffest_fit"]["stiffness_high"], A["stiffest:fit"] + 8 * C,
+                    rtol=1e-12)
+    assert rows["material_fit"]["label"] == "material fit (μ0 2.40 MPa)"
+    assert CITED in rows["material_fit"]["source"] and not rows["stick"]["source"]
     assert all(not r["partial"] for r in rows.values())
-    assert summary["curves"] == 5 * 2 * 2 * 2  # run sets × modes × types × pressures
+    assert summary["curves"] == 9 * 2 * 2 * 2  # run sets × modes × types × pressures
+
+
+def test_factors_are_picked_by_name_and_a_wrong_name_is_refused():
+    from spsc.core.errors import ParameterError
+
+    assert [f.name for f in bench_gap.select(["stick", "mu_0.3"])] == \
+        ["baseline", "mu_0.3", "stick"]
+    assert bench_gap.select(None) == bench_gap.FACTORS
+    with pytest.raises(ParameterError, match="factors.*mu_0.4.*names among baseline"):
+        bench_gap.select(["mu_0.4"])
 
 
 def test_the_summary_and_figure_are_written(summary, tmp_path):
@@ -70,13 +105,23 @@ def test_the_report_section_says_which_factor_closes_most_of_the_gap(summary, tm
     high = sec["findings"][0]
     gap = 8.0 - (A["long"] + 6 * C)
     best = max(("t0_1.1", A["thick"] + 6 * C), ("y_0-8", A["long"] + 8 * C),
-               ("stick", A["stick"] + 6 * C), key=lambda kv: kv[1])
+               ("stick", A["stick"] + 6 * C), ("material_fit", A["material:fit"] + 6 * C),
+               key=lambda kv: kv[1])
+    assert "“material fit (μ0 2.40 MPa)”" in high
     assert f"({100 * (best[1] - (A['long'] + 6 * C)) / gap:.0f} % of it)" in high
     stiffest = 100 * (A["stiffest"] + 8 * C - (A["long"] + 6 * C)) / gap
     assert f"{stiffest:.0f} % of the gap" in high
+    with_fit = 100 * (A["stiffest:fit"] + 8 * C - (A["long"] + 6 * C)) / gap
+    assert f"“Fit and all stiffening ones” give {A['stiffest:fit'] + 8 * C:.2f} N/mm: " \
+        f"{with_fit:.0f} % of the gap" in high
+    friction = sec["findings"][-1]
+    assert "μ = 0.6: +2.2 %, +2.2 %;" in friction  # (4.1 + 0.6) / (4.0 + 0.6)
+    assert f"at most {100 * (A['stick'] - A['long']) / gap:.0f} % of the high mode's gap" \
+        in friction
     html = environment().from_string('{% import "macros.html.j2" as m with context %}'
                                      '{% include "gap_section.html.j2" %}').render(gap=sec)
     assert 'id="gap"' in html and "the paper's bench" in html and "wall 0.9 mm" in html
+    assert CITED in html and "Not in this study: the material" not in html
 
 
 def test_no_study_renders_how_to_make_it():

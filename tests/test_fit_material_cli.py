@@ -60,6 +60,7 @@ def test_bom_latin1_comments_semicolons_and_decimal_commas(tmp_path):
     path = _csv(tmp_path, "b.csv", b"\xef\xbb\xbf" + text.encode("latin-1"))
     (d,), (note,) = read_tests([path])
     assert d.test == "equibiaxial" and "'# test:' line" in note
+    assert d.notes == ("Prüfung bei 23 °C, µ-Probe",)  # the source, kept; '# test:' is not
     np.testing.assert_allclose(d.stress_MPa, NH.stress("equibiaxial", LAM, [5 / 6]),
                                rtol=1e-14)
 
@@ -143,7 +144,8 @@ def tpu_data(tmp_path):
                                 ("equibiaxial", "stretch,stress_kPa", 1e3),
                                 ("planar", "stretch,stress_Pa", 1e6)):
         rows = _nh_rows(test, fmt=lambda a, b: f"{a!r},{b * scale!r}")
-        files.append(_csv(tmp_path, f"{test}.csv", f"# test: {test}\n{header}\n{rows}"))
+        files.append(_csv(tmp_path, f"{test}.csv",
+                          f"# {test} test, lab X\n# test: {test}\n{header}\n{rows}"))
     return files
 
 
@@ -160,6 +162,8 @@ def test_fit_writes_report_figure_and_material_file(tmp_path, tpu_data, capsys):
     assert rec["constants"]["C10"] == pytest.approx(5 / 6, rel=1e-12)
     assert [d["test"] for d in rec["data"]] == ["uniaxial", "equibiaxial", "planar"]
     assert all(len(d["sha256"]) == 64 for d in rec["data"])
+    assert [d["notes"] for d in rec["data"]] == [[f"{t} test, lab X"] for t in
+                                                 ("uniaxial", "equibiaxial", "planar")]
     assert rec["fit"]["drucker_stable"] and rec["provenance"] == "user-fit"
     report = json.loads((tmp_path / "fit.json").read_text(encoding="utf-8"))
     assert set(report["fits"]) == {"neo-hookean", "mooney-rivlin", "yeoh", "ogden"}

@@ -3,16 +3,19 @@ accounts for — the wall model's Table 1 means with the plate's friction, the w
 the stroke of the means changed one at a time (:mod:`spsc.studies.bench_gap`).
 
     spsc bench-gap [--out build/bench-gap] [--material tpu60a] [--types ABCD]
+                   [--material-row FIT.json ...] [--factors NAME,...]
                    [--workers N | --scheduler ADDRESS] [--quiet]
 
-Writes ``summary.json`` and ``bench-gap.png`` where ``spsc report`` finds them (about 14 min
-on two cores). Exit 0 when every curve reached its stroke's end, 1 when some stopped early
+Writes ``summary.json`` and ``bench-gap.png`` where ``spsc report`` finds them (about 90 min
+on two cores, 75 of them the Coulomb rows; ``--factors`` picks rows). Exit 0 when every curve reached its stroke's end, 1 when some stopped early
 (their points reached count; the table says how many).
 """
 
 from __future__ import annotations
 
 import sys
+
+from spsc.studies.bench_gap import FACTORS
 
 
 def register(sub) -> None:
@@ -24,6 +27,12 @@ def register(sub) -> None:
     p.add_argument("--material", default="tpu60a", metavar="NAME|FILE",
                    help="the material (default tpu60a, the paper's)")
     p.add_argument("--types", default="ABCD", help="the Table 1 types (default ABCD)")
+    p.add_argument("--material-row", action="append", default=[], metavar="FIT.json",
+                   help="a row with this material file (spsc fit-material --out), alone and "
+                        "with the stiffening factors; repeatable")
+    p.add_argument("--factors", default=None, metavar="NAME,...",
+                   help="the built-in rows to run (default all: " + ", ".join(
+                       f.name for f in FACTORS) + "; the baseline always)")
     p.add_argument("--workers", default=None, metavar="N",
                    help="local worker processes (default: one per core)")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS",
@@ -42,12 +51,22 @@ def run(args) -> int:
     from spsc.report.gap import QUANTITIES
     from spsc.report.paper import paper_bench
     from spsc.study.executor import check_cluster, dask_client
-    from spsc.studies.bench_gap import run_gap
+    from spsc.studies.bench_gap import run_gap, select
 
     types = "".join(dict.fromkeys(str(args.types).upper()))
     if not types or any(t not in TYPES for t in types):
         raise ParameterError("types", args.types, "letters of " + "".join(TYPES))
     material(args.material)
+    for path in args.material_row:
+        if not str(path).lower().endswith(".json"):
+            raise ParameterError("material-row", path, "a material file (.json) from spsc "
+                                 "fit-material --out")
+        try:
+            material(path)
+        except ParameterError as e:
+            raise ParameterError("material-row", path, e.allowed) from None
+    factors = select(None if args.factors is None else
+                     [n.strip() for n in str(args.factors).split(",") if n.strip()])
     workers, scheduler = check_cluster(args.workers, args.scheduler)
     out = check_output_dir("--out", args.out)
     bar = tqdm(desc="spsc bench-gap", unit="curve", disable=bool(args.quiet), file=sys.stderr)
@@ -60,7 +79,8 @@ def run(args) -> int:
     bench = {q: paper.get(q).value for q in QUANTITIES}
     with dask_client(workers, scheduler) as client:
         summary = run_gap(out, bench, bench_source=paper.source, material_name=args.material,
-                          types=types, client=client, progress=progress)
+                          types=types, factors=factors, materials=args.material_row,
+                          client=client, progress=progress)
     bar.close()
     bench = summary["bench"]
     print(f"{'factor':56s} " + " ".join(f"{q:>16s}" for q in QUANTITIES) + "  partial")

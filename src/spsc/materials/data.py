@@ -58,7 +58,8 @@ def test_name(text) -> str | None:
 @dataclass(frozen=True)
 class TestData:
     """One test: its kind, stretches λ (-) and nominal stresses P (MPa), and where it came
-    from (file, sha256 of the file's bytes, what was assumed reading it)."""
+    from (file, sha256 of the file's bytes, what was assumed reading it, and the file's own
+    ``#`` comment lines: where the data comes from, so a material file can cite it)."""
 
     __test__ = False  # not a pytest class
 
@@ -68,6 +69,7 @@ class TestData:
     file: str = ""
     sha256: str = ""
     columns: dict = field(default_factory=dict)
+    notes: tuple = ()
 
     @property
     def file_label(self) -> str:
@@ -82,7 +84,7 @@ class TestData:
         """The points with lo <= λ <= hi."""
         keep = (self.stretch >= lo) & (self.stretch <= hi)
         return TestData(self.test, self.stretch[keep], self.stress_MPa[keep], self.file,
-                        self.sha256, self.columns)
+                        self.sha256, self.columns, self.notes)
 
 
 def _text(path: Path) -> tuple[str, str]:
@@ -287,6 +289,8 @@ def read_file(path, *, test: str | None = None, strain_unit: str | None = None,
     cols = _columns(fname, header)
     dunit, sunit, said = _units(fname, header, cols, strain_unit, stress_unit)
     declared = _declared_test(fname, comments)
+    notes = tuple(c.lstrip("#").strip() for c in comments
+                  if not re.match(r"#\s*test\s*[:=]", c, re.I) and c.lstrip("#").strip())
     if "test" in cols and (test or declared):
         raise ParameterError(f"{fname}: test", test or declared,
                              "not given: the file's 'test' column names the test of each row")
@@ -320,7 +324,7 @@ def read_file(path, *, test: str | None = None, strain_unit: str | None = None,
                             {"deformation": header[cols["deform"]], "unit": dunit,
                              "stress": header[cols["stress"]], "stress_unit": sunit,
                              "deformation_decimals": int(dd.max()),
-                             "stress_decimals": int(sd.max())}))
+                             "stress_decimals": int(sd.max())}, notes))
     where = ("tests from its 'test' column" if "test" in cols else
              f"{out[0].test} (" + ("--test" if test else "'# test:' line" if declared
                                    else "assumed: no --test, '# test:' line or test column")

@@ -25,9 +25,10 @@ def _version() -> str:
 
 
 def data_records(tests) -> list[dict]:
-    """Each test of each file: its name, path, sha256 of its bytes, test, points, columns."""
+    """Each test of each file: its name, path, sha256 of its bytes, test, points, columns and
+    the file's comment lines (``notes``: where the data comes from)."""
     return [{"file": d.file_label, "path": str(d.file), "sha256": d.sha256, "test": d.test,
-             "points": d.points, "columns": d.columns,
+             "points": d.points, "columns": d.columns, "notes": list(d.notes),
              "stretch_range": [float(d.stretch.min()), float(d.stretch.max())]}
             for d in tests]
 

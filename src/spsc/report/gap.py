@@ -1,7 +1,7 @@
 """The report's "Against the bench, factor by factor" section: the wall model's Table 1 means
 with one thing changed at a time (friction, wall thickness, the stroke the means are taken
 over), from the study ``spsc bench-gap`` wrote (:mod:`spsc.studies.bench_gap`), shown as the
-time-domain study is: the report does not run it (about 14 min on two cores).
+time-domain study is: the report does not run it (about 90 min on two cores).
 """
 
 from __future__ import annotations
@@ -35,8 +35,9 @@ def gap_section(study_dir, out) -> dict | None:
 
 
 def findings(rows, bench) -> list[str]:
-    """What the rows say, in words: the gap of the baseline, each factor's share of it, and
-    whether all stiffening factors at once close it."""
+    """What the rows say, in words: per mode, the baseline's gap in stiffness, the factor that
+    closes most of it, what all stiffening factors at once close (with the catalogue's
+    material and with each material file); then what friction accounts for."""
     base = next((r for r in rows if r["factor"] == "baseline"), None)
     if base is None:
         return []
@@ -45,16 +46,36 @@ def findings(rows, bench) -> list[str]:
         gap = bench[q] - base[q]
         if gap <= 0:
             continue
-        shares = sorted(((100 * (r[q] - base[q]) / gap, r["label"]) for r in rows
-                         if r is not base and r["factor"] != "stiffest"), reverse=True)
-        best = shares[0] if shares else (0.0, "")
+        share = {r["factor"]: 100 * (r[q] - base[q]) / gap for r in rows}
+        single = sorted(((share[r["factor"]], r["label"]) for r in rows if r is not base
+                         and not r["factor"].startswith("stiffest")), reverse=True)
         mode = q.split("_")[1]
         text = (f"{mode.capitalize()} mode: the model is {base[q]:.2f} N/mm against the bench's "
-                f"{bench[q]:.2f} N/mm. The factor that closes most of the gap is "
-                f"“{best[1]}” ({best[0]:.0f} % of it).")
-        stiff = next((r for r in rows if r["factor"] == "stiffest"), None)
-        if stiff is not None:
-            text += (f" All stiffening factors at once give {stiff[q]:.2f} N/mm: "
-                     f"{100 * (stiff[q] - base[q]) / gap:.0f} % of the gap.")
+                f"{bench[q]:.2f} N/mm.")
+        if single:
+            text += (f" The factor that closes most of the gap is “{single[0][1]}” "
+                     f"({single[0][0]:.0f} % of it).")
+        for r in rows:
+            if r["factor"].startswith("stiffest"):
+                text += (f" “{r['label'].capitalize()}” give {r[q]:.2f} N/mm: "
+                         f"{share[r['factor']]:.0f} % of the gap.")
         out.append(text)
+    out += _friction(rows, base, bench)
     return out
+
+
+def _friction(rows, base, bench) -> list[str]:
+    fric = [r for r in rows if r["factor"].startswith("mu_") or r["factor"] == "stick"]
+    gaps = {q: bench[q] - base[q] for q in ("stiffness_high", "stiffness_low")}
+    if not fric or min(gaps.values()) <= 0:
+        return []
+    parts = [f"{r['label'].split(' on the')[0]}: {_pct(r, base, 'stiffness_high')}, "
+             f"{_pct(r, base, 'stiffness_low')}" for r in fric]
+    most = {q: max(100 * (r[q] - base[q]) / g for r in fric) for q, g in gaps.items()}
+    return ["What friction on the plate changes in stiffness (high, low mode): "
+            + "; ".join(parts) + f". That is at most {most['stiffness_high']:.0f} % of the "
+            f"high mode's gap and {most['stiffness_low']:.0f} % of the low mode's."]
+
+
+def _pct(row, base, q) -> str:
+    return f"{100 * (row[q] / base[q] - 1):+.1f} %"

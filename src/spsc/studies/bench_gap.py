@@ -8,17 +8,21 @@ mode V_r = 40 cm³, as the report computes them: :func:`spsc.study.metrics.headl
 thing changed from the report's setup:
 
 * ``baseline`` — the catalogue's TPU 60A, a frictionless plate, t0 = 1 mm, y over 0–6 mm;
+* ``mu_0.3`` / ``mu_0.6`` — Coulomb friction on the plate (``--friction 0.3``, ``0.6``);
 * ``stick`` — a plate that lets nothing slide (``--friction stick``: the upper bound of
   friction);
-* ``t0 0.9`` / ``t0 1.1`` — the printed wall 0.1 mm thinner or thicker;
-* ``y 0–4`` / ``y 0–8`` — the means over a shorter or a longer stroke (the paper averages over
+* ``t0_0.9`` / ``t0_1.1`` — the printed wall 0.1 mm thinner or thicker;
+* ``y_0-4`` / ``y_0-8`` — the means over a shorter or a longer stroke (the paper averages over
   "each type's y_s range" and does not print it);
-* ``stiffest`` — all of the stiffening ones at once (sticking plate, 1.1 mm wall, 0–8 mm).
+* ``stiffest`` — all of the stiffening ones at once (sticking plate, 1.1 mm wall, 0–8 mm);
+* ``material_NAME`` — a material file of your own (``spsc fit-material --out``, e.g. a fit of
+  a published tension test of printed TPU 60A), and ``stiffest_NAME`` the stiffening ones with
+  it. The catalogue holds no such data: its licence must let you use it, and its source is
+  cited from the data file's ``#`` lines (the material file keeps them).
 
-The material row (a fit of a published tension test of printed TPU 60A) needs such data,
-which the catalogue does not hold yet.
-
-    spsc bench-gap --out build/bench-gap [--workers N | --scheduler ADDR]   (about 14 min)
+    spsc bench-gap --out build/bench-gap [--material-row FIT.json] [--factors NAME,...]
+                   [--workers N | --scheduler ADDR]   (about 90 min on 2 cores, 75 of them
+                                                       the Coulomb rows)
 
 writes ``summary.json`` and ``bench-gap.png``; ``spsc report --bench-gap DIR`` shows them.
 """
@@ -34,7 +38,7 @@ import numpy as np
 from spsc.core.jsonio import write_json
 
 __all__ = ["Spec", "Factor", "SPECS", "FACTORS", "MODES", "PRESSURES", "TYPES", "run_gap",
-           "jobs", "curve_of"]
+           "jobs", "curve_of", "material_rows", "select"]
 
 #: the report's setup: the modes' reservoirs (mm³) and the setup pressures (kPa gauge)
 MODES = {"high": 0.0, "low": 40000.0}
@@ -46,13 +50,14 @@ POINTS_PER_MM = 4
 
 @dataclass(frozen=True)
 class Spec:
-    """One set of wall-model runs: the plate's ``friction``, the wall thickness ``t0`` (mm)
-    and the ``stroke`` (mm)."""
+    """One set of wall-model runs: the plate's ``friction``, the wall thickness ``t0`` (mm),
+    the ``stroke`` (mm) and the ``material`` (a material file; empty: the study's)."""
 
     name: str
     friction: str = "0"
     t0: float = 1.0
     stroke: float = 6.0
+    material: str = ""
 
 
 @dataclass(frozen=True)
@@ -64,12 +69,16 @@ class Factor:
     label: str
     spec: str
     window: float = 6.0
+    source: str = ""
 
 
-SPECS = {s.name: s for s in (Spec("long", stroke=8.0), Spec("stick", friction="stick"),
+SPECS = {s.name: s for s in (Spec("long", stroke=8.0), Spec("mu0.3", friction="0.3"),
+                             Spec("mu0.6", friction="0.6"), Spec("stick", friction="stick"),
                              Spec("thin", t0=0.9), Spec("thick", t0=1.1),
                              Spec("stiffest", friction="stick", t0=1.1, stroke=8.0))}
 FACTORS = (Factor("baseline", "the report's setup", "long"),
+           Factor("mu_0.3", "Coulomb friction μ = 0.3 on the plate", "mu0.3"),
+           Factor("mu_0.6", "Coulomb friction μ = 0.6 on the plate", "mu0.6"),
            Factor("stick", "a plate that lets nothing slide", "stick"),
            Factor("t0_0.9", "wall 0.9 mm (printed 0.1 mm thin)", "thin"),
            Factor("t0_1.1", "wall 1.1 mm (printed 0.1 mm thick)", "thick"),
@@ -77,6 +86,43 @@ FACTORS = (Factor("baseline", "the report's setup", "long"),
            Factor("y_0-8", "means over y = 0–8 mm", "long", 8.0),
            Factor("stiffest", "all stiffening ones at once (stick, 1.1 mm, 0–8 mm)",
                   "stiffest", 8.0))
+
+
+def material_rows(paths) -> tuple[dict, tuple]:
+    """The run sets and rows of material files (``--material-row``): the material alone and
+    with the stiffening factors; each row cites the material's source and its data's notes."""
+    import json
+
+    from spsc.materials import material
+
+    specs, factors = {}, []
+    for path in paths:
+        m = material(path)
+        data = json.loads(Path(path).read_text(encoding="utf-8")).get("data", [])
+        notes = "; ".join(dict.fromkeys(n for d in data for n in d.get("notes", [])))
+        source = f"{m.source}" + (f"; data: {notes}" if notes else "")
+        one, stiff = (Spec(f"material:{m.name}", material=str(path)),
+                      Spec(f"stiffest:{m.name}", "stick", 1.1, 8.0, str(path)))
+        specs |= {one.name: one, stiff.name: stiff}
+        factors += [Factor(f"material_{m.name}", f"material {m.name} (μ0 "
+                           f"{m.shear_modulus:.2f} MPa)", one.name, source=source),
+                    Factor(f"stiffest_{m.name}", f"{m.name} and all stiffening ones",
+                           stiff.name, 8.0, source)]
+    return specs, tuple(factors)
+
+
+def select(names) -> tuple:
+    """The built-in rows named in ``names`` (``--factors``; None: all), the baseline always
+    first; a one-line error for an unknown name."""
+    from spsc.core.errors import ParameterError
+
+    if names is None:
+        return FACTORS
+    known = {f.name: f for f in FACTORS}
+    bad = [n for n in names if n not in known]
+    if bad or not names:
+        raise ParameterError("factors", ",".join(names), "names among " + ", ".join(known))
+    return tuple(f for f in FACTORS if f.name == "baseline" or f.name in names)
 
 
 def jobs(specs, types=TYPES, pressures=PRESSURES) -> list[tuple]:
@@ -91,7 +137,7 @@ def curve_of(spec: Spec, type_name: str, pressure_kPa: float, mode: str, materia
     from spsc.materials import material
 
     geometry = preset(type_name, t0=spec.t0)
-    return wall_curve(geometry, material(material_name), pressure_kPa=pressure_kPa,
+    return wall_curve(geometry, material(spec.material or material_name), pressure_kPa=pressure_kPa,
                       reservoir_mm3=MODES[mode], stroke_mm=spec.stroke,
                       points=int(round(spec.stroke * POINTS_PER_MM)) + 1,
                       friction=spec.friction)
@@ -110,7 +156,8 @@ def _window(curve, y_end: float):
 def _row(factor: Factor, curves: dict, types, pressures) -> dict:
     from spsc.study.metrics import headline
 
-    out = {"factor": factor.name, "label": factor.label, "window_mm": factor.window}
+    out = {"factor": factor.name, "label": factor.label, "window_mm": factor.window,
+           "source": factor.source}
     partial = []
     for mode in MODES:
         by_type = {}
@@ -126,28 +173,33 @@ def _row(factor: Factor, curves: dict, types, pressures) -> dict:
 
 
 def run_gap(out, bench: dict, *, bench_source: str = "", material_name: str = "tpu60a",
-            types=TYPES, pressures=PRESSURES, factors=FACTORS, client=None,
+            types=TYPES, pressures=PRESSURES, factors=FACTORS, materials=(), client=None,
             progress=None) -> dict:
     """Run the factors' wall curves (on the Dask ``client``, else here one after another)
-    into ``out``: ``summary.json`` (a row per factor, the ``bench``'s means — ``{quantity:
-    value}`` of the headline's four, from ``bench_source`` — and each row against them and
-    against the baseline) and ``bench-gap.png``; returns the summary. ``progress(done,
-    total)`` after each curve."""
+    into ``out``: ``summary.json`` (a row per factor and per material file of ``materials``,
+    the ``bench``'s means — ``{quantity: value}`` of the headline's four, from
+    ``bench_source`` — and each row against them and against the baseline) and
+    ``bench-gap.png``; returns the summary. ``progress(done, total)`` after each curve."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    specs = sorted({f.spec for f in factors})
+    extra_specs, extra = material_rows(materials)
+    all_specs = SPECS | extra_specs
+    factors = tuple(factors) + extra
+    # the Coulomb runs first: they take five times as long, so the workers end together
+    specs = sorted({f.spec for f in factors},
+                   key=lambda n: (all_specs[n].friction in ("0", "stick"), n))
     todo = jobs(specs, types, pressures)
     t0 = time.perf_counter()
     curves = {}
     if client is None:
         for k, (s, t, p, m) in enumerate(todo):
-            curves[(s, t, p, m)] = curve_of(SPECS[s], t, p, m, material_name)
+            curves[(s, t, p, m)] = curve_of(all_specs[s], t, p, m, material_name)
             if progress is not None:
                 progress(k + 1, len(todo))
     else:
         from distributed import as_completed
 
-        futures = {client.submit(curve_of, SPECS[j[0]], *j[1:], material_name,
+        futures = {client.submit(curve_of, all_specs[j[0]], *j[1:], material_name,
                                  pure=False): j for j in todo}
         for k, fut in enumerate(as_completed(futures)):
             curves[futures[fut]] = fut.result()
