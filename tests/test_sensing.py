@@ -194,6 +194,32 @@ def test_slip_needs_the_fsr_centroid_moving_to_the_tip(dome):
     assert kinds(s.events) == ["contact", "release"]
 
 
+def _slide(detector, *, total_N, drop_kPa, seconds=0.3, flicker=0.0):
+    """A slide of the contact from 0.2 to 0.8 of the FSR array over ``seconds`` at 1 kHz, the
+    pressure falling by ``drop_kPa`` (σ_f 0.02 kPa, rest 40) with a ``flicker`` on it."""
+    from spsc.sensing.detectors import SlipDetector
+
+    t = np.arange(int(seconds * 1000) + 200) * 1e-3
+    pos = np.clip((t - 0.1) / seconds, 0.0, 1.0) * 0.6 + 0.2
+    p = 41.0 - drop_kPa * np.clip((t - 0.1) / seconds, 0.0, 1.0) \
+        + flicker * np.sign(np.sin(2 * np.pi * 40 * t))
+    fsr = st.fsr_columns(np.full(t.size, total_N), pos, np.random.default_rng(3))
+    F = np.column_stack(list(fsr.values()))
+    det = SlipDetector(detector)
+    return [e for k in range(t.size) if (e := det.push(t[k], p[k], 0.02, 40.0, F[k], True))]
+
+
+def test_a_long_slide_is_one_slip_and_a_light_touch_none():
+    """A slide over 0.15 s whose pressure drop flickers across the detector's bound (as in the
+    low mode) is one episode, not one event per flicker; with 0.1 N on the array (a hand
+    letting go: the FSRs' noise moves the centroid) nothing is a slip."""
+    from spsc.sensing.detectors import SlipParams
+
+    assert len(_slide(SlipParams(), total_N=3.0, drop_kPa=0.6, seconds=0.15, flicker=0.1)) == 1
+    assert _slide(SlipParams(), total_N=0.1, drop_kPa=0.6, seconds=0.15) == []
+    assert len(_slide(SlipParams(fsr_min_N=0.05), total_N=0.1, drop_kPa=0.6, seconds=0.15)) >= 1
+
+
 @pytest.mark.parametrize("share, kind", [(0.9, "stiff_object"), (0.3, "soft_object")])
 def test_object_compliance_after_ten_degrees(dome, share, kind):
     m, d = dome

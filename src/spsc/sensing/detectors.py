@@ -160,13 +160,14 @@ class SlipParams:
     """Slip (sec. 4.1, Fig. 10b): over ``window_s`` the filtered pressure fell by more than
     ``drop_sigmas`` σ and ``drop_fraction`` of its rise, while the FSRs' centroid moved
     ``shift`` (fraction of the array, toward fsr_N, the tip) with at least ``fsr_min_N`` on
-    them."""
+    them. ``fsr_min_N`` is 25 times a typical FSR channel's noise (0.01 N): with less on the
+    array, as a hand lets go, the noise alone moves the centroid by a tenth of the array."""
 
     window_s: float = 0.05
     drop_sigmas: float = 4.0
     drop_fraction: float = 0.05
     shift: float = 0.15
-    fsr_min_N: float = 0.05
+    fsr_min_N: float = 0.25
 
     def __post_init__(self):
         require("slip window_s", self.window_s, gt=0, le=10, unit="s")
@@ -186,7 +187,9 @@ def centroid(fsr) -> tuple[float, float]:
 
 
 class SlipDetector:
-    """A pressure drop with the contact moving toward the tip, once per episode."""
+    """A pressure drop with the contact moving toward the tip, once per episode: the next
+    slip is armed when the pressure has stopped falling and the centroid has stopped moving
+    (in the low mode the drop is within a few σ and flickers across its bound mid-slide)."""
 
     def __init__(self, params: SlipParams):
         self.prm = params
@@ -210,7 +213,8 @@ class SlipDetector:
             return {"t_s": t, "kind": "slip", "trigger": f"P fell {drop:.3g} kPa and the FSR "
                     f"centroid moved {moved:+.2f} toward the tip in {t - t0:.3g} s",
                     "drop_kPa": drop, "centroid_shift": moved}
-        if not slipping and drop <= 0.5 * need:
+        still = not (moved > 0.5 * prm.shift)  # a NaN centroid (nothing on it) is still
+        if not slipping and drop <= 0.5 * need and still:
             self.armed = True
         return None
 
