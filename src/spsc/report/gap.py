@@ -10,7 +10,7 @@ from pathlib import Path
 
 from spsc.report.fingertip import copy_figure, read_study
 
-__all__ = ["gap_section", "DEFAULT_DIR", "COMMAND", "QUANTITIES"]
+__all__ = ["gap_section", "findings", "advice", "DEFAULT_DIR", "COMMAND", "QUANTITIES"]
 
 DEFAULT_DIR = Path("build/bench-gap")
 COMMAND = "make bench-gap   # = spsc bench-gap --out build/bench-gap"
@@ -31,7 +31,8 @@ def gap_section(study_dir, out) -> dict | None:
     return {"rows": rows, "bench": summary["bench"], "figure": figure, "command": COMMAND,
             "material": summary.get("material", ""), "quantities": QUANTITIES,
             "seconds": summary.get("seconds"), "curves": summary.get("curves"),
-            "findings": findings(rows, summary["bench"])}
+            "findings": findings(rows, summary["bench"]),
+            "advice": advice(rows, summary["bench"])}
 
 
 def findings(rows, bench) -> list[str]:
@@ -79,3 +80,25 @@ def _friction(rows, base, bench) -> list[str]:
 
 def _pct(row, base, q) -> str:
     return f"{100 * (row[q] / base[q] - 1):+.1f} %"
+
+
+def advice(rows, bench) -> list[str]:
+    """Which model to trust for what, with the baseline's distance to the bench."""
+    base = next((r for r in rows if r["factor"] == "baseline"), None)
+    if base is None:
+        return []
+    below = [100 * (1 - base[q] / bench[q]) for q in ("stiffness_high", "stiffness_low")]
+    return [
+        "For shapes, trends and comparisons between designs (which type, wall or mode is "
+        "stiffer, and by how much relative to another), trust the wall model: it agrees with "
+        "the 3D FEM within 2 % and takes seconds a curve.",
+        "For absolute forces against a real bench, trust no model uncalibrated: in the "
+        f"report's setup they are {min(below):.0f}–{max(below):.0f} % below the paper's bench "
+        "in stiffness, and the rows above say how much of that the material, the wall, the "
+        "plate's friction and the averaged stroke each account for. Calibrate the material on "
+        "one bench test of your own chamber (spsc calibrate), and average over the stroke "
+        "your bench uses.",
+        "For contact areas, pocket (FSR) forces, bodies other than a plate and friction "
+        "beyond a sticking plate, use the 3D FEM; the membrane and simplified models are for "
+        "quick exploration only (their errors against the 3D FEM are in “Models vs FEM”).",
+    ]
