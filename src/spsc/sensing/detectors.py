@@ -224,22 +224,31 @@ class ComplianceParams:
     """Object compliance (sec. 4.1, Fig. 10a): ``after_deg`` of closure past the contact
     (the paper: "at least 10 deg"), stiff when the chamber took more than
     ``stiff_mm_per_deg`` of depth per degree (a stiff object passes the finger's closure to the
-    chamber, a soft one takes it itself)."""
+    chamber, a soft one takes it itself). A finger that stops closing (no new angle for
+    ``stop_s``) before ``after_deg`` is judged on what it closed, from ``min_deg``."""
 
     stiff_mm_per_deg: float
     after_deg: float = 10.0
+    min_deg: float = 3.0
+    stop_s: float = 0.1
 
     def __post_init__(self):
         require("stiff_mm_per_deg", self.stiff_mm_per_deg, gt=0, le=100, unit="mm/deg")
         require("compliance after_deg", self.after_deg, gt=0, le=180, unit="deg")
+        require("compliance min_deg", self.min_deg, gt=0, le=self.after_deg,
+                unit="deg, <= after_deg")
+        require("compliance stop_s", self.stop_s, gt=0, le=10, unit="s")
 
 
 class ComplianceDetector:
     """dy/dα and dP/dα from the contact's onset (the CUSUM's estimate of it, else the
-    detection) to ``after_deg`` further: stiff_object|soft_object, once per contact."""
+    detection) to ``after_deg`` further, or to where the finger stopped: the least-squares
+    slopes over every sample between (running sums, O(1) a sample; in the low mode a sample's
+    depth from the pressure scatters by a tenth of a millimetre, the fit over hundreds of
+    samples does not): stiff_object|soft_object, once per contact."""
 
     def __init__(self, params: ComplianceParams):
-        self.prm, self.start = params, None
+        self.prm, self.sums = params, None
         self.hist = deque(maxlen=2048)  # (t, α, depth, P): back to the onset
 
     def push(self, t, angle, depth, p_f, contact_event: dict | None, in_contact: bool):
@@ -248,18 +257,56 @@ class ComplianceDetector:
         self.hist.append((t, angle, depth, p_f))
         if contact_event is not None:
             onset = contact_event.get("onset_s", t)
-            self.start = next((h for h in self.hist if h[0] >= onset), self.hist[-1])[1:]
+            self.sums = _Fit()
+            for h in self.hist:
+                if h[0] >= onset:
+                    self.sums.add(*h)
+        elif self.sums is not None:
+            self.sums.add(t, angle, depth, p_f)
         if not in_contact:
-            self.start = None
+            self.sums = None
             return None
-        if self.start is None or angle - self.start[0] < self.prm.after_deg:
+        f, prm = self.sums, self.prm
+        if f is None:
             return None
-        a0, y0, p0 = self.start
-        self.start = None
-        da = angle - a0
-        dy, dp = (depth - y0) / da, (p_f - p0) / da
-        stiff = dy > self.prm.stiff_mm_per_deg
+        span = f.a_max - f.a0
+        stopped = t - f.t_max >= prm.stop_s and span >= prm.min_deg
+        if span < prm.after_deg and not stopped:
+            return None
+        self.sums = None
+        dy, dp = f.slopes()
+        stiff = dy > prm.stiff_mm_per_deg
+        why = "stopped after" if span < prm.after_deg else "over"
         return {"t_s": t, "kind": "stiff_object" if stiff else "soft_object",
                 "depth_per_deg_mm": dy, "dP_dalpha_kPa_per_deg": dp,
-                "trigger": f"{dy:.3g} mm/deg over {da:.3g}° after contact "
-                f"({'>' if stiff else '<='} {self.prm.stiff_mm_per_deg:g})"}
+                "trigger": f"{dy:.3g} mm/deg fitted {why} {span:.3g}° after contact "
+                f"({'>' if stiff else '<='} {prm.stiff_mm_per_deg:g})"}
+
+
+class _Fit:
+    """Running sums of (α, depth, P) for the least-squares slopes d(depth)/dα, dP/dα."""
+
+    def __init__(self):
+        self.n = self.sa = self.saa = self.sy = self.say = self.sp = self.sap = 0.0
+        self.a0 = self.a_max = None
+        self.t_max = -math.inf
+
+    def add(self, t, a, y, p):
+        if self.a0 is None:
+            self.a0 = self.a_max = a
+        if a > self.a_max or self.t_max == -math.inf:
+            self.a_max, self.t_max = max(a, self.a_max), t
+        self.n += 1
+        self.sa += a
+        self.saa += a * a
+        self.sy += y
+        self.say += a * y
+        self.sp += p
+        self.sap += a * p
+
+    def slopes(self) -> tuple[float, float]:
+        var = self.saa - self.sa * self.sa / self.n
+        if var <= 0:
+            return 0.0, 0.0
+        return ((self.say - self.sa * self.sy / self.n) / var,
+                (self.sap - self.sa * self.sp / self.n) / var)
