@@ -150,3 +150,13 @@ def test_the_real_study_on_one_type_and_pressure(tmp_path):
         assert rows["t0_0.9"][k] < rows["baseline"][k] < rows["t0_1.1"][k]
         assert rows["stick"][k] > rows["baseline"][k]
     assert all(not r["partial"] for r in rows.values())
+
+
+def test_a_change_that_rounds_to_zero_has_no_sign():
+    """The table's "(-0 %)": a change of −0.3 % printed to 0 decimals is 0, not −0; a real
+    change keeps its sign, and a small value in significant digits is not rounded away."""
+    from spsc.report.render import num
+
+    assert [num(v, "+.0f") for v in (-0.3, 0.2, 0.0, 3.4, -2.6)] == ["0", "0", "0", "+3", "-3"]
+    assert num(-0.0004, ".3g") == "-0.0004" and num(-1e-20, ".2f") == "0.00"
+    assert num(float("nan")) == "—"

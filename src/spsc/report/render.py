@@ -17,10 +17,14 @@ TEMPLATES = Path(__file__).with_name("templates")
 
 
 def num(v, fmt: str = ".3g") -> str:
-    """``v`` formatted with ``fmt``; ``—`` for None, NaN or ±inf."""
+    """``v`` formatted with ``fmt``; ``—`` for None, NaN or ±inf; a value that rounds to
+    zero without a sign (``-0``, ``+0.0`` read as a change that is not there)."""
     if v is None or (isinstance(v, float) and not math.isfinite(v)):
         return "—"
-    return format(v, fmt)
+    text = format(v, fmt)
+    if text[:1] in "+-" and not text.strip("+-0.%e"):
+        return text[1:]
+    return text
 
 
 def environment():
