@@ -7,8 +7,9 @@ the stroke of the means changed one at a time (:mod:`spsc.studies.bench_gap`).
                    [--workers N | --scheduler ADDRESS] [--quiet]
 
 Writes ``summary.json`` and ``bench-gap.png`` where ``spsc report`` finds them (about 90 min
-on two cores, 75 of them the Coulomb rows; ``--factors`` picks rows). Exit 0 when every curve reached its stroke's end, 1 when some stopped early
-(their points reached count; the table says how many).
+on two cores, 75 of them the Coulomb rows; ``--factors`` picks rows). Exit 0 when every curve
+reached its stroke's end, 1 when some stopped early (their points reached count; the table
+says how many).
 """
 
 from __future__ import annotations
