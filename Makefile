@@ -116,10 +116,11 @@ bench-wall: $(STAMP)
 bench-time: $(STAMP)
 	$(BIN)/python bench/bench_time.py
 
-# the chamber as a sensor (issue 29): 200 generated scenarios on Types A-D (about 10 min; the
-# chamber maps are built once into build/cache)
+# the chamber as a sensor (issue 29): 200 generated scenarios on Types A-D, then the haptic
+# loop on a Type D squeeze (about 4 min; the chamber maps are built once into build/cache)
 bench-sense: $(STAMP)
 	$(BIN)/python bench/bench_sense.py
+	$(BIN)/python bench/bench_haptic.py
 
 # the bench gap factor by factor (wall model, about 90 min, 75 of them the Coulomb rows),
 # shown by make report; MATERIAL_ROW=FIT.json adds the row of your material fit
