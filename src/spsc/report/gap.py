@@ -58,8 +58,10 @@ def findings(rows, bench) -> list[str]:
                      f"({single[0][0]:.0f} % of it).")
         for r in rows:
             if r["factor"].startswith("stiffest"):
+                past = (f", {100 * (r[q] / bench[q] - 1):.0f} % past the bench"
+                        if r[q] > bench[q] else "")
                 text += (f" “{r['label'].capitalize()}” give {r[q]:.2f} N/mm: "
-                         f"{share[r['factor']]:.0f} % of the gap.")
+                         f"{share[r['factor']]:.0f} % of the gap{past}.")
         out.append(text)
     out += _friction(rows, base, bench)
     return out
