@@ -203,9 +203,13 @@ def _decimals(text: str) -> int:
     return len(mantissa.partition(".")[2]) - int(exponent or 0)
 
 
+#: a comment line naming the file's test: ``# test: equibiaxial``
+_TEST_LINE = re.compile(r"#\s*test\s*[:=]\s*(.+?)\s*$", re.I)
+
+
 def _declared_test(fname: str, comments: list[str]) -> str | None:
     for c in comments:
-        m = re.match(r"#\s*test\s*[:=]\s*(.+?)\s*$", c, re.I)
+        m = _TEST_LINE.match(c)
         if m:
             t = test_name(m.group(1))
             if t is None:
@@ -290,7 +294,7 @@ def read_file(path, *, test: str | None = None, strain_unit: str | None = None,
     dunit, sunit, said = _units(fname, header, cols, strain_unit, stress_unit)
     declared = _declared_test(fname, comments)
     notes = tuple(c.lstrip("#").strip() for c in comments
-                  if not re.match(r"#\s*test\s*[:=]", c, re.I) and c.lstrip("#").strip())
+                  if not _TEST_LINE.match(c) and c.lstrip("#").strip())
     if "test" in cols and (test or declared):
         raise ParameterError(f"{fname}: test", test or declared,
                              "not given: the file's 'test' column names the test of each row")

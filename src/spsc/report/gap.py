@@ -39,7 +39,7 @@ def findings(rows, bench) -> list[str]:
     """What the rows say, in words: per mode, the baseline's gap in stiffness, the factor that
     closes most of it, what all stiffening factors at once close (with the catalogue's
     material and with each material file); then what friction accounts for."""
-    base = next((r for r in rows if r["factor"] == "baseline"), None)
+    base = _baseline(rows)
     if base is None:
         return []
     out = []
@@ -67,6 +67,10 @@ def findings(rows, bench) -> list[str]:
     return out
 
 
+def _baseline(rows) -> dict | None:
+    return next((r for r in rows if r["factor"] == "baseline"), None)
+
+
 def _friction(rows, base, bench) -> list[str]:
     fric = [r for r in rows if r["factor"].startswith("mu_") or r["factor"] == "stick"]
     gaps = {q: bench[q] - base[q] for q in ("stiffness_high", "stiffness_low")}
@@ -86,7 +90,7 @@ def _pct(row, base, q) -> str:
 
 def advice(rows, bench) -> list[str]:
     """Which model to trust for what, with the baseline's distance to the bench."""
-    base = next((r for r in rows if r["factor"] == "baseline"), None)
+    base = _baseline(rows)
     if base is None:
         return []
     below = [100 * (1 - base[q] / bench[q]) for q in ("stiffness_high", "stiffness_low")]

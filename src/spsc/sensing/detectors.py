@@ -284,18 +284,20 @@ class ComplianceDetector:
 
 
 class _Fit:
-    """Running sums of (α, depth, P) for the least-squares slopes d(depth)/dα, dP/dα."""
+    """Running sums of (α, depth, P) about the first sample for the least-squares slopes
+    d(depth)/dα and dP/dα (about the first sample: P is near 40 kPa, its rise a few)."""
 
     def __init__(self):
         self.n = self.sa = self.saa = self.sy = self.say = self.sp = self.sap = 0.0
-        self.a0 = self.a_max = None
-        self.t_max = -math.inf
+        self.first = None  # (α, depth, P) of the first sample
+        self.a0 = self.a_max = self.t_max = None
 
     def add(self, t, a, y, p):
-        if self.a0 is None:
-            self.a0 = self.a_max = a
-        if a > self.a_max or self.t_max == -math.inf:
-            self.a_max, self.t_max = max(a, self.a_max), t
+        if self.first is None:
+            self.first, self.a0, self.a_max, self.t_max = (a, y, p), a, a, t
+        elif a > self.a_max:
+            self.a_max, self.t_max = a, t
+        a, y, p = a - self.first[0], y - self.first[1], p - self.first[2]
         self.n += 1
         self.sa += a
         self.saa += a * a

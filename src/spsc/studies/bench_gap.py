@@ -91,14 +91,13 @@ FACTORS = (Factor("baseline", "the report's setup", "long"),
 def material_rows(paths) -> tuple[dict, tuple]:
     """The run sets and rows of material files (``--material-row``): the material alone and
     with the stiffening factors; each row cites the material's source and its data's notes."""
-    import json
-
-    from spsc.materials import material
+    from spsc.materials.file import material_from_record, read_material_file
 
     specs, factors = {}, []
     for path in paths:
-        m = material(path)
-        data = json.loads(Path(path).read_text(encoding="utf-8")).get("data", [])
+        record = read_material_file(path)
+        m = material_from_record(record, str(path))
+        data = record.get("data", [])
         notes = "; ".join(dict.fromkeys(n for d in data for n in d.get("notes", [])))
         source = f"{m.source}" + (f"; data: {notes}" if notes else "")
         one, stiff = (Spec(f"material:{m.name}", material=str(path)),
