@@ -1,6 +1,7 @@
 """``spsc bench-gap``: how much of the gap between the models and the paper's bench each factor
-accounts for — the wall model's Table 1 means with the plate's friction, the wall thickness or
-the stroke of the means changed one at a time (:mod:`spsc.studies.bench_gap`).
+accounts for — the wall model's Table 1 means with the plate's friction, the wall thickness,
+the stroke of the means or the material (``--material-row``) changed one at a time
+(:mod:`spsc.studies.bench_gap`).
 
     spsc bench-gap [--out build/bench-gap] [--material tpu60a] [--types ABCD]
                    [--material-row FIT.json ...] [--factors NAME,...]
