@@ -4,7 +4,7 @@ tangent, Hooke's law at small strain."""
 import numpy as np
 import pytest
 
-from spsc.fem.material import NearlyIncompressible, invariants
+from spsc.fem.material import NearlyIncompressible, compiled_invariants, invariants
 from spsc.materials import material, mooney_rivlin, yeoh
 
 LAWS = [material("tpu60a"), mooney_rivlin(0.3, 0.1), yeoh(0.5056, 0.01, 0.002562)]
@@ -35,6 +35,30 @@ def test_stress_and_tangent_are_derivatives(mat):
     np.testing.assert_allclose(A, An, rtol=0, atol=1e-7 * np.abs(A).max())
     # major symmetry of a hyperelastic tangent
     np.testing.assert_allclose(A, np.einsum("...ijkl->...klij", A), rtol=0, atol=1e-10)
+
+
+@pytest.mark.parametrize("mat", LAWS, ids=lambda m: m.name)
+def test_compiled_kernel_is_the_numpy_law(mat):
+    """The Numba kernel (spsc.fem.material_kernel) against the NumPy formulas: the same sums in
+    another order, so equal to round-off (1e-13 of the largest entry: 100 ulp)."""
+    from spsc.fem.material import COMPILED
+
+    if not COMPILED:
+        pytest.skip("Numba is not installed: the NumPy formulas are the law")
+    law = NearlyIncompressible(mat, bulk_ratio=10.0)
+    F, p = _random_F(60, seed=3)
+    F, p = F.reshape(3, 20, 3, 3), p.reshape(3, 20)  # any leading shape
+    for pressure in (p, 0.0):
+        P, A = law.stress_tangent(F, pressure)
+        P0, A0 = law.stress_tangent_numpy(F, pressure)
+        assert P.shape == P0.shape and A.shape == A0.shape
+        np.testing.assert_allclose(P, P0, rtol=0, atol=1e-13 * np.abs(P0).max())
+        np.testing.assert_allclose(A, A0, rtol=0, atol=1e-13 * np.abs(A0).max())
+        np.testing.assert_allclose(law.stress(F, pressure), law.stress_numpy(F, pressure),
+                                   rtol=0, atol=1e-13 * np.abs(P0).max())
+    I1, I2, J = invariants(F)
+    np.testing.assert_allclose(np.stack(compiled_invariants(F)), np.stack([I1, I2, J]),
+                               rtol=1e-14, atol=0)
 
 
 def test_isochoric_part_is_the_membrane_law():

@@ -20,6 +20,9 @@ import numpy as np
 from spsc.core.errors import ParameterError, require
 from spsc.materials import Material
 
+from .material_kernel import AVAILABLE as COMPILED, invariants as compiled_invariants, \
+    stress as compiled_stress, stress_tangent as compiled_stress_tangent
+
 __all__ = ["NearlyIncompressible", "invariants"]
 
 _I3 = np.eye(3)
@@ -83,7 +86,15 @@ class NearlyIncompressible:
         return W + p * (J - 1.0) - p**2 / (2.0 * self.kappa)
 
     def stress(self, F, p):
-        """First Piola–Kirchhoff stress P = ∂Ψ/∂F (MPa), shape (..., 3, 3)."""
+        """First Piola–Kirchhoff stress P = ∂Ψ/∂F (MPa), shape (..., 3, 3): compiled
+        (:mod:`.material_kernel`) where Numba is installed, else :meth:`stress_numpy`."""
+        if not COMPILED:
+            return self.stress_numpy(F, p)
+        I1, I2, J = compiled_invariants(F)
+        return compiled_stress(F, p, *self.material.dW(J ** (-2 / 3) * I1, J ** (-4 / 3) * I2))
+
+    def stress_numpy(self, F, p):
+        """:meth:`stress` in NumPy (the fallback, and the compiled kernel's reference)."""
         return self._stress(F, p)[0]
 
     def _stress(self, F, p):
@@ -102,7 +113,18 @@ class NearlyIncompressible:
         return P, (C, I1, I2, J, G, j23, j43, H, d1, d2, W1, W2)
 
     def stress_tangent(self, F, p):
-        """P (..., 3, 3) and 𝔸 = ∂P/∂F (..., 3, 3, 3, 3) with index order [i, J, k, L].
+        """P (..., 3, 3) and 𝔸 = ∂P/∂F (..., 3, 3, 3, 3) with index order [i, J, k, L]:
+        compiled (:mod:`.material_kernel`) where Numba is installed, else
+        :meth:`stress_tangent_numpy`."""
+        if not COMPILED:
+            return self.stress_tangent_numpy(F, p)
+        I1, I2, J = compiled_invariants(F)
+        Ib1, Ib2 = J ** (-2 / 3) * I1, J ** (-4 / 3) * I2
+        return compiled_stress_tangent(F, p, *self.material.dW(Ib1, Ib2),
+                                       *self.material.d2W(Ib1, Ib2))
+
+    def stress_tangent_numpy(self, F, p):
+        """P and 𝔸 in NumPy (the fallback, and the compiled kernel's reference).
 
         Built on flattened components (iJ, kL) = (3i + J, 3k + L): the outer-product terms
         as one small matrix product Uᵀ M U over U = (d1, d2, G, F, H), the δ-terms as 3×3

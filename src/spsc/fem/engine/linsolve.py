@@ -109,6 +109,10 @@ class _Pardiso:
             self.ps.set_phase(11)
             self.ps._call_pardiso(U, np.zeros((n, 1)))
             self.key = key
+            # MKL filled in its defaults (iparm[0] = 1 now): keep them but iparm[7] = 0,
+            # iterative refinement only after perturbed pivots. Its default two steps on
+            # every solve quadrupled a solve's time for the same residual (issue 26).
+            self.ps.iparm[0], self.ps.iparm[7] = 1, 0
         self.ps.set_phase(22)
         self.ps._call_pardiso(U, np.zeros((n, 1)))
         self.U = U
