@@ -31,6 +31,25 @@ def test_tangent_matches_residual_differences():
     np.testing.assert_allclose(Kv, fd, rtol=0, atol=1e-6 * np.abs(Kv).max())
 
 
+def test_compiled_element_loop_is_the_numpy_assembly(monkeypatch):
+    """The Numba element loop (spsc.fem.solid.assembly_kernel) against the NumPy assembly: the
+    same integrals summed in another order, so equal to round-off (1e-13 of the largest)."""
+    import spsc.fem.solid.assembly as assembly
+
+    if not assembly.COMPILED:
+        pytest.skip("Numba is not installed: the NumPy assembly is the assembly")
+    m = spsc_wall(preset("B"), 3.0, layers=1)
+    model = FEMModel.build(m, yeoh(0.5056, 0.01, 0.002562), bulk_ratio=50.0)
+    d, rng = model.disc, np.random.default_rng(4)
+    x = np.concatenate([0.05 * rng.standard_normal(d.n_u), 0.05 * rng.standard_normal(d.n_p)])
+    r, K = assemble(d, model.law, x)
+    monkeypatch.setattr(assembly, "COMPILED", False)
+    r0, K0 = assemble(d, model.law, x)
+    np.testing.assert_allclose(r, r0, rtol=0, atol=1e-13 * np.abs(r0).max())
+    assert K.nnz == K0.nnz and np.array_equal(K.indices, K0.indices)
+    np.testing.assert_allclose(K.data, K0.data, rtol=0, atol=1e-13 * np.abs(K0.data).max())
+
+
 def _affine_patch(F0, law_mat, curved, seed=0):
     m = block((1.0, 1.2, 0.8), (2, 2, 2))
     X = m.nodes.copy()

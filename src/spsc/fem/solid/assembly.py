@@ -19,6 +19,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..material import NearlyIncompressible
+from .assembly_kernel import AVAILABLE as COMPILED, residual_tangent
 from .element import tet_p1, tet_p2, tet_rule
 
 __all__ = ["Pattern", "Discretisation", "discretise", "assemble", "InvertedElement"]
@@ -37,6 +38,7 @@ class Pattern:
     indices: np.ndarray
     keys: np.ndarray  # sorted row * n + col of the stored entries
     slots: np.ndarray  # (nel, m, m) CSR positions of the element matrix entries
+    order: np.ndarray  # the elements by their lowest unknown (the compiled loop's order)
 
     @classmethod
     def from_element_dofs(cls, dofs: np.ndarray, n: int) -> "Pattern":
@@ -46,7 +48,8 @@ class Pattern:
         keys, inverse = np.unique(rows * n + cols, return_inverse=True)
         indptr = np.searchsorted(keys, np.arange(n + 1, dtype=np.int64) * n)
         return cls(n, indptr, (keys % n).astype(np.int32), keys,
-                   inverse.reshape(dofs.shape[0], m, m))
+                   inverse.reshape(dofs.shape[0], m, m),
+                   np.argsort(dofs.min(axis=1), kind="stable"))
 
     def slots_of(self, dofs: np.ndarray) -> np.ndarray:
         """CSR positions of the (k, m, m) blocks of another batch (e.g. surface facets) whose
@@ -65,6 +68,10 @@ class Pattern:
         its structure never changes between Newton iterations."""
         slots = self.slots if slots is None else slots
         data = np.bincount(slots.ravel(), weights=values.ravel(), minlength=self.keys.size)
+        return self.csr(data, extra)
+
+    def csr(self, data: np.ndarray, extra=()) -> sp.csr_matrix:
+        """The CSR matrix of the pattern's values ``data`` with the ``extra`` blocks added."""
         for v, s in extra:
             data += np.bincount(s.ravel(), weights=v.ravel(), minlength=self.keys.size)
         return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
@@ -168,6 +175,12 @@ def assemble(d: Discretisation, law: NearlyIncompressible, x, *, tangent: bool =
     else:
         P = law.stress(F, pq)
     nel, nq = d.dV.shape
+    if tangent and COMPILED:
+        JG = J[..., None, None] * np.swapaxes(np.linalg.inv(F), -1, -2)
+        r, data = residual_tangent(P, A, JG, J, pq, d.dNdX, d.dV, d.Np, law.kappa, d.dofs,
+                                   d.pattern.slots, d.pattern.order, d.n,
+                                   d.pattern.keys.size)
+        return r, d.pattern.csr(data, extra)
     ru = np.einsum("eqij,eqaj,eq->eai", P, d.dNdX, d.dV).reshape(nel, 30)
     rp = np.einsum("eq,qb,eq->eb", J - 1.0 - pq / law.kappa, d.Np, d.dV)
     r = np.bincount(d.dofs.ravel(), weights=np.hstack([ru, rp]).ravel(), minlength=d.n)
