@@ -93,6 +93,13 @@ class MixedSolid:
         object.__setattr__(self, "Minv", np.linalg.inv(M))
         object.__setattr__(self, "rows", np.repeat(dofs, nd, axis=1).ravel())
         object.__setattr__(self, "cols", np.tile(dofs, (1, nd)).ravel())
+        if self.B is not None:  # the constant operands of the tangent, made once per mesh
+            ne, nq = self.dV.shape
+            BdV = self.B * self.dV[..., None, None]
+            object.__setattr__(self, "_BdV", BdV)
+            # contiguous: a transposed stack would send matmul down its slow loop
+            object.__setattr__(self, "_BdVt", np.ascontiguousarray(
+                np.swapaxes(BdV.reshape(ne, nq * 9, -1), 1, 2)))
 
     @property
     def n_pressure(self) -> int:
@@ -155,12 +162,9 @@ class MixedSolid:
         A = A.reshape(ne, nq, 9, 9)
         nd = self.B.shape[-1]
         # batched matmul over elements: (nd, nq·9) @ (nq·9, nd); einsum is 10x slower here
-        BdV = self.B * self.dV[..., None, None]
+        BdV = self._BdV
         re = np.einsum("eqc,eqcd->ed", P, BdV)
-        AB = (A @ self.B).reshape(ne, nq * 9, nd)
-        # contiguous operands: a transposed stack would send matmul down its slow loop
-        BdVt = np.ascontiguousarray(np.swapaxes(BdV.reshape(ne, nq * 9, nd), 1, 2))
-        Ke = BdVt @ AB
+        Ke = self._BdVt @ (A @ self.B).reshape(ne, nq * 9, nd)
         JG = J[..., None] * np.swapaxes(np.linalg.inv(F), -1, -2).reshape(ne, nq, 9)
         JGB = np.einsum("eqc,eqcd->eqd", JG, BdV)  # (ne, nq, nd)
         G = np.ascontiguousarray(np.swapaxes(self.q, 1, 2)) @ JGB  # (ne, k, nd)
