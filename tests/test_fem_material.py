@@ -61,6 +61,20 @@ def test_compiled_kernel_is_the_numpy_law(mat):
                                rtol=1e-14, atol=0)
 
 
+def test_compiled_cofactor_and_determinant():
+    """J and J F⁻ᵀ of the compiled kernel against NumPy's LU-based det and inv (1e-13)."""
+    from spsc.fem.material_kernel import cofactor, determinant
+
+    F, _ = _random_F(40, seed=5)
+    F = F.reshape(2, 20, 3, 3)
+    J, cof = cofactor(F)
+    J0 = np.linalg.det(F)
+    np.testing.assert_allclose(determinant(F), J0, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(J, J0, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(cof, J0[..., None, None] * np.swapaxes(np.linalg.inv(F), -1, -2),
+                               rtol=0, atol=1e-13 * np.abs(cof).max())
+
+
 def test_isochoric_part_is_the_membrane_law():
     """On isochoric F (J = 1, p = 0) the energy is exactly W(I1, I2) of spsc.materials."""
     mat = yeoh(0.5056, 0.01, 0.002562)

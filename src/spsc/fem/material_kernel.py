@@ -22,7 +22,7 @@ except ImportError:  # pragma: no cover
     def njit(*args, **kwargs):
         return (lambda f: f) if not args or not callable(args[0]) else args[0]
 
-__all__ = ["AVAILABLE", "invariants", "stress", "stress_tangent"]
+__all__ = ["AVAILABLE", "cofactor", "determinant", "invariants", "stress", "stress_tangent"]
 
 
 @njit(cache=True, inline="always")
@@ -55,6 +55,29 @@ def _point(f, C, G, H):
             H[i, j] = I1 * f[i, j] - (f[i, 0] * C[0, j] + f[i, 1] * C[1, j]
                                       + f[i, 2] * C[2, j])
     return I1, I2, J
+
+
+@njit(cache=True)
+def _determinant(F):
+    n = F.shape[0]
+    J = np.empty(n)
+    for k in range(n):
+        f = F[k]
+        J[k] = (f[0, 0] * (f[1, 1] * f[2, 2] - f[1, 2] * f[2, 1])
+                + f[0, 1] * (f[1, 2] * f[2, 0] - f[1, 0] * f[2, 2])
+                + f[0, 2] * (f[1, 0] * f[2, 1] - f[1, 1] * f[2, 0]))
+    return J
+
+
+@njit(cache=True)
+def _cofactor(F):
+    n = F.shape[0]
+    J, cof = np.empty(n), np.empty((n, 3, 3))
+    C, H = np.empty((3, 3)), np.empty((3, 3))
+    for k in range(n):
+        _, _, J[k] = _point(F[k], C, cof[k], H)
+        cof[k] *= J[k]
+    return J, cof
 
 
 @njit(cache=True)
@@ -145,6 +168,24 @@ def _flat(F, p):
 
 def _flat1(x, shape):
     return np.ascontiguousarray(np.broadcast_to(np.asarray(x, dtype=float), shape).ravel())
+
+
+def determinant(F):
+    """J = det F for ``F`` (..., 3, 3) (NumPy's LU-based det where Numba is absent)."""
+    if not AVAILABLE:
+        return np.linalg.det(F)
+    shape, Ff, _ = _flat(F, 0.0)
+    return _determinant(Ff).reshape(shape)
+
+
+def cofactor(F):
+    """(J, J F⁻ᵀ): the determinant and the cofactor matrix of ``F`` (..., 3, 3)."""
+    if not AVAILABLE:
+        J = np.linalg.det(F)
+        return J, J[..., None, None] * np.swapaxes(np.linalg.inv(F), -1, -2)
+    shape, Ff, _ = _flat(F, 0.0)
+    J, cof = _cofactor(Ff)
+    return J.reshape(shape), cof.reshape(shape + (3, 3))
 
 
 def invariants(F):

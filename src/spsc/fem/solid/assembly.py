@@ -19,6 +19,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..material import NearlyIncompressible
+from ..material_kernel import cofactor
 from .assembly_kernel import AVAILABLE as COMPILED, residual_tangent
 from .element import tet_p1, tet_p2, tet_rule
 
@@ -164,7 +165,7 @@ def assemble(d: Discretisation, law: NearlyIncompressible, x, *, tangent: bool =
     u, p = d.split(x)
     F = deformation_gradient(d, u)
     pq = np.einsum("qb,eb->eq", d.Np, p[d.pressure_dof[d.tets[:, :4]]])
-    J = np.linalg.det(F)
+    J, JG = cofactor(F)
     if not np.all(J > 0):
         bad = np.any(~(J > 0), axis=1)
         c = d.X[d.tets[np.argmax(bad), :4]].mean(axis=0)
@@ -176,7 +177,6 @@ def assemble(d: Discretisation, law: NearlyIncompressible, x, *, tangent: bool =
         P = law.stress(F, pq)
     nel, nq = d.dV.shape
     if tangent and COMPILED:
-        JG = J[..., None, None] * np.swapaxes(np.linalg.inv(F), -1, -2)
         r, data = residual_tangent(P, A, JG, J, pq, d.dNdX, d.dV, d.Np, law.kappa, d.dofs,
                                    d.pattern.slots, d.pattern.order, d.n,
                                    d.pattern.keys.size)
@@ -193,8 +193,7 @@ def assemble(d: Discretisation, law: NearlyIncompressible, x, *, tangent: bool =
     B = B.reshape(nel, nq, 9, 30)
     BdV = B * d.dV[..., None, None]
     Kuu = np.einsum("eqmi,eqmn,eqnj->eij", BdV, A.reshape(nel, nq, 9, 9), B, optimize=True)
-    G = np.swapaxes(np.linalg.inv(F), -1, -2)
-    Kup = np.einsum("eqm,eqmi,qb->eib", (J[..., None, None] * G).reshape(nel, nq, 9), BdV,
+    Kup = np.einsum("eqm,eqmi,qb->eib", JG.reshape(nel, nq, 9), BdV,
                     d.Np, optimize=True)
     Kpp = -np.einsum("qa,qb,eq->eab", d.Np, d.Np, d.dV) / law.kappa
     Ke = np.empty((nel, 34, 34))

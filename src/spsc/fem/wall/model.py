@@ -25,6 +25,7 @@ from ..engine.linsolve import available_solvers
 from ..engine.settings import Settings
 from ..engine.steps import Load
 from ..material import NearlyIncompressible
+from ..material_kernel import determinant
 from ..viscous import ViscousLaw
 from .section import section_mesh
 from .section_solid import InvertedSection, section_solid
@@ -220,7 +221,7 @@ class WallModel:
 
     def admissible(self, x) -> bool:
         """No element inverted at ``x`` (det F > 0 at every quadrature point)."""
-        return bool(np.all(np.linalg.det(self.solid.deformation(self.displacements(x))) > 0))
+        return bool(np.all(determinant(self.solid.deformation(self.displacements(x))) > 0))
 
     def volume(self, x) -> float:
         """Cavity volume (mm³)."""

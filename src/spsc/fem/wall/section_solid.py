@@ -32,6 +32,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..material import NearlyIncompressible
+from ..material_kernel import cofactor, determinant
 from .section import Section
 
 __all__ = ["MixedSolid", "section_solid", "InvertedSection"]
@@ -118,7 +119,7 @@ class MixedSolid:
 
     def _fields(self, u, pc):
         F = self.deformation(u)
-        J = np.linalg.det(F)
+        J = determinant(F)
         if np.any(J <= 0):
             raise InvertedSection("det F <= 0 in the wall section")
         p = np.einsum("eqk,ek->eq", self.q, pc)
@@ -165,7 +166,7 @@ class MixedSolid:
         BdV = self._BdV
         re = np.einsum("eqc,eqcd->ed", P, BdV)
         Ke = self._BdVt @ (A @ self.B).reshape(ne, nq * 9, nd)
-        JG = J[..., None] * np.swapaxes(np.linalg.inv(F), -1, -2).reshape(ne, nq, 9)
+        JG = cofactor(F)[1].reshape(ne, nq, 9)
         JGB = np.einsum("eqc,eqcd->eqd", JG, BdV)  # (ne, nq, nd)
         G = np.ascontiguousarray(np.swapaxes(self.q, 1, 2)) @ JGB  # (ne, k, nd)
         Ke += self.law.kappa * (np.ascontiguousarray(np.swapaxes(G, 1, 2)) @ (self.Minv @ G))

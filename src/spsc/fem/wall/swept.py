@@ -38,6 +38,7 @@ import numpy as np
 from spsc.cad.geometry import SPSCGeometry
 
 from ..material import NearlyIncompressible
+from ..material_kernel import cofactor
 from .section import Section, _GAUSS_T, _GAUSS_W, _edge_shape
 from .section_solid import MixedSolid, _pressure_basis
 
@@ -151,7 +152,8 @@ class CartesianSolid(MixedSolid):
         Ke = np.ascontiguousarray(np.transpose(Ke, (0, 1, 2, 4, 3))).reshape(ne, 3 * nb, 3 * nb)
         # G[k, (b i)] = ∫ q_k J F⁻ᵀ_ij ∂_j N_b dV
         nk = self.q.shape[-1]
-        Y = self.q[:, :, None, :, None] * (J[..., None, None] * np.linalg.inv(F))[:, :, :, None, :]
+        JFinv = np.swapaxes(cofactor(F)[1], -1, -2)  # J F⁻¹
+        Y = self.q[:, :, None, :, None] * JFinv[:, :, :, None, :]
         G = (self._Gt @ Y.reshape(ne, nq * 3, nk * 3)).reshape(ne, nb, nk, 3)
         G = np.ascontiguousarray(np.transpose(G, (0, 2, 1, 3))).reshape(ne, nk, 3 * nb)
         Ke += self.law.kappa * (np.ascontiguousarray(np.swapaxes(G, 1, 2)) @ (self.Minv @ G))
