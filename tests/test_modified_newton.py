@@ -56,3 +56,23 @@ def test_a_replaced_pardiso_factor_refuses_to_solve():
     assert_allclose(second(np.ones(3)), [0.25, 1 / 6, 0.125], rtol=1e-12)
     with pytest.raises(RuntimeError, match="later factorisation"):
         first(np.ones(3))
+
+
+@pytest.mark.skipif("pardiso" not in available_solvers(), reason="pypardiso not installed")
+def test_cholesky_first_pardiso_falls_back_to_ldlt_with_the_inertia():
+    """``pardiso-spd``: a positive definite matrix by Cholesky (no negative eigenvalue); an
+    indefinite one by LDLᵀ with its negative eigenvalues counted; the Cholesky factor held
+    before a failed attempt refuses to solve (its factors were overwritten)."""
+    rng = np.random.default_rng(0)
+    Q, _ = np.linalg.qr(rng.standard_normal((6, 6)))
+    spd = sp.csr_matrix(Q @ np.diag([1.0, 2, 3, 4, 5, 6]) @ Q.T)
+    b = rng.standard_normal(6)
+    first = factorize(spd, "pardiso-spd")
+    assert first.negative == 0
+    assert_allclose(spd @ first(b), b, rtol=0, atol=1e-12)
+    indefinite = sp.csr_matrix(Q @ np.diag([-1.0, -2, 3, 4, 5, 6]) @ Q.T)
+    second = factorize(indefinite, "pardiso-spd")
+    assert second.negative == 2
+    assert_allclose(indefinite @ second(b), b, rtol=0, atol=1e-12)
+    with pytest.raises(RuntimeError, match="later factorisation"):
+        first(b)

@@ -37,7 +37,7 @@ __all__ = ["WallSettings", "WallModel"]
 #: the same curves to 1e-14), SuperLU's symmetric mode where pypardiso is absent. Probed at
 #: import on purpose: MKL first loaded inside wall_curve's one-BLAS-thread limit
 #: (threadpoolctl) made PARDISO's factorisation segfault on the next curve (stop 33).
-_SOLVER = "pardiso" if "pardiso" in available_solvers() else "superlu-sym"
+_SOLVER = "pardiso-spd" if "pardiso" in available_solvers() else "superlu-sym"
 
 #: default element length along the profile (mm): the dome's 2D section is cheap, the
 #: stadium's swept hexahedra are not (both within 0.5 % of their converged answer, docs/theory/wall.md)
@@ -144,10 +144,15 @@ class _Pattern:
         self.indices = (uniq % n).astype(np.int32)
         self.indptr = np.searchsorted(uniq, np.arange(n + 1) * n).astype(np.int32)
         self.positions = np.split(inv.ravel(), np.cumsum([k.size for k in keys])[:-1])
+        self._joined = {}  # the positions of each combination of blocks present, joined once
 
     def matrix(self, *values) -> sp.csr_matrix:
         """The CSR matrix of the blocks' ``values`` (each the size of its block array)."""
-        pos = np.concatenate([self.positions[i] for i, v in enumerate(values) if v is not None])
+        present = tuple(v is not None for v in values)
+        pos = self._joined.get(present)
+        if pos is None:
+            pos = self._joined[present] = np.concatenate(
+                [self.positions[i] for i, there in enumerate(present) if there])
         val = np.concatenate([v.ravel() for v in values if v is not None])
         data = np.bincount(pos, weights=val, minlength=self.nnz)
         return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
