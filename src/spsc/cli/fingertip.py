@@ -7,7 +7,6 @@ import argparse
 import time
 
 from spsc.cli.bladder import gate
-from spsc.cad.fingertip import MESH_TOLERANCE
 
 from spsc.cli.options import Once, check_output_dir, number
 
@@ -84,7 +83,8 @@ def run(args: argparse.Namespace) -> int:
     spec = FingertipSpec(angle=args.angle,
                          pocket=PocketSpec(diameter=args.pocket_diameter, depth=args.pocket_depth))
     from spsc.cad.export import export_part, tessellate
-    from spsc.cad.fingertip import build_fingertip, measure_pockets
+    # CAD (cadquery, 1.5 s to import) only when a fingertip is built, not for every verb
+    from spsc.cad.fingertip import MESH_TOLERANCE, build_fingertip, measure_pockets
 
     t0 = time.perf_counter()
     tip = build_fingertip(spec)
