@@ -32,8 +32,9 @@ def test_tangent_matches_residual_differences():
 
 
 def test_compiled_element_loop_is_the_numpy_assembly(monkeypatch):
-    """The Numba element loop (spsc.fem.solid.assembly_kernel) against the NumPy assembly: the
-    same integrals summed in another order, so equal to round-off (1e-13 of the largest)."""
+    """The Numba element loops (spsc.fem.solid.assembly_kernel: F, the residual alone, residual
+    and tangent) against the NumPy assembly: the same integrals summed in another order, so
+    equal to round-off (1e-13 of the largest; F is O(1))."""
     import spsc.fem.solid.assembly as assembly
 
     if not assembly.COMPILED:
@@ -43,9 +44,14 @@ def test_compiled_element_loop_is_the_numpy_assembly(monkeypatch):
     d, rng = model.disc, np.random.default_rng(4)
     x = np.concatenate([0.05 * rng.standard_normal(d.n_u), 0.05 * rng.standard_normal(d.n_p)])
     r, K = assemble(d, model.law, x)
+    r_alone = assemble(d, model.law, x, tangent=False)
+    F = assembly.deformation_gradient(d, d.split(x)[0])
     monkeypatch.setattr(assembly, "COMPILED", False)
     r0, K0 = assemble(d, model.law, x)
+    np.testing.assert_allclose(assembly.deformation_gradient(d, d.split(x)[0]), F, rtol=0,
+                               atol=1e-14)
     np.testing.assert_allclose(r, r0, rtol=0, atol=1e-13 * np.abs(r0).max())
+    np.testing.assert_allclose(r_alone, r0, rtol=0, atol=1e-13 * np.abs(r0).max())
     assert K.nnz == K0.nnz and np.array_equal(K.indices, K0.indices)
     np.testing.assert_allclose(K.data, K0.data, rtol=0, atol=1e-13 * np.abs(K0.data).max())
 

@@ -20,7 +20,8 @@ import scipy.sparse as sp
 
 from ..material import NearlyIncompressible
 from ..material_kernel import cofactor
-from .assembly_kernel import AVAILABLE as COMPILED, residual_tangent
+from .assembly_kernel import AVAILABLE as COMPILED, deformation_gradient as compiled_F, \
+    residual as compiled_residual, residual_tangent as compiled_residual_tangent
 from .element import tet_p1, tet_p2, tet_rule
 
 __all__ = ["Pattern", "Discretisation", "discretise", "assemble", "InvertedElement"]
@@ -152,6 +153,8 @@ def discretise(X, tets, *, order: int = 2) -> Discretisation:
 
 def deformation_gradient(d: Discretisation, u):
     """F = I + ∇u at every quadrature point, (nel, nq, 3, 3), for nodal displacements u (N, 3)."""
+    if COMPILED:
+        return compiled_F(u, d.tets, d.dNdX)
     return np.eye(3) + np.einsum("eai,eqaj->eqij", u[d.tets], d.dNdX)
 
 
@@ -176,8 +179,10 @@ def assemble(d: Discretisation, law: NearlyIncompressible, x, *, tangent: bool =
     else:
         P = law.stress(F, pq)
     nel, nq = d.dV.shape
+    if not tangent and COMPILED:
+        return compiled_residual(P, J, pq, d.dNdX, d.dV, d.Np, law.kappa, d.dofs, d.n)
     if tangent and COMPILED:
-        r, data = residual_tangent(P, A, JG, J, pq, d.dNdX, d.dV, d.Np, law.kappa, d.dofs,
+        r, data = compiled_residual_tangent(P, A, JG, J, pq, d.dNdX, d.dV, d.Np, law.kappa, d.dofs,
                                    d.pattern.slots, d.pattern.order, d.n,
                                    d.pattern.keys.size)
         return r, d.pattern.csr(data, extra)

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..material_kernel import AVAILABLE, njit
 
-__all__ = ["AVAILABLE", "residual_tangent"]
+__all__ = ["AVAILABLE", "deformation_gradient", "residual", "residual_tangent"]
 
 
 @njit(cache=True)
@@ -63,6 +63,50 @@ def _element_loop(P, A, JG, Jm1, pq, dN, dV, Np, kappa, dofs, slots, order, r, d
         for m in range(34):
             for n in range(34):
                 data[slots[e, m, n]] += Ke[m, n]
+
+
+@njit(cache=True)
+def _deformation(u, tets, dN):
+    nel, nq = dN.shape[0], dN.shape[1]
+    F = np.empty((nel, nq, 3, 3))
+    for e in range(nel):
+        for q in range(nq):
+            for i in range(3):
+                for j in range(3):
+                    v = 1.0 if i == j else 0.0
+                    for a in range(10):
+                        v += u[tets[e, a], i] * dN[e, q, a, j]
+                    F[e, q, i, j] = v
+    return F
+
+
+@njit(cache=True)
+def _residual_loop(P, Jm1, pq, dN, dV, Np, kappa, dofs, r):
+    nel, nq = dV.shape
+    for e in range(nel):
+        for q in range(nq):
+            w = dV[e, q]
+            for a in range(10):
+                for i in range(3):
+                    r[dofs[e, 3 * a + i]] += w * (P[e, q, i, 0] * dN[e, q, a, 0]
+                                                  + P[e, q, i, 1] * dN[e, q, a, 1]
+                                                  + P[e, q, i, 2] * dN[e, q, a, 2])
+            vol = w * (Jm1[e, q] - pq[e, q] / kappa)
+            for c in range(4):
+                r[dofs[e, 30 + c]] += vol * Np[q, c]
+
+
+def deformation_gradient(u, tets, dNdX):
+    """F = I + Σ_a u_a ⊗ ∇N_a at every quadrature point, (nel, nq, 3, 3)."""
+    return _deformation(np.ascontiguousarray(u), tets, dNdX)
+
+
+def residual(P, J, pq, dNdX, dV, Np, kappa, dofs, n):
+    """The residual (n,) of :func:`residual_tangent` alone."""
+    r = np.zeros(n)
+    _residual_loop(np.ascontiguousarray(P), np.ascontiguousarray(J - 1.0),
+                   np.ascontiguousarray(pq), dNdX, dV, Np, float(kappa), dofs, r)
+    return r
 
 
 def residual_tangent(P, A, JG, J, pq, dNdX, dV, Np, kappa, dofs, slots, order, n, nnz):

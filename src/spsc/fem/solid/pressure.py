@@ -76,8 +76,14 @@ class CavitySurface:
         np.add.at(g, self.facets, ge)
         if not tangent:
             return g
-        # ∂(x,ξ × x,η)_i/∂x_bm = ε_imk N_b,ξ x,η_k + ε_ijm x,ξ_j N_b,η
-        dn = (np.einsum("imk,qb,fqk->fqibm", _EPS, dN[:, :, 0], xt)
-              + np.einsum("ijm,fqj,qb->fqibm", _EPS, xs, dN[:, :, 1]))
-        H = -np.einsum("qa,fqibm,q->faibm", N, dn, w)
+        # ∂(x,ξ × x,η)_i/∂x_bm = ε_imk N_b,ξ x,η_k + ε_ijm x,ξ_j N_b,η, so
+        # H_aibm = −Σ_q w N_a (N_b,ξ T_im + N_b,η S_im) with T = ε·x,η and S = x,ξ·ε: two
+        # matrix products over the quadrature points (the 5-index einsum was 3 ms a call)
+        T = np.einsum("imk,fqk->fqim", _EPS, xt).reshape(*xt.shape[:2], 9)
+        S = np.einsum("ijm,fqj->fqim", _EPS, xs).reshape(*xs.shape[:2], 9)
+        nq = len(w)
+        Cs = (w[:, None, None] * N[:, :, None] * dN[:, None, :, 0]).reshape(nq, 36)
+        Ct = (w[:, None, None] * N[:, :, None] * dN[:, None, :, 1]).reshape(nq, 36)
+        H = -(Cs.T @ T + Ct.T @ S)  # (nf, (a b), (i m))
+        H = H.reshape(len(self.facets), 6, 6, 3, 3).transpose(0, 1, 3, 2, 4)
         return g, H.reshape(len(self.facets), 18, 18)
