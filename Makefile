@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-all docs bench bench-mold bench-compare bench-wall bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap clean
+.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-all docs bench bench-mold bench-compare bench-wall bench-speed bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -104,6 +104,11 @@ bench-mold: $(STAMP)
 # material fitting and calibration figures (issue 12; about 6 min)
 bench-material: $(STAMP)
 	$(BIN)/python bench/bench_material.py
+
+# issue 26's interactive-speed figures that take minutes (wall and 3D FEM curves, the CLI's
+# start-up; about 3 min), with the commands of the longer rows
+bench-speed: $(STAMP)
+	$(BIN)/python bench/bench_speed.py
 
 # the wall model against the 3D FEM (references: about 40 min the first time, then cached)
 bench-wall: $(STAMP)
