@@ -118,7 +118,7 @@ class _Pardiso:
             self.key = key
             # MKL filled in its defaults (iparm[0] = 1 now): keep them but iparm[7] = 0,
             # iterative refinement only after perturbed pivots. Its default two steps on
-            # every solve quadrupled a solve's time for the same residual (issue 26).
+            # every solve made one 5x slower (2.2 against 0.4 ms), same residual (issue 26).
             self.ps.iparm[0], self.ps.iparm[7] = 1, 0
         self.ps.set_phase(22)
         self.serial += 1  # a failed factorisation spoils the factors held too
