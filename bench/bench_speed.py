@@ -66,11 +66,11 @@ def main(argv=None) -> int:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--no-fem", action="store_true", help="the wall rows only")
     args = ap.parse_args(argv)
-    print(f"{'figure':58} {'now':>10}  target")
+    print(f"{'figure':64} {'now':>10}  target")
     for dome, target in ((False, "≤ 1 s"), (True, "≤ 0.2 s")):
         t, its = _wall(dome, args.repeat)
         name = "dome" if dome else "Table 1 stadium"
-        print(f"{'wall: Type B ' + name + ', inflation + 17 points / 4 mm':58} "
+        print(f"{'wall: Type B ' + name + ', inflation + 17 points / 4 mm':64} "
               f"{t:9.3f}s  {target}  ({its} Newton iterations, best of {args.repeat})",
               flush=True)
     if not args.no_fem:
@@ -81,10 +81,10 @@ def main(argv=None) -> int:
                        "--json", str(Path(tmp) / "c.json")] + (["--l", "0"] if dome else [])
                 t = _process(fem, args.repeat)
                 name = "dome" if dome else "Table 1"
-                print(f"{'3D FEM: Type B ' + name + ', 40 kPa, 3 mm, 1 mm x 2 layers, 7 points':58} "
+                print(f"{'3D FEM: Type B ' + name + ', 40 kPa, 3 mm, 1 mm x 2 layers, 7 points':64} "
                       f"{t:9.2f}s  ≤ 15 s  (whole process, median of {args.repeat})", flush=True)
     t = _process(["--help"], args.repeat)
-    print(f"{'spsc --help (the CLI start-up)':58} {t:9.2f}s  (median of {args.repeat})")
+    print(f"{'spsc --help (the CLI start-up)':64} {t:9.2f}s  (median of {args.repeat})")
     print("\nmeasured elsewhere (minutes to an hour each):")
     for name, target, cmd in LONG:
         print(f"  {name} ({target}):\n    {cmd}")
