@@ -80,8 +80,8 @@ def main(argv=None) -> int:
                        "3", "--points", "7", "--mesh-size", "1", "--layers", "2", "--quiet",
                        "--json", str(Path(tmp) / "c.json")] + (["--l", "0"] if dome else [])
                 t = _process(fem, args.repeat)
-                name = "dome" if dome else "Table 1"
-                print(f"{'3D FEM: Type B ' + name + ', 40 kPa, 3 mm, 1 mm x 2 layers, 7 points':64} "
+                name = ("dome" if dome else "Table 1") + ", 40 kPa, 3 mm, 1 mm x 2 layers, 7 points"
+                print(f"{'3D FEM: Type B ' + name:64} "
                       f"{t:9.2f}s  ≤ 15 s  (whole process, median of {args.repeat})", flush=True)
     t = _process(["--help"], args.repeat)
     print(f"{'spsc --help (the CLI start-up)':64} {t:9.2f}s  (median of {args.repeat})")
