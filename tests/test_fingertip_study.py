@@ -84,3 +84,17 @@ def test_the_figures_are_drawn(study_dir):
     for name in ("curves", "pockets", "discrimination"):
         png = out / figs[name]
         assert png.stat().st_size > 10_000 and png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_a_study_without_the_40_kpa_press_draws_without_an_empty_legend(study_dir):
+    """``--cases pulp-high-10``: the discrimination panel has no 40 kPa high-mode curve to label;
+    it says so instead of drawing an empty legend (matplotlib warned)."""
+    import warnings
+
+    out, spec, design, _ = study_dir
+    study = ff.FingertipStudy(cases=(("pulp", "high", 10.0),), fast_model="membrane")
+    s = ff.run_study(study, out, stl=out / "x.stl", design=design, spec=spec, log=lambda m: None)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        figs = draw_all(s, out)
+    assert (out / figs["discrimination"]).read_bytes()[:4] == b"\x89PNG"
