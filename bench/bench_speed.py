@@ -10,7 +10,6 @@ take longer print the command that measures them. Run on a quiet machine.
 from __future__ import annotations
 
 import argparse
-import os
 import statistics
 import subprocess
 import sys
@@ -54,8 +53,7 @@ def _process(args: list[str], repeat: int) -> float:
     times = []
     for k in range(repeat + 1):
         t0 = time.perf_counter()
-        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                       env=os.environ.copy())
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         if k:
             times.append(time.perf_counter() - t0)
     return statistics.median(times)

@@ -36,6 +36,12 @@ def invariants(F):
     return I1, I2, np.linalg.det(F)
 
 
+def _isochoric_invariants(F):
+    """(Ī1, Ī2) = (J^(−2/3) I1, J^(−4/3) I2) of ``F`` by the compiled kernel."""
+    I1, I2, J = compiled_invariants(F)
+    return J ** (-2 / 3) * I1, J ** (-4 / 3) * I2
+
+
 @dataclass(frozen=True)
 class NearlyIncompressible:
     """The law ``material`` (W(Ī1, Ī2), MPa) plus a volumetric part of bulk modulus κ (MPa).
@@ -90,8 +96,7 @@ class NearlyIncompressible:
         (:mod:`.material_kernel`) where Numba is installed, else :meth:`stress_numpy`."""
         if not COMPILED:
             return self.stress_numpy(F, p)
-        I1, I2, J = compiled_invariants(F)
-        return compiled_stress(F, p, *self.material.dW(J ** (-2 / 3) * I1, J ** (-4 / 3) * I2))
+        return compiled_stress(F, p, *self.material.dW(*_isochoric_invariants(F)))
 
     def stress_numpy(self, F, p):
         """:meth:`stress` in NumPy (the fallback, and the compiled kernel's reference)."""
@@ -118,8 +123,7 @@ class NearlyIncompressible:
         :meth:`stress_tangent_numpy`."""
         if not COMPILED:
             return self.stress_tangent_numpy(F, p)
-        I1, I2, J = compiled_invariants(F)
-        Ib1, Ib2 = J ** (-2 / 3) * I1, J ** (-4 / 3) * I2
+        Ib1, Ib2 = _isochoric_invariants(F)
         return compiled_stress_tangent(F, p, *self.material.dW(Ib1, Ib2),
                                        *self.material.d2W(Ib1, Ib2))
 

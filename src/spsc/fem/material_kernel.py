@@ -57,6 +57,14 @@ def _point(f, C, G, H):
     return I1, I2, J
 
 
+@njit(cache=True, inline="always")
+def _isochoric(f, G, H, I1, I2, j23, j43, i, j):
+    """(∂Ī1/∂F, ∂Ī2/∂F) at entry (i, j) of one point, j23 = J^(−2/3), j43 = J^(−4/3) (eq. of
+    :class:`~spsc.fem.material.NearlyIncompressible`)."""
+    return (j23 * (2.0 * f[i, j] - (2.0 / 3.0) * I1 * G[i, j]),
+            j43 * (2.0 * H[i, j] - (4.0 / 3.0) * I2 * G[i, j]))
+
+
 @njit(cache=True)
 def _determinant(F):
     n = F.shape[0]
@@ -98,13 +106,11 @@ def _stress(F, p, W1, W2):
     for k in range(n):
         f = F[k]
         I1, I2, J = _point(f, C, G, H)
-        j23 = J ** (-2.0 / 3.0)
-        j43 = J ** (-4.0 / 3.0)
+        j23, j43 = J ** (-2.0 / 3.0), J ** (-4.0 / 3.0)
         pJ = p[k] * J
         for i in range(3):
             for j in range(3):
-                d1 = j23 * (2.0 * f[i, j] - (2.0 / 3.0) * I1 * G[i, j])
-                d2 = j43 * (2.0 * H[i, j] - (4.0 / 3.0) * I2 * G[i, j])
+                d1, d2 = _isochoric(f, G, H, I1, I2, j23, j43, i, j)
                 P[k, i, j] = W1[k] * d1 + W2[k] * d2 + pJ * G[i, j]
     return P
 
@@ -126,8 +132,7 @@ def _tangent(F, p, W1, W2, W11, W12, W22):
         for i in range(3):
             for j in range(3):
                 a = 3 * i + j
-                U[0, a] = j23 * (2.0 * f[i, j] - (2.0 / 3.0) * I1 * G[i, j])
-                U[1, a] = j43 * (2.0 * H[i, j] - (4.0 / 3.0) * I2 * G[i, j])
+                U[0, a], U[1, a] = _isochoric(f, G, H, I1, I2, j23, j43, i, j)
                 U[2, a], U[3, a], U[4, a] = G[i, j], f[i, j], H[i, j]
                 P[k, i, j] = w1 * U[0, a] + w2 * U[1, a] + pJ * G[i, j]
                 b[i, j] = f[i, 0] * f[j, 0] + f[i, 1] * f[j, 1] + f[i, 2] * f[j, 2]

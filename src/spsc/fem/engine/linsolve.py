@@ -155,7 +155,7 @@ def _cholesky_first(A, upper: bool) -> Factor:
     try:
         return _pardiso(2).factor(A, upper)
     except pypardiso.pardiso_wrapper.PyPardisoError as exc:
-        if "-4" not in str(exc):
+        if exc.value != -4:  # −4: a zero or negative pivot, the matrix is not definite
             raise
     return _pardiso(-2).factor(A, upper)
 

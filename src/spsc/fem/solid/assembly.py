@@ -178,14 +178,14 @@ def assemble(d: Discretisation, law: NearlyIncompressible, x, *, tangent: bool =
         P, A = law.stress_tangent(F, pq)
     else:
         P = law.stress(F, pq)
-    nel, nq = d.dV.shape
-    if not tangent and COMPILED:
-        return compiled_residual(P, J, pq, d.dNdX, d.dV, d.Np, law.kappa, d.dofs, d.n)
-    if tangent and COMPILED:
-        r, data = compiled_residual_tangent(P, A, JG, J, pq, d.dNdX, d.dV, d.Np, law.kappa, d.dofs,
-                                   d.pattern.slots, d.pattern.order, d.n,
-                                   d.pattern.keys.size)
+    if COMPILED:
+        if not tangent:
+            return compiled_residual(P, J, pq, d.dNdX, d.dV, d.Np, law.kappa, d.dofs, d.n)
+        r, data = compiled_residual_tangent(P, A, JG, J, pq, d.dNdX, d.dV, d.Np, law.kappa,
+                                            d.dofs, d.pattern.slots, d.pattern.order, d.n,
+                                            d.pattern.keys.size)
         return r, d.pattern.csr(data, extra)
+    nel, nq = d.dV.shape
     ru = np.einsum("eqij,eqaj,eq->eai", P, d.dNdX, d.dV).reshape(nel, 30)
     rp = np.einsum("eq,qb,eq->eb", J - 1.0 - pq / law.kappa, d.Np, d.dV)
     r = np.bincount(d.dofs.ravel(), weights=np.hstack([ru, rp]).ravel(), minlength=d.n)

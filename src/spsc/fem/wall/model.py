@@ -34,7 +34,8 @@ from .swept import SweptWall, sweep_stations
 __all__ = ["WallSettings", "WallModel"]
 
 #: PARDISO (symbolic analysis once per curve: 5× faster per factorisation than SuperLU here,
-#: the same curves to 1e-14), SuperLU's symmetric mode where pypardiso is absent. Probed at
+#: the same curves to 1e-14), Cholesky first while the wall is stable and LDLᵀ with the
+#: inertia where it is not (``pardiso-spd``), SuperLU's symmetric mode where pypardiso is absent. Probed at
 #: import on purpose: MKL first loaded inside wall_curve's one-BLAS-thread limit
 #: (threadpoolctl) made PARDISO's factorisation segfault on the next curve (stop 33).
 _SOLVER = "pardiso-spd" if "pardiso" in available_solvers() else "superlu-sym"
