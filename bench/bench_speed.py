@@ -64,6 +64,8 @@ def main(argv=None) -> int:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--no-fem", action="store_true", help="the wall rows only")
     args = ap.parse_args(argv)
+    if args.repeat < 1:
+        ap.error(f"repeat = {args.repeat}: at least 1 run")
     print(f"{'figure':64} {'now':>10}  target")
     for dome, target in ((False, "≤ 1 s"), (True, "≤ 0.2 s")):
         t, its = _wall(dome, args.repeat)
