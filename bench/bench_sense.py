@@ -8,7 +8,8 @@ the paper's 40 cm³ reservoir, the ELVH's noise at 1 kHz):
 * precision, recall and F1 of contact, release, slip, switch (from the valve column and
   inferred from P) and stiff/soft objects, in all and per mode (the low mode moves the
   pressure by 0.1–0.5 kPa/mm against the sensor's 0.086 kPa: its limits are the noise's);
-* false events per minute of quiet signal (the chamber at rest, read by the sensor);
+* false events per minute of quiet signal (the chamber at rest, read by the sensor): steady,
+  warming by 0.02 kPa/s (the rest tracker's case) and cooling as a settling exponential;
 * force error per type and mode over the holds (the trace's true force against the estimate);
 * streaming samples per second on one core.
 
@@ -98,10 +99,11 @@ def run_stream(dense, trial, method, *, valve=True):
     return s, states, time.perf_counter() - t0
 
 
-def match(true, got, counts, latencies, mode, trial=None):
+def match(true, got, counts, latencies, mode, trial=None, release=None):
     """Count true positives, false negatives and false positives per kind, in all and per
     mode (``counts[kind]``, ``counts[(mode, kind)]``); a contact's latency goes to
-    ``latencies[mode]`` as (from the true contact, from its signal's 1σ, the press's speed)."""
+    ``latencies[mode]`` as (from the true contact, from its signal's 1σ, the press's speed),
+    a release's (from the true release) to ``release[mode]``."""
     used = set()
 
     def add(kind, slot):
@@ -117,6 +119,8 @@ def match(true, got, counts, latencies, mode, trial=None):
         else:
             used.add(hit)
             add(e["kind"], 0)
+            if e["kind"] == "release" and release is not None:
+                release.setdefault(mode, []).append(got[hit]["t_s"] - e["t_s"])
             if e["kind"] == "contact":
                 lat = got[hit]["t_s"] - e["t_s"]
                 visible = signal_time(trial, e["t_s"]) if trial is not None else e["t_s"]
@@ -154,9 +158,17 @@ def force_errors(trial, states, acc):
     a["bias"].append(float(np.mean((f - true)[hold] / true[hold])))
 
 
-def quiet(dense, method, seconds, seed):
+#: the rest pressure's drift in the quiet signal (kPa at t s of ``seconds``)
+DRIFTS = {
+    "steady": lambda t, s: 0.0 * t,
+    "warming 0.02 kPa/s, then steady": lambda t, s: 0.02 * np.minimum(t, s / 2),
+    "cooling by 0.3 kPa, τ 60 s": lambda t, s: -0.3 * (1.0 - np.exp(-t / 60.0)),
+}
+
+
+def quiet(dense, method, seconds, seed, drift):
     t = np.arange(int(seconds * 1000)) * 1e-3
-    p = Sensor.preset("elvh", seed=seed).read(np.full(t.size, SETUP))
+    p = Sensor.preset("elvh", seed=seed).read(SETUP + DRIFTS[drift](t, seconds))
     prm = SenseParams(EstimatorParams(SETUP, RES, Sensor.preset("elvh").noise_kPa, 0.05),
                       ContactParams(method=method))
     s = SenseStream(dense, prm)
@@ -181,7 +193,8 @@ def main():
     ap.add_argument("--json", default="build/bench-sense.json")
     args = ap.parse_args()
     rng = np.random.default_rng(29)
-    res = {m: {"counts": {}, "lat": {}, "quiet_events": 0} for m in ("cusum", "threshold")}
+    res = {m: {"counts": {}, "lat": {}, "rel": {}, "quiet_events": dict.fromkeys(DRIFTS, 0)}
+           for m in ("cusum", "threshold")}
     inferred, acc, samples, seconds, t_map, failed = {}, {}, 0, 0.0, {}, []
     for typ in args.types:
         t0 = time.perf_counter()
@@ -195,7 +208,7 @@ def main():
             for method in ("cusum", "threshold"):
                 s, states, dt = run_stream(dense, trial, method)
                 match(trial.events, s.events, res[method]["counts"], res[method]["lat"],
-                      trial.meta["mode"], trial)
+                      trial.meta["mode"], trial, res[method]["rel"])
                 if method == "cusum":
                     force_errors(trial, states, acc)
                     samples, seconds = samples + len(states), seconds + dt
@@ -204,8 +217,10 @@ def main():
                 match([e for e in trial.events if e["kind"] == "switch"],
                       [e for e in s.events if e["kind"] == "switch"], inferred, {}, "")
         for method in res:
-            res[method]["quiet_events"] += quiet(dense, method, args.quiet_s,
-                                                 int(rng.integers(1 << 30)))
+            seed = int(rng.integers(1 << 30))
+            for k, drift in enumerate(DRIFTS):
+                res[method]["quiet_events"][drift] += quiet(dense, method, args.quiet_s,
+                                                            seed + k, drift)
         print(f"Type {typ}: {len(trials)} scenarios (map {t_map[typ]:.1f} s); draws the "
               f"circuit could not integrate so far: {len(failed)}"
               + (f" (last: {failed[-1]})" if failed else ""), flush=True)
@@ -230,6 +245,11 @@ def report(args, res, inferred, acc, samples, seconds, n):
                 print(f"    presses at {v:g} mm/s: median {np.median(sub[:, 0]):.1f} ms "
                       f"(from 1σ {np.nanmedian(sub[:, 1]):.1f} ms), 95th "
                       f"{np.percentile(sub[:, 0], 95):.1f} ms ({len(sub)})")
+        for mode, lat in sorted(r["rel"].items()):
+            ms = 1e3 * np.array(lat)
+            print(f"release latency, {mode} mode: median {np.median(ms):.1f} ms, 5th and 95th "
+                  f"percentiles {np.percentile(ms, 5):.1f}, {np.percentile(ms, 95):.1f} ms "
+                  f"({len(lat)} releases; negative: before the load was gone)")
         print(f"{'event':14s} {'mode':5s} {'TP':>4s} {'FN':>4s} {'FP':>4s} {'precision':>9s} "
               f"{'recall':>6s} {'F1':>5s}")
         d = {}
@@ -243,15 +263,18 @@ def report(args, res, inferred, acc, samples, seconds, n):
                 "tp": c[0], "fn": c[1], "fp": c[2], "precision": p, "recall": rc, "f1": f1}
             print(f"{kind:14s} {mode:5s} {c[0]:4d} {c[1]:4d} {c[2]:4d} {p:9.3f} {rc:6.3f} "
                   f"{f1:5.3f}")
-        fpm = r["quiet_events"] / quiet_min
-        print(f"false events in quiet signal: {r['quiet_events']} in {quiet_min:.0f} min "
-              f"({fpm:.3g}/min)")
+        for drift, n in r["quiet_events"].items():
+            print(f"false events in quiet signal, {drift}: {n} in {quiet_min:.0f} min "
+                  f"({n / quiet_min:.3g}/min)")
+        fpm = {drift: n / quiet_min for drift, n in r["quiet_events"].items()}
         out["detectors"][method] = {"events": d, "false_per_min": fpm, "latency_ms": {
             mode: {"median": float(np.median([x[0] for x in v]) * 1e3),
                    "p95": float(np.percentile([x[0] for x in v], 95) * 1e3),
                    "from_signal_median": float(np.nanmedian([x[1] for x in v]) * 1e3),
                    "from_signal_p95": float(np.nanpercentile([x[1] for x in v], 95) * 1e3)}
-            for mode, v in r["lat"].items()}}
+            for mode, v in r["lat"].items()}, "release_latency_ms": {
+            mode: {"median": float(np.median(v) * 1e3), "p5": float(np.percentile(v, 5) * 1e3),
+                   "p95": float(np.percentile(v, 95) * 1e3)} for mode, v in r["rel"].items()}}
     if inferred:
         p, rc, f1 = prf(inferred["switch"])
         print(f"\nswitch inferred from P (no valve column): precision {p:.3f} recall {rc:.3f} "

@@ -1,20 +1,6 @@
-"""Events from the pressure (and the FSRs and the finger's closure): contact and release, slip,
-the object's compliance, a valve switch inferred from the pressure. Each detector takes one
+"""Events from the pressure (and the FSRs and the finger's closure): slip and the object's
+compliance (contact and release: :mod:`.contact`, re-exported here). Each detector takes one
 sample at a time in O(1) and returns an event (a dict) or None.
-
-Contact, two detectors against the noise σ_P of the sensor:
-
-* :class:`ThresholdContact`, the paper's (sec. 4.1, Fig. 10a: "threshold values on the pressure
-  and its first derivative"): the filtered rise ΔP = P_f − P_rest above ``on`` while dP/dt is
-  above ``rate`` (a rising pressure, not a drift), or above 2 ``on`` whatever the rate; release
-  below ``off`` < ``on`` (the hysteresis);
-* :class:`CusumContact`, Page's CUSUM on z = (P − P_rest)/σ_P: g⁺ = max(0, g⁺ + z − k),
-  contact when g⁺ > h; once in contact g⁻ = max(0, g⁻ + k_r − z), release when g⁻ > h_r
-  (k_r < k: the hysteresis — a mean between k_r σ and k σ above the rest moves neither). It
-  integrates the evidence of every sample (optimal for a shift of 2kσ) instead of waiting for a
-  smoothed level to cross a line, and gives the onset's time: the last sample g⁺ was 0. Its
-  false-alarm run length at k = 1, h = 12 is of order e^(2k(h + 1.166))/(2k²) ≈ 10¹¹ samples
-  (Siegmund's approximation).
 """
 
 from __future__ import annotations
@@ -25,140 +11,18 @@ from dataclasses import dataclass
 
 from spsc.core.errors import require
 
-__all__ = ["ContactParams", "ThresholdContact", "CusumContact", "Slope", "SlipParams",
-           "SlipDetector", "ComplianceParams", "ComplianceDetector"]
+from .contact import ContactParams, CusumContact, Slope, ThresholdContact, contact_detector
 
-
-@dataclass(frozen=True)
-class ContactParams:
-    """``method`` cusum|threshold. CUSUM: ``k``, ``h`` (σ) of the contact, ``k_release``,
-    ``h_release`` of the release. Threshold: ``on_sigmas``,
-    ``off_sigmas`` (of the filtered pressure's σ), ``rate_sigmas`` (of the slope's σ over
-    ``rate_window_s``)."""
-
-    method: str = "cusum"
-    k: float = 1.0
-    h: float = 12.0
-    k_release: float = 0.5
-    h_release: float = 8.0
-    on_sigmas: float = 5.0
-    off_sigmas: float = 2.0
-    rate_sigmas: float = 3.0
-    rate_window_s: float = 0.02
-
-    def __post_init__(self):
-        if self.method not in ("cusum", "threshold"):
-            from spsc.core.errors import ParameterError
-            raise ParameterError("contact method", self.method, "cusum or threshold")
-        require("contact k", self.k, gt=0, le=20, unit="σ")
-        require("contact h", self.h, gt=0, le=1000, unit="σ")
-        require("contact k_release", self.k_release, ge=0, le=self.k, unit="σ, <= k")
-        require("contact h_release", self.h_release, gt=0, le=1000, unit="σ")
-        require("contact on_sigmas", self.on_sigmas, gt=0, le=100)
-        require("contact off_sigmas", self.off_sigmas, ge=0, lt=self.on_sigmas,
-                unit="below on_sigmas")
-        require("contact rate_sigmas", self.rate_sigmas, ge=0, le=100)
-        require("contact rate_window_s", self.rate_window_s, gt=0, le=10, unit="s")
-
-
-class Slope:
-    """dP/dt (kPa/s) over the last ``n`` samples: the mean of the newer half less the mean of
-    the older, over the time between the halves' centres (running sums: O(1))."""
-
-    def __init__(self, n: int):
-        self.half = max(n // 2, 1)
-        self.buf = deque(maxlen=2 * self.half)
-        self.new = self.old = 0.0
-
-    def push(self, t: float, p: float) -> float | None:
-        b, h = self.buf, self.half
-        if len(b) == 2 * h:
-            mid = b[h][1]  # moves from the newer half to the older
-            self.old += mid - b[0][1]
-            self.new += p - mid
-            b.append((t, p))
-        else:
-            b.append((t, p))
-            if len(b) < 2 * h:
-                return None
-            values = [x for _, x in b]
-            self.old, self.new = sum(values[:h]), sum(values[h:])
-        dt = (b[-1][0] + b[h][0] - b[h - 1][0] - b[0][0]) / 2.0
-        return (self.new - self.old) / h / dt if dt > 0 else None
-
-
-class ThresholdContact:
-    """The paper's contact detector (sec. 4.1): levels and rate on the filtered pressure."""
-
-    def __init__(self, params: ContactParams, noise_kPa: float, rate_Hz: float):
-        self.prm, self.noise = params, noise_kPa
-        n = max(int(round(params.rate_window_s * rate_Hz)), 2)
-        self.slope = Slope(n)
-        h = self.slope.half
-        # the slope's σ: two means of h samples, h samples apart
-        self.rate_sigma = noise_kPa * math.sqrt(2.0 / h) * rate_Hz / h
-        self.contact = False
-
-    def push(self, t: float, p_raw: float, p_f: float, sigma_f: float,
-             rest: float) -> dict | None:
-        rate = self.slope.push(t, p_f)
-        rise, prm = p_f - rest, self.prm
-        if not self.contact:
-            on = prm.on_sigmas * sigma_f
-            rising = rate is not None and rate > prm.rate_sigmas * self.rate_sigma
-            if (rise > on and rising) or rise > 2.0 * on:
-                self.contact = True
-                return {"t_s": t, "kind": "contact", "detector": "threshold",
-                        "trigger": f"ΔP {rise:.4g} kPa > {on:.3g} kPa"
-                        + (f" and dP/dt {rate:.3g} kPa/s" if rising else " (2× the level)")}
-            return None
-        if rise < prm.off_sigmas * sigma_f:
-            self.contact = False
-            return {"t_s": t, "kind": "release", "detector": "threshold",
-                    "trigger": f"ΔP {rise:.4g} kPa < {prm.off_sigmas * sigma_f:.3g} kPa"}
-        return None
-
-
-class CusumContact:
-    """Page's two-sided CUSUM on the raw pressure against the rest, in units of σ_P."""
-
-    def __init__(self, params: ContactParams, noise_kPa: float, rate_Hz: float):
-        self.prm, self.noise = params, noise_kPa
-        self.g, self.since, self.contact = 0.0, None, False
-
-    def push(self, t: float, p_raw: float, p_f: float, sigma_f: float,
-             rest: float) -> dict | None:
-        z, k, h = (p_raw - rest) / self.noise, self.prm.k, self.prm.h
-        if not self.contact:
-            self.g = max(0.0, self.g + z - k)
-            if self.g == 0.0:
-                self.since = t
-            if self.g > h:
-                self.contact, self.g = True, 0.0
-                return {"t_s": t, "kind": "contact", "detector": "cusum",
-                        "onset_s": self.since,
-                        "trigger": f"CUSUM of (P − P_rest)/σ above {h:g} (rest "
-                        f"{rest:.4g} kPa, P {p_raw:.4g} kPa)"}
-            return None
-        self.g = max(0.0, self.g + self.prm.k_release - z)
-        if self.g > self.prm.h_release:
-            self.contact, self.g, self.since = False, 0.0, t
-            return {"t_s": t, "kind": "release", "detector": "cusum",
-                    "trigger": f"CUSUM of the return to the rest ({rest:.4g} kPa) above "
-                    f"{self.prm.h_release:g}"}
-        return None
-
-
-def contact_detector(params: ContactParams, noise_kPa: float, rate_Hz: float):
-    """The contact detector ``params.method`` names."""
-    cls = CusumContact if params.method == "cusum" else ThresholdContact
-    return cls(params, noise_kPa, rate_Hz)
+__all__ = ["ContactParams", "ThresholdContact", "CusumContact", "Slope", "contact_detector",
+           "SlipParams", "SlipDetector", "ComplianceParams", "ComplianceDetector"]
 
 
 @dataclass(frozen=True)
 class SlipParams:
-    """Slip (sec. 4.1, Fig. 10b): over ``window_s`` the filtered pressure fell by more than
-    ``drop_sigmas`` σ and ``drop_fraction`` of its rise, while the FSRs' centroid moved
+    """Slip (sec. 4.1, Fig. 10b): over ``window_s`` the load fell — the filtered pressure by
+    more than ``drop_sigmas`` σ and ``drop_fraction`` of its rise, or the FSRs' sum by more
+    than ``fsr_drop_fraction`` of itself (in the low mode a slip's fall of the pressure is
+    within its noise: 0.1–0.5 kPa/mm against σ 0.086 kPa) — while the FSRs' centroid moved
     ``shift`` (fraction of the array, toward fsr_N, the tip) with at least ``fsr_min_N`` on
     them. ``fsr_min_N`` is 25 times a typical FSR channel's noise (0.01 N): with less on the
     array, as a hand lets go, the noise alone moves the centroid by a tenth of the array."""
@@ -168,6 +32,7 @@ class SlipParams:
     drop_fraction: float = 0.05
     shift: float = 0.15
     fsr_min_N: float = 0.25
+    fsr_drop_fraction: float = 0.1
 
     def __post_init__(self):
         require("slip window_s", self.window_s, gt=0, le=10, unit="s")
@@ -175,6 +40,7 @@ class SlipParams:
         require("slip drop_fraction", self.drop_fraction, ge=0, lt=1)
         require("slip shift", self.shift, gt=0, le=1, unit="fraction of the FSR array")
         require("slip fsr_min_N", self.fsr_min_N, ge=0, unit="N")
+        require("slip fsr_drop_fraction", self.fsr_drop_fraction, gt=0, lt=1)
 
 
 def centroid(fsr) -> tuple[float, float]:
@@ -206,13 +72,16 @@ class SlipDetector:
         drop = p0 - p_f
         need = max(prm.drop_sigmas * sigma_f, prm.drop_fraction * (p0 - rest))
         moved = c - c0 if not (math.isnan(c) or math.isnan(c0)) else math.nan
-        slipping = (in_contact and drop > need and moved > prm.shift
+        unloaded = tot0 - total > prm.fsr_drop_fraction * tot0
+        slipping = (in_contact and (drop > need or unloaded) and moved > prm.shift
                     and min(total, tot0) >= prm.fsr_min_N)
         if slipping and self.armed:
             self.armed = False
-            return {"t_s": t, "kind": "slip", "trigger": f"P fell {drop:.3g} kPa and the FSR "
-                    f"centroid moved {moved:+.2f} toward the tip in {t - t0:.3g} s",
-                    "drop_kPa": drop, "centroid_shift": moved}
+            by = f"P fell {drop:.3g} kPa" if drop > need else \
+                f"the FSRs' sum fell {tot0 - total:.3g} N (P {drop:.3g} kPa)"
+            return {"t_s": t, "kind": "slip", "trigger": f"{by} and the FSR centroid moved "
+                    f"{moved:+.2f} toward the tip in {t - t0:.3g} s",
+                    "drop_kPa": drop, "fsr_drop_N": tot0 - total, "centroid_shift": moved}
         still = not (moved > 0.5 * prm.shift)  # a NaN centroid (nothing on it) is still
         if not slipping and drop <= 0.5 * need and still:
             self.armed = True
@@ -245,10 +114,14 @@ class ComplianceDetector:
     detection) to ``after_deg`` further, or to where the finger stopped: the least-squares
     slopes over every sample between (running sums, O(1) a sample; in the low mode a sample's
     depth from the pressure scatters by a tenth of a millimetre, the fit over hundreds of
-    samples does not): stiff_object|soft_object, once per contact."""
+    samples does not): stiff_object|soft_object, once per contact. With ``depth_of`` (the
+    chamber's depth at a pressure) dy/dα is the depth of the fitted pressure line's ends over
+    the angle between them: near the contact a sample's depth is clipped at the rest's (the
+    noise below it reads no depth, above it some), which biases the depths' own fit low, the
+    pressure's fit is not."""
 
-    def __init__(self, params: ComplianceParams):
-        self.prm, self.sums = params, None
+    def __init__(self, params: ComplianceParams, depth_of=None):
+        self.prm, self.sums, self.depth_of = params, None, depth_of
         self.hist = deque(maxlen=2048)  # (t, α, depth, P): back to the onset
 
     def push(self, t, angle, depth, p_f, contact_event: dict | None, in_contact: bool):
@@ -275,6 +148,8 @@ class ComplianceDetector:
             return None
         self.sums = None
         dy, dp = f.slopes()
+        if self.depth_of is not None and span > 0:
+            dy = f.chord(self.depth_of, dp)
         stiff = dy > prm.stiff_mm_per_deg
         why = "stopped after" if span < prm.after_deg else "over"
         return {"t_s": t, "kind": "stiff_object" if stiff else "soft_object",
@@ -312,3 +187,13 @@ class _Fit:
             return 0.0, 0.0
         return ((self.say - self.sa * self.sy / self.n) / var,
                 (self.sap - self.sa * self.sp / self.n) / var)
+
+    def chord(self, depth_of, dp: float) -> float:
+        """(depth at the fitted P of the last angle − at the first)/(their angle), mm/deg."""
+        n, a_end = self.n, self.a_max - self.a0
+        p_mid = self.first[2] + self.sp / n
+
+        def p(a):
+            return p_mid + dp * (a - self.sa / n)
+
+        return (depth_of(p(a_end)) - depth_of(p(0.0))) / a_end

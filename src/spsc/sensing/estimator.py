@@ -16,7 +16,8 @@ of that instant (and the reservoir keeps P). While the valve equalises after an 
 chamber is not at the pooled pressure yet: the travel is held (the plate does not move in the
 valve's milliseconds) and F = F(y_held, P) follows the chamber's own pressure, until P reaches
 the pooled table's pressure at that travel. While nothing touches the chamber its rest pressure
-is tracked by a slow filter (temperature, leaks) and the content re-based on it.
+is tracked with its drift (temperature, leaks; :class:`~.rest.RestTracker`) and the content
+re-based on it.
 
 The pressure is smoothed by an α-β filter (constant rate: a steady press is followed without
 lag). Uncertainty (a 95 % band): the sensor's noise σ_P through the filter and dF/dP of the
@@ -37,6 +38,7 @@ from typing import NamedTuple
 
 from spsc.core.errors import require
 
+from .rest import RestTracker
 from .table import PA_KPA, DenseMap
 
 __all__ = ["EstimatorParams", "Estimator", "Estimate", "Z95"]
@@ -50,7 +52,8 @@ class EstimatorParams:
     """``setup_kPa`` the gauge pressure chamber and reservoir were filled to at rest,
     ``reservoir_mm3`` V_r, ``noise_kPa`` the sensor's σ_P, ``model_error`` e_m (relative, 95 %
     half-width of the model's force), ``smoothing_s`` τ_s of the α-β filter on P,
-    ``rest_time_s`` the rest filter's time constant, ``drift_step_kPa`` how far the tracked
+    ``rest_time_s`` the rest filter's time constant τ, ``rest_delay_s`` the age of the samples
+it is fed (:class:`~.rest.RestTracker`), ``drift_step_kPa`` how far the tracked
     rest moves before the content is re-based, ``settle_max_s`` the longest wait for the
     valve to equalise after an opening, ``valve_open`` the valve at the start."""
 
@@ -60,6 +63,7 @@ class EstimatorParams:
     model_error: float
     smoothing_s: float = 0.005
     rest_time_s: float = 2.0
+    rest_delay_s: float = 0.3
     drift_step_kPa: float = 0.01
     settle_max_s: float = 0.5
     valve_open: bool = False
@@ -71,6 +75,7 @@ class EstimatorParams:
         require("model_error", self.model_error, ge=0, lt=1, unit="relative, 95 %")
         require("smoothing_s", self.smoothing_s, ge=0, le=10, unit="s")
         require("rest_time_s", self.rest_time_s, gt=0, le=1e4, unit="s")
+        require("rest_delay_s", self.rest_delay_s, ge=0, le=100, unit="s")
         require("drift_step_kPa", self.drift_step_kPa, gt=0, le=100, unit="kPa")
         require("settle_max_s", self.settle_max_s, gt=0, le=100, unit="s")
         if self.valve_open and self.reservoir_mm3 <= 0:
@@ -107,7 +112,10 @@ class Estimator:
         self.noise_half = 0.0  # the last sample's band from the noise alone (N)
         self.y = self.table.y[0]
         self.settle = None  # (t of the opening, held travel, pooled pressure, tolerance)
-        self.rest = None
+        self.rest = RestTracker(self.table.rest_kPa, time_s=params.rest_time_s,
+                                delay_s=params.rest_delay_s)
+        self.offset = 0.0  # the held baseline less the table's rest, through a contact
+        self.resting = True
 
     # -- the content ---------------------------------------------------------------------
     def _rebuild(self) -> None:
@@ -159,26 +167,45 @@ class Estimator:
         return {"valve": "closed", "depth_mm": y, "reservoir_kPa": p,
                 "rest_after_kPa": self.table.rest_kPa}
 
+    @property
+    def baseline_kPa(self) -> float:
+        """The contact detectors' reference: the tracked rest while nothing touches (and it
+        is settled), else the content's rest with the offset it had when contact began (a
+        switch under load moves it with the content)."""
+        if self.resting and self.rest.settled and self.t is not None:
+            return self.rest.baseline(self.t)
+        return self.table.rest_kPa + self.offset
+
     def track_rest(self, p_kPa: float) -> bool:
-        """A sample with nothing touching: the slow rest filter, and the content re-based
-        when it has drifted ``drift_step_kPa``; True if it was."""
+        """A sample with nothing touching: the rest tracker, and the content re-based when
+        the rest has drifted ``drift_step_kPa``; True if it was."""
         if self.settle is not None or self.t is None:
             return False
-        prm = self.params
-        if self.rest is None:
-            self.rest = self.table.rest_kPa
-        self.rest += (1.0 - math.exp(-self._dt / prm.rest_time_s)) * (p_kPa - self.rest)
-        if abs(self.rest - self.table.rest_kPa) < prm.drift_step_kPa:
+        self.resting = True
+        self.rest.push(self.t, p_kPa)
+        if not self.rest.settled:
             return False
-        self.c_ch = self.dense.rest_content(self.rest)
+        rest = self.rest.baseline(self.t)
+        self.offset = 0.0
+        if abs(rest - self.table.rest_kPa) < self.params.drift_step_kPa:
+            self.offset = rest - self.table.rest_kPa
+            return False
+        self.c_ch = self.dense.rest_content(rest)
         if self.open:
-            self.p_res = self.rest
+            self.p_res = rest
         self._rebuild()
+        self.offset = rest - self.table.rest_kPa
         return True
 
     def leave_rest(self) -> None:
-        """Contact began: the rest filter stops (and starts again from the table's rest)."""
-        self.rest = None
+        """Contact began: the baseline held (:meth:`~.rest.RestTracker.hold`)."""
+        if self.t is not None:
+            self.offset = self.rest.hold(self.t) - self.table.rest_kPa
+        self.resting = False
+
+    def depth_at(self, p_kPa: float) -> float:
+        """The travel (mm) at the gauge pressure ``p_kPa`` for the current content."""
+        return self.table.lookup(p_kPa)[0]
 
     # -- one sample ----------------------------------------------------------------------
     @property

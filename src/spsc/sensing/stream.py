@@ -76,7 +76,7 @@ class SenseStream:
         noise = params.estimator.noise_kPa
         self.contact = contact_detector(params.contact, noise, params.rate_Hz)
         self.slip = SlipDetector(params.slip)
-        self.compliance = (ComplianceDetector(params.compliance)
+        self.compliance = (ComplianceDetector(params.compliance, self.est.depth_at)
                            if params.compliance is not None else None)
         self.t = -math.inf
         self.recent = deque()  # (t, filtered P, depth) over switch_window_s
@@ -102,7 +102,8 @@ class SenseStream:
             if ev is not None:
                 events.append(ev)
         e = est.update(t, p)
-        ev = self.contact.push(t, p, e.pressure_kPa, est.sigma_kPa, est.rest_kPa)
+        ev = self.contact.push(t, p, e.pressure_kPa, est.sigma_kPa, est.baseline_kPa,
+                               est.rest.settled)
         in_contact = self.contact.contact
         if ev is not None:
             events.append(ev)
