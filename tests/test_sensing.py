@@ -140,6 +140,31 @@ def test_switch_under_load_no_jump_no_release(dome, column):
                     true[before].mean() - true[after].mean(), atol=band[after].mean() / 3)
 
 
+def test_a_switch_under_a_shallow_press_is_not_a_release(dome):
+    """High -> low under a press of 0.6–0.8 mm: the low mode's pressure at that travel is a σ
+    or less above its rest, so a release measured against the high mode's level fires within
+    0.2 s of the switch (measured: in four of six such presses); measured against the pooled
+    pressure at the held travel it waits for the true release (from 0.05 s before to 0.3 s
+    after it)."""
+    m, d = dome
+    early = 0
+    for depth in (0.6, 0.8):
+        for seed in (0, 2):
+            trial = st.press(m, depth_mm=depth, speed_mm_s=10.0, hold_s=0.8, seed=seed,
+                             switches=[(0.7 + depth / 10.0 + 0.03, True)])
+            truth = {e["kind"]: e["t_s"] for e in trial.events}
+            s = stream(d, trial)
+            feed(s, trial)
+            assert kinds(s.events) == ["contact", "switch", "release"]
+            assert -0.05 <= s.events[2]["t_s"] - truth["release"] <= 0.3
+            old = stream(d, trial)
+            old.contact.rebase = lambda level: None  # the high mode's level kept
+            feed(old, trial)
+            released = [e["t_s"] for e in old.events if e["kind"] == "release"]
+            early += released[0] < truth["switch"] + 0.2
+    assert early >= 2
+
+
 def test_rest_drift_is_tracked(dome):
     m, d = dome
     trial = st.press(m, depth_mm=2.0, speed_mm_s=10.0, hold_s=0.5, lead_s=11.0, seed=7)

@@ -123,3 +123,17 @@ def test_a_slip_unloading_the_fsrs_is_a_slip_when_the_pressure_cannot_show_it():
     assert len(slip) == 1 and "FSRs' sum fell" in slip[0]["trigger"]
     assert 0.1 <= slip[0]["t_s"] <= 0.18
     assert events(np.full(t.size, 2.0)) == []  # the contact rolls under a steady load
+
+
+def test_the_release_reference_follows_the_contact_level():
+    from spsc.sensing.contact import release_reference
+
+    prm = ContactParams()
+    assert release_reference(40.0, prm) == (0.5, 8.0)  # a high-mode press: as the paper's
+    assert_allclose(release_reference(2.4, prm), (0.3, 8.0 * 0.5 / 0.3))  # an eighth
+    assert_allclose(release_reference(0.6, prm), (0.2, 20.0))  # the floor
+    k, h = release_reference(0.3, prm)  # below 0.4 σ: half the level, h for 10⁶ samples
+    assert k == 0.15 and h > 4.0 / 0.15
+    # Siegmund's run length of a false release in the hold (drift k − mean a sample)
+    d = 0.3 - k
+    assert (np.exp(2 * d * (h + 1.166)) - 2 * d * (h + 1.166) - 1) / (2 * d * d) >= 0.99e6

@@ -24,7 +24,8 @@ from dataclasses import dataclass
 
 from spsc.core.errors import ParameterError, require
 
-__all__ = ["ContactParams", "ThresholdContact", "CusumContact", "Slope", "contact_detector"]
+__all__ = ["ContactParams", "ThresholdContact", "CusumContact", "Slope", "contact_detector",
+           "release_reference"]
 
 
 @dataclass(frozen=True)
@@ -120,6 +121,9 @@ class ThresholdContact:
                     "trigger": f"ΔP {rise:.4g} kPa < {prm.off_sigmas * sigma_f:.3g} kPa"}
         return None
 
+    def rebase(self, level: float) -> None:
+        """The paper's detector keeps its levels across a valve switch."""
+
 
 class _Page:
     """One scale of the CUSUM: g = max(0, g + z − k), the samples since g was last 0 and
@@ -167,6 +171,7 @@ class CusumContact:
         if params.k_slow > 0:
             self.scales.append(_Page(params.k_slow, params.h_slow))
         self.g, self.contact, self.n, self.sum = 0.0, False, 0, 0.0
+        self.rate = rate_Hz
 
     @property
     def since(self):
@@ -195,10 +200,8 @@ class CusumContact:
                     "trigger": f"CUSUM of (P − P_rest)/σ above {fired.h:g} at k = {fired.k:g}"
                     f"{slow}, a mean {self.sum / self.n:.3g} σ since "
                     f"{onset:.4g} s (rest {rest:.4g} kPa, P {p_raw:.4g} kPa)"}
-        prm = self.prm
         self.n, self.sum = self.n + 1, self.sum + z
-        k_r = min(prm.k_release, max(0.2, self.sum / self.n / 8.0))
-        h_r = prm.h_release * prm.k_release / k_r
+        k_r, h_r = release_reference(self.sum / self.n, self.prm)
         self.g = max(0.0, self.g + k_r - z)
         if self.g > h_r:
             self.contact, self.g = False, 0.0
@@ -206,8 +209,31 @@ class CusumContact:
                 s.reset(t)
             return {"t_s": t, "kind": "release", "detector": "cusum",
                     "trigger": f"CUSUM of the return to the rest ({rest:.4g} kPa) above "
-                    f"{h_r:.3g} at k = {k_r:.3g} (an eighth of the contact's mean level)"}
+                    f"{h_r:.3g} at k = {k_r:.3g} (the contact's mean level "
+                    f"{self.sum / self.n:.3g} σ)"}
         return None
+
+    def rebase(self, level: float) -> None:
+        """A valve switch in contact: the pressure's level is now ``level`` σ above the rest
+        (an opening: the pooled pressure at the held travel), and the release's statistics
+        start again from it, as if 0.2 s of samples had shown it — the high mode's level is
+        not what the low mode's pressure will be measured against."""
+        if self.contact:
+            self.n = max(int(0.2 * self.rate), 1)
+            self.sum, self.g = self.n * max(level, 0.0), 0.0
+
+
+def release_reference(mean: float, prm: ContactParams) -> tuple[float, float]:
+    """The release's (k_r, h_r) for a contact whose mean level is ``mean`` σ: k_r an eighth
+    of it, between 0.2 (or half the level, below 0.4 σ) and ``k_release``; h_r =
+    h_release k_release / k_r, or more where a false release in the hold (a drift of
+    k_r − mean a sample) would come sooner than once in 10⁶ samples."""
+    k_r = max(min(prm.k_release, max(mean / 8.0, min(0.2, mean / 2.0))), 0.05)
+    h_r = prm.h_release * prm.k_release / k_r
+    d = mean - k_r
+    if d > 0.0:
+        h_r = max(h_r, math.log(2.0 * d * d * 1e6) / (2.0 * d) - 1.166)
+    return k_r, h_r
 
 
 def contact_detector(params: ContactParams, noise_kPa: float, rate_Hz: float):

@@ -101,6 +101,9 @@ class SenseStream:
             ev = self._infer_opening(t)
             if ev is not None:
                 events.append(ev)
+        if events:  # a switch in contact: the release measured against the new level
+            to = events[-1].get("pooled_kPa", p if est.p_s is None else est.p_s)
+            self.contact.rebase((to - est.baseline_kPa) / est.params.noise_kPa)
         e = est.update(t, p)
         ev = self.contact.push(t, p, e.pressure_kPa, est.sigma_kPa, est.baseline_kPa,
                                est.rest.settled)
