@@ -10,7 +10,9 @@ the plate touches, with
 
 (the gas law differentiated at fixed m R T), so a Newton iteration safeguarded by bisection
 finds it. A force of zero leaves the plate anywhere above the chamber: the force-controlled
-press carries at least :data:`FORCE_FLOOR_N`, the plate resting on the chamber.
+press carries at least :data:`FORCE_FLOOR_N`, the plate resting on the chamber. On a spring of
+stiffness k whose far end is at x the travel is the root of g(y) = F(y, P(y)) − k (x − y) in
+[y_lo, x] (g' = the above + k > 0; g(x) = F(x, P(x)) ≥ 0), or y = x off the chamber.
 """
 
 from __future__ import annotations
@@ -38,6 +40,7 @@ class Chamber:
         self.y_lo, self.y_hi = chamber_map.y_range
         self._y, self._slice, self._p = None, None, chamber_map.setup_kPa
         self._y_force = None  # the last travel found for a force (the next one's start)
+        self._spring = None  # the last (x, y, dy/dx) on a spring
 
     def slice(self, y: float):
         if y != self._y:
@@ -70,6 +73,49 @@ class Chamber:
                              f"[{self.p_lo:.3g}, {self.p_hi:.3g}] kPa")
         self._p = p
         return p
+
+    def spring_at_pressure(self, p: float, x: float, k: float) -> float:
+        """The plate travel (mm) at which the chamber held at ``p`` (kPa gauge) carries a
+        spring of ``k`` (N/mm) whose far end is at ``x`` (mm): bisection (the start of a
+        trace, the gas at its setup)."""
+        lo, hi = self.y_lo, min(x, self.y_hi)
+        if float(self.map.at(hi).force(p)) <= 0.0:
+            return x
+        while hi - lo > 1e-12 * max(1.0, abs(hi)):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if float(self.map.at(mid).force(p)) < k * (x - mid) else \
+                (lo, mid)
+        return 0.5 * (lo + hi)
+
+    def travel_on_spring(self, m: float, t: float, x: float, k: float) -> float:
+        """The plate travel (mm) at which the gas mass ``m`` (kg) at ``t`` (K) carries a
+        spring of ``k`` (N/mm) whose far end is at ``x`` (mm): safeguarded Newton on
+        g(y) = F(y, P(y)) − k (x − y) in [y_lo, x]; x itself where the plate there is off
+        the chamber (F ≤ 0: the map's spline rings by a few mN about first contact)."""
+        hi = min(x, self.y_hi)
+        g, dg = self._gap(m, t, hi, k * (x - hi))
+        if g <= 0.0:
+            if x > self.y_hi:
+                raise ValueError(f"the spring's end at {x:.4g} mm drives the plate beyond the "
+                                 f"map's {self.y_hi:.3g} mm")
+            return x
+        lo = self.y_lo
+        # the last root moved along dy/dx = k/(g' + k) (consecutive calls are close)
+        y = hi if self._spring is None else \
+            self._spring[1] + self._spring[2] * (x - self._spring[0])
+        y = min(max(y, lo), hi)
+        tol = 1e-10 * max(k * (x - lo), FORCE_FLOOR_N)
+        for _ in range(200):
+            g, dg = self._gap(m, t, y, k * (x - y))
+            dg += k
+            if abs(g) <= tol or hi - lo < 1e-12:
+                self._spring = (x, y, k / dg)
+                return y
+            lo, hi = (y, hi) if g < 0 else (lo, y)
+            nxt = y - g / dg if dg > 0 else None
+            y = nxt if nxt is not None and lo < nxt < hi else 0.5 * (lo + hi)
+        raise ValueError(f"no plate travel carries the spring at x = {x:.4g} mm (at {y:.4g} "
+                         f"mm the force is off by {g:.3g} N)")
 
     def _gap(self, m: float, t: float, y: float, force: float) -> tuple[float, float]:
         """g(y) = F(y, P(y)) − force (N) and g'(y) (N/mm), the module's equations."""

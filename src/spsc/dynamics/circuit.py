@@ -58,10 +58,11 @@ class Circuit:
     gas: object
 
 
-def _rates(chamber, circuit, state, y, ydot, open_, fdot=None):
+def _rates(chamber, circuit, state, y, ydot, open_, fdot=None, spring=0.0):
     """d(state)/dt for state (m_c mg, T_c K, m_r mg, T_r K) at travel ``y`` (mm) moving at
     ``ydot`` (mm/s); under a force-controlled press (``fdot``: Ḟ N/s) ẏ is the third unknown
-    of the energy balance, with F_P Ṗ + F_y ẏ = Ḟ."""
+    of the energy balance, with F_P Ṗ + F_y ẏ = Ḟ; on a spring of k (``spring`` N/mm, and
+    ``fdot`` = k ẋ) F_P Ṗ + (F_y + k) ẏ = k ẋ."""
     gas, valve = circuit.gas, circuit.valve
     mc, tc, mr, tr = state[0] * _MG, state[1], state[2] * _MG, state[3]
     p = chamber.pressure(mc, tc, y, check=False)
@@ -85,8 +86,10 @@ def _rates(chamber, circuit, state, y, ydot, open_, fdot=None):
         b = np.array(rhs) - pa * vy * ydot * 1e-3
     else:  # unknowns Ṗ (Pa/s), Ṫ (K/s), ẏ (m/s)
         f_p, f_y = float(s.force(p, 1)) / _KPA, float(s.dforce_dy(p)) * 1e3  # N/Pa, N/m
+        if spring and float(s.force(p)) <= 0.0:  # off the chamber: the plate follows x
+            f_p, f_y = 0.0, 0.0
         A = np.array([[v + pa * vp, -mc * gas.R, pa * vy], [pa * vp, mc * gas.cv, pa * vy],
-                      [f_p, 0.0, f_y]])
+                      [f_p, 0.0, f_y + spring * 1e3]])
         b = np.array(rhs + [fdot])
     tc_dot = np.linalg.solve(A, b)[1]
     return np.array([q / _MG, tc_dot, -q / _MG, tr_dot])
@@ -179,8 +182,13 @@ def integrate(chamber_map, circuit, profile, events=(), *, valve_open: bool = Fa
     t_end = profile.duration
     out_t = np.arange(0.0, t_end + 0.5 * dt, dt)
     out_t = out_t[out_t <= t_end + 1e-12]
-    y0 = float(profile.y(0.0)) if hasattr(profile, "y") else \
-        chamber.travel_at_pressure(circuit.setup_kPa, float(profile.force(0.0)))
+    if hasattr(profile, "y"):
+        y0 = float(profile.y(0.0))
+    elif hasattr(profile, "stiffness_N_per_mm"):
+        y0 = chamber.spring_at_pressure(circuit.setup_kPa, float(profile.x(0.0)),
+                                        profile.stiffness_N_per_mm)
+    else:
+        y0 = chamber.travel_at_pressure(circuit.setup_kPa, float(profile.force(0.0)))
     state = initial_state(chamber, circuit, y0)
     run = _Run(chamber, circuit, profile, state, valve_open, list(triggers))
     cuts = _cuts(profile, events, triggers, t_end)
@@ -268,9 +276,13 @@ class _Run:
             def rhs(t, s):
                 return _rates(self.chamber, self.circuit, s, y0 + rate * (t - t0), rate, open_)
         else:
+            k = getattr(self.profile, "stiffness_N_per_mm", 0.0)
+            fdot = k * rate if k else rate  # on a spring, rate is ẋ (mm/s): k ẋ in N/s
+
             def rhs(t, s):
                 y = self.profile.travel(t, self.chamber, s[0] * _MG, s[1])
-                return _rates(self.chamber, self.circuit, s, y, None, open_, fdot=rate)
+                return _rates(self.chamber, self.circuit, s, y, None, open_, fdot=fdot,
+                              spring=k)
 
         t_eval = np.append(want, t1) if not want.size or want[-1] < t1 else want
         try:

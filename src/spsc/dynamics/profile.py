@@ -1,5 +1,6 @@
-"""The press: the plate travel y(t) (:class:`PressProfile`) or the plate force F(t)
-(:class:`ForceProfile`) as a piecewise-linear profile of knots."""
+"""The press: the plate travel y(t) (:class:`PressProfile`), the plate force F(t)
+(:class:`ForceProfile`), or a compliant object — the plate on a spring whose far end follows
+x(t) (:class:`SpringProfile`) — as a piecewise-linear profile of knots."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 
-__all__ = ["PressProfile", "ForceProfile"]
+__all__ = ["PressProfile", "ForceProfile", "SpringProfile"]
 
 
 @dataclass(frozen=True)
@@ -116,3 +117,47 @@ class ForceProfile:
     def travel(self, t: float, chamber, m_kg: float, t_K: float) -> float:
         """The plate travel (mm) at which the gas (``m_kg`` at ``t_K``) carries the force."""
         return chamber.travel(m_kg, t_K, float(self.force(t)))
+
+
+@dataclass(frozen=True)
+class SpringProfile:
+    """A compliant object: the plate on a linear spring of ``stiffness_N_per_mm`` k whose far
+    end follows the knots ``t_s``, ``x_mm`` (its travel from first contact, mm; < 0 above the
+    chamber — a finger closing on a soft object). The plate goes where the chamber carries
+    the spring's force, F(y, P) = k (x − y) (:meth:`~.chamber.Chamber.travel_on_spring`);
+    off the chamber y = x. Differentiated, F_P Ṗ + (F_y + k) ẏ = k ẋ: the force-controlled
+    press's third equation with Ḟ = k (ẋ − ẏ)."""
+
+    t_s: tuple
+    x_mm: tuple
+    stiffness_N_per_mm: float
+
+    def __post_init__(self):
+        PressProfile(self.t_s, self.x_mm)  # the same checks of the knots
+        k = self.stiffness_N_per_mm
+        if not (np.isfinite(k) and 0 < k <= 1e5):
+            raise ParameterError("object stiffness", k, "in (0, 1e5] N/mm")
+
+    @classmethod
+    def of(cls, pairs, stiffness_N_per_mm: float) -> "SpringProfile":
+        p = PressProfile.of(pairs)
+        return cls(p.t_s, p.y_mm, float(stiffness_N_per_mm))
+
+    @property
+    def duration(self) -> float:
+        return float(self.t_s[-1])
+
+    def x(self, t):
+        return np.interp(t, self.t_s, self.x_mm)
+
+    def rate(self, t0: float, t1: float) -> float:
+        """ẋ (mm/s) of the spring's far end on a segment [t0, t1] between knots."""
+        return float((self.x(t1) - self.x(t0)) / (t1 - t0))
+
+    @property
+    def extent(self) -> tuple[float, float]:
+        return float(min(self.x_mm)), float(max(self.x_mm))
+
+    def travel(self, t: float, chamber, m_kg: float, t_K: float) -> float:
+        """The plate travel (mm) where the gas (``m_kg`` at ``t_K``) carries the spring."""
+        return chamber.travel_on_spring(m_kg, t_K, float(self.x(t)), self.stiffness_N_per_mm)

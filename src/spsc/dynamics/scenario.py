@@ -22,6 +22,7 @@ press and the valve events, read from TOML and checked, every malformed entry a 
     # or a force-controlled press: the plate goes where the chamber carries the force
     # force = [[0, 0], [0.5, 10], [2, 10]]              # [t_s, force_N]
     # max_travel_mm = 4                                 # the map's depth (default 4 mm)
+    # object_N_per_mm = 1.5     # a compliant object: profile is the far end of its spring
 
     [[events]]
     t = 1.0
@@ -57,7 +58,7 @@ from pathlib import Path
 from spsc.core.errors import ParameterError, require
 
 from .gas import Gas
-from .profile import ForceProfile, PressProfile
+from .profile import ForceProfile, PressProfile, SpringProfile
 from .sensor import Sensor
 from .valve import Valve, sonic_conductance
 
@@ -108,7 +109,7 @@ class Scenario:
     valve_open: bool
     gas: Gas
     sensor: Sensor | None
-    press: PressProfile | ForceProfile
+    press: PressProfile | ForceProfile | SpringProfile
     events: tuple = field(default=())  # ((t_s, opened), ...)
     triggers: tuple = field(default=())  # (Trigger, ...)
     dt: float = 1e-3
@@ -206,7 +207,7 @@ def _bode(doc: dict, profile: PressProfile, opened: bool) -> dict:
             "f_min_Hz": f_min, "f_max_Hz": f_max, "points": points}
 
 
-def _press(press: dict) -> PressProfile | ForceProfile:
+def _press(press: dict) -> PressProfile | ForceProfile | SpringProfile:
     given = [k for k in ("profile", "force") if k in press]
     if len(given) != 1:
         raise ParameterError("press", " and ".join(given) or "no profile",
@@ -216,7 +217,14 @@ def _press(press: dict) -> PressProfile | ForceProfile:
         if "max_travel_mm" in press:
             raise ParameterError("press.max_travel_mm", press["max_travel_mm"],
                                  "only with a force-controlled press (force = ...)")
+        if "object_N_per_mm" in press:
+            return SpringProfile.of(press["profile"], require(
+                "press.object_N_per_mm", press["object_N_per_mm"], gt=0, le=1e5,
+                unit="N/mm, the object's spring"))
         return PressProfile.of(press["profile"])
+    if "object_N_per_mm" in press:
+        raise ParameterError("press.object_N_per_mm", press["object_N_per_mm"],
+                             "only with a travel profile (press.profile: the spring's far end)")
     depth = require("press.max_travel_mm", press.get("max_travel_mm", 4.0), gt=0, le=50,
                     unit="mm")
     return ForceProfile.of(press["force"], depth)
@@ -261,7 +269,7 @@ def parse_scenario(doc: dict) -> Scenario:
     out = _table(doc, "output", required=False)
     _unknown("chamber", ch, _CHAMBER)
     _unknown("circuit", c, _CIRCUIT)
-    _unknown("press", press, {"profile", "force", "max_travel_mm"})
+    _unknown("press", press, {"profile", "force", "max_travel_mm", "object_N_per_mm"})
     _unknown("output", out, {"dt"})
     model = ch.get("model", "wall")
     if model not in _MODELS:
