@@ -46,8 +46,8 @@ WINDOW = {"contact": (-0.02, 0.4), "release": (-0.15, 0.3), "slip": (-0.02, 0.2)
 
 
 def scenarios(m, rng, n, failed):
-    """``n`` trials: presses, switches under load, slips and partial releases, grasps of stiff
-    and soft objects; the mode drawn for each. A draw the circuit cannot integrate is counted
+    """``n`` trials: presses, switches under load, slips and partial releases, grasps of
+    objects on springs of 5–50 N/mm (stiff) and 0.3–1 N/mm (soft); the mode drawn for each. A draw the circuit cannot integrate is counted
     in ``failed`` and drawn again."""
     out, i = [], 0
     while len(out) < n:
@@ -75,8 +75,13 @@ def _scenario(m, rng, i):
         t = st.slip_press(m, depth_mm=depth, slip=kind == "slip", valve_open=opened,
                           seed=seed)
     else:
-        share = float(rng.uniform(0.7, 1.0) if i % 2 else rng.uniform(0.15, 0.35))
-        t = st.grasp(m, share=share, lever_mm_per_deg=LEVER, valve_open=opened, seed=seed)
+        # an object on a spring (N/mm), stiff or soft against these chambers: the chamber
+        # takes 0.7–0.95 and 0.15–0.35 of the closure's first 10° (stiff or soft is the
+        # trace's own share); below 0.2 N/mm the chamber barely feels the object at all
+        k = float(np.exp(rng.uniform(np.log(5.0), np.log(50.0)) if i % 2 else
+                         rng.uniform(np.log(0.3), np.log(1.0))))
+        t = st.grasp(m, object_N_per_mm=k, lever_mm_per_deg=LEVER, valve_open=opened,
+                     seed=seed)
     t.meta["mode"] = "low" if opened else "high"
     t.meta["scenario"] = kind
     return t

@@ -20,7 +20,7 @@ import pandas as pd
 
 from spsc.dynamics import Gas, Sensor, Valve, sonic_conductance
 from spsc.dynamics.circuit import Circuit, integrate
-from spsc.dynamics.profile import PressProfile
+from spsc.dynamics.profile import PressProfile, SpringProfile
 
 __all__ = ["Trial", "run", "press", "slip_press", "grasp", "fsr_columns", "APPROACH_MM"]
 
@@ -42,12 +42,16 @@ class Trial:
 
 
 def run(chamber_map, pairs, *, setup_kPa=40.0, reservoir_mm3=40000.0, valve_open=False,
-        switches=(), rate_Hz=1000.0, seed=0, noise_kPa=None, gas=None) -> Trial:
-    """The circuit pressed along ``pairs`` ([t_s, y_mm]) with the valve ``valve_open`` and
-    ``switches`` ((t_s, opened), ...), sampled at ``rate_Hz`` by the ELVH (its σ, or
-    ``noise_kPa``); the true contact and release from the true force."""
+        switches=(), rate_Hz=1000.0, seed=0, noise_kPa=None, gas=None,
+        object_N_per_mm=None) -> Trial:
+    """The circuit pressed along ``pairs`` ([t_s, y_mm]; with ``object_N_per_mm`` the far end
+    of the object's spring, :class:`~spsc.dynamics.profile.SpringProfile`) with the valve
+    ``valve_open`` and ``switches`` ((t_s, opened), ...), sampled at ``rate_Hz`` by the ELVH
+    (its σ, or ``noise_kPa``); the true contact and release from the true force."""
     circuit = Circuit(setup_kPa, reservoir_mm3, Valve(sonic_conductance(0.3)), gas or Gas(1.0))
-    tr = integrate(chamber_map, circuit, PressProfile.of(pairs), list(switches),
+    profile = PressProfile.of(pairs) if object_N_per_mm is None else \
+        SpringProfile.of(pairs, object_N_per_mm)
+    tr = integrate(chamber_map, circuit, profile, list(switches),
                    valve_open=valve_open, dt=1.0 / rate_Hz)
     over = {} if noise_kPa is None else {"noise_kPa": noise_kPa}
     sensor = Sensor.preset("elvh", rate_Hz=rate_Hz, seed=seed, **over)
@@ -123,26 +127,44 @@ def slip_press(chamber_map, *, depth_mm, slip: bool, drop=0.4, slip_s=0.08, spee
     return trial
 
 
-def grasp(chamber_map, *, share, lever_mm_per_deg=0.12, alpha_c=20.0, alpha_end=None,
-          omega_deg_s=40.0, hold_s=0.3, **kw) -> Trial:
+def grasp(chamber_map, *, share=None, object_N_per_mm=None, lever_mm_per_deg=0.12,
+          alpha_c=20.0, alpha_end=None, omega_deg_s=40.0, hold_s=0.3, judged_deg=10.0,
+          **kw) -> Trial:
     """The finger closes at ``omega_deg_s`` from 0°, meets the object at ``alpha_c``, closes on
-    to ``alpha_end`` (default 25° further), holds, opens: the chamber takes ``share`` of the
-    closure's travel. The log's ``angle_deg`` is α."""
+    to ``alpha_end`` (default 25° further), holds, opens; past the contact it travels
+    ``lever_mm_per_deg``. Either the chamber takes ``share`` of that travel (a kinematic
+    object), or the object is a spring of ``object_N_per_mm`` between the finger and the
+    plate (:class:`~spsc.dynamics.profile.SpringProfile`: the chamber takes what the forces
+    share out, little at first where the chamber is soft, less as it stiffens). The object is
+    stiff when the chamber's travel per degree, fitted over the ``judged_deg`` after the
+    true contact, is at least half the lever (``meta["share"]``: that slope over the lever).
+    The log's ``angle_deg`` is α."""
+    if (share is None) == (object_N_per_mm is None):
+        raise ValueError("grasp: give share or object_N_per_mm")
     alpha_end = alpha_c + 25.0 if alpha_end is None else alpha_end
     a = np.array([0.0, alpha_c, alpha_end])
-    y = np.array([-APPROACH_MM, 0.0, share * lever_mm_per_deg * (alpha_end - alpha_c)])
+    far = lever_mm_per_deg * (alpha_end - alpha_c) * (1.0 if share is None else share)
+    y = np.array([-APPROACH_MM, 0.0, far])
     t = a / omega_deg_s
     t_hold = t[-1] + hold_s
     times = np.r_[t, t_hold, t_hold + t[-1] - t[::-1][1:], t_hold + t[-1] + 0.3]
     ys = np.r_[y, y[-1], y[::-1][1:], -APPROACH_MM]
     alphas = np.r_[a, a[-1], a[::-1][1:], 0.0]
-    trial = run(chamber_map, list(zip(times.tolist(), ys.tolist())), **kw)
-    trial.log["angle_deg"] = np.interp(trial.log.t_s, times, alphas)
-    stiff = share >= 0.5
+    trial = run(chamber_map, list(zip(times.tolist(), ys.tolist())),
+                object_N_per_mm=object_N_per_mm, **kw)
+    alpha = np.interp(trial.log.t_s, times, alphas)
+    trial.log["angle_deg"] = alpha
     first = next(e for e in trial.events if e["kind"] == "contact")
-    trial.events.append({"t_s": first["t_s"], "kind": "stiff_object" if stiff else
+    if object_N_per_mm is not None:
+        tt = trial.truth.t_s.to_numpy()
+        span = (tt >= first["t_s"]) & (alpha <= alpha[tt >= first["t_s"]][0] + judged_deg) \
+            & (tt <= t[-1])
+        share = float(np.polyfit(alpha[span], trial.truth.y_mm.to_numpy()[span], 1)[0]
+                      / lever_mm_per_deg)
+    trial.events.append({"t_s": first["t_s"], "kind": "stiff_object" if share >= 0.5 else
                          "soft_object"})
     trial.events.sort(key=lambda e: e["t_s"])
     trial.meta.update(kind="grasp", share=share, lever_mm_per_deg=lever_mm_per_deg,
-                      depth_mm=float(y[-1]))
+                      object_N_per_mm=object_N_per_mm,
+                      depth_mm=float(trial.truth.y_mm.max()))
     return trial
