@@ -347,6 +347,24 @@ def test_sense_writes_the_estimate_the_events_and_the_figure(dome, cache, slip_l
     assert (out / "sense.png").stat().st_size > 10000
 
 
+def test_sense_warns_when_the_log_does_not_start_at_the_setup(dome, cache, slip_log, tmp_path,
+                                                              capsys):
+    from spsc.cli.main import main
+
+    trial, path = slip_log
+    off = tmp_path / "offset.csv"
+    log = trial.log.copy()
+    log["pressure_kPa"] += 0.5  # a sensor's offset: 6 σ
+    log.to_csv(off, index=False)
+    assert main(["sense", str(off), "--out", str(tmp_path / "a"), "--cache", str(cache)]
+                + CHAMBER) == 0
+    err = capsys.readouterr().err
+    assert "warning: the log starts at 40.5" in err and "--pressure 40.5" in err
+    assert main(["sense", str(path), "--out", str(tmp_path / "b"), "--cache", str(cache)]
+                + CHAMBER) == 0
+    assert "warning" not in capsys.readouterr().err
+
+
 def test_sense_follow_prints_the_same_events(dome, cache, slip_log, tmp_path, monkeypatch,
                                              capsys):
     import io

@@ -137,3 +137,9 @@ def test_the_release_reference_follows_the_contact_level():
     # Siegmund's run length of a false release in the hold (drift k − mean a sample)
     d = 0.3 - k
     assert (np.exp(2 * d * (h + 1.166)) - 2 * d * (h + 1.166) - 1) / (2 * d * d) >= 0.99e6
+
+
+def test_a_log_that_starts_in_contact_has_its_start_as_onset():
+    p = REST + 3.0 * SIGMA + noise(200, 9)
+    ev = run(p)
+    assert [e["kind"] for e in ev] == ["contact"] and ev[0]["onset_s"] == 0.0

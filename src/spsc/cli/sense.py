@@ -233,6 +233,7 @@ def _batch(args) -> int:
     log = read_log(args.log, args.pressure_column)
     loop = _haptic_loop(args)
     params = _params(args, _noise(args, log), log.rate_Hz)
+    _check_rest(log, args.pressure, params.estimator.noise_kPa)
     stream = SenseStream(_chamber(args, geometry), params)
     n = len(log)
     v, fsr, ang = log.valve_open, log.fsr, log.angle_deg
@@ -251,6 +252,25 @@ def _batch(args) -> int:
             bar.update(_CHUNK)
     bar.close()
     return _finish(args, stream, states, log.pressure_kPa, joints, commands)
+
+
+def _check_rest(log, setup_kPa: float, noise_kPa: float) -> None:
+    """A warning when the log's first 0.1 s sit off the setup pressure by more than their
+    noise allows (a sensor's offset, a wrong --pressure): the detectors measure from the
+    setup, so the log reads as a contact from its first sample."""
+    import numpy as np
+
+    t = np.asarray(log.t_s, float)
+    head = np.asarray(log.pressure_kPa, float)[t <= t[0] + 0.1]
+    if head.size < 5:
+        return
+    start = float(np.median(head))
+    sigmas = (start - setup_kPa) / noise_kPa
+    if abs(sigmas) > 3.0 + 3.0 / np.sqrt(head.size):
+        print(f"spsc sense: warning: the log starts at {start:.4g} kPa, {sigmas:+.1f} σ from "
+              f"the setup pressure {setup_kPa:g} kPa; the detectors measure from the setup, "
+              f"so a rest there reads as a contact. If the chamber was at rest, pass "
+              f"--pressure {start:.4g}", file=sys.stderr)
 
 
 def _finish(args, stream, states, pressures, joints, commands) -> int:

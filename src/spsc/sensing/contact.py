@@ -134,6 +134,8 @@ class _Page:
         self.g, self.n, self.since = 0.0, 0, None
 
     def push(self, t: float, z: float) -> bool:
+        if self.since is None:  # a log that starts in contact: the onset is its start
+            self.since = t
         g = self.g + z - self.k
         if g <= 0.0:
             self.g, self.n, self.since = 0.0, 0, t
