@@ -78,14 +78,10 @@ class Chamber:
         """The plate travel (mm) at which the chamber held at ``p`` (kPa gauge) carries a
         spring of ``k`` (N/mm) whose far end is at ``x`` (mm): bisection (the start of a
         trace, the gas at its setup)."""
-        lo, hi = self.y_lo, min(x, self.y_hi)
+        hi = min(x, self.y_hi)
         if float(self.map.at(hi).force(p)) <= 0.0:
             return x
-        while hi - lo > 1e-12 * max(1.0, abs(hi)):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if float(self.map.at(mid).force(p)) < k * (x - mid) else \
-                (lo, mid)
-        return 0.5 * (lo + hi)
+        return self._bisect(p, self.y_lo, hi, lambda y: k * (x - y))
 
     def travel_on_spring(self, m: float, t: float, x: float, k: float) -> float:
         """The plate travel (mm) at which the gas mass ``m`` (kg) at ``t`` (K) carries a
@@ -131,13 +127,17 @@ class Chamber:
         ``force`` (N, at least :data:`FORCE_FLOOR_N`): bisection on F(y, p), increasing in y
         where the plate touches."""
         force = max(force, FORCE_FLOOR_N)
-        lo, hi = self.y_lo, self.y_hi
-        if float(self.map.at(hi).force(p)) < force:
+        if float(self.map.at(self.y_hi).force(p)) < force:
             raise ValueError(f"a plate force of {force:.4g} N needs a travel beyond the map's "
-                             f"{hi:.3g} mm; raise press.max_travel_mm")
+                             f"{self.y_hi:.3g} mm; raise press.max_travel_mm")
+        return self._bisect(p, self.y_lo, self.y_hi, lambda y: force)
+
+    def _bisect(self, p: float, lo: float, hi: float, need) -> float:
+        """The travel in [lo, hi] (mm) where the chamber held at ``p`` (kPa) carries
+        ``need(y)`` (N): bisection, F(y, p) − need(y) increasing in y."""
         while hi - lo > 1e-12 * max(1.0, abs(hi)):
             mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if float(self.map.at(mid).force(p)) < force else (lo, mid)
+            lo, hi = (mid, hi) if float(self.map.at(mid).force(p)) < need(mid) else (lo, mid)
         return 0.5 * (lo + hi)
 
     def travel(self, m: float, t: float, force: float) -> float:

@@ -122,41 +122,44 @@ class ForceProfile:
 @dataclass(frozen=True)
 class SpringProfile:
     """A compliant object: the plate on a linear spring of ``stiffness_N_per_mm`` k whose far
-    end follows the knots ``t_s``, ``x_mm`` (its travel from first contact, mm; < 0 above the
-    chamber — a finger closing on a soft object). The plate goes where the chamber carries
-    the spring's force, F(y, P) = k (x − y) (:meth:`~.chamber.Chamber.travel_on_spring`);
-    off the chamber y = x. Differentiated, F_P Ṗ + (F_y + k) ẏ = k ẋ: the force-controlled
-    press's third equation with Ḟ = k (ẋ − ẏ)."""
+    end follows ``path`` (a :class:`PressProfile`: its travel x from first contact, mm; < 0
+    above the chamber — a finger closing on a soft object). The plate goes where the chamber
+    carries the spring's force, F(y, P) = k (x − y)
+    (:meth:`~.chamber.Chamber.travel_on_spring`); off the chamber y = x. Differentiated,
+    F_P Ṗ + (F_y + k) ẏ = k ẋ: the force-controlled press's third equation with
+    Ḟ = k (ẋ − ẏ)."""
 
-    t_s: tuple
-    x_mm: tuple
+    path: PressProfile
     stiffness_N_per_mm: float
 
     def __post_init__(self):
-        PressProfile(self.t_s, self.x_mm)  # the same checks of the knots
         k = self.stiffness_N_per_mm
         if not (np.isfinite(k) and 0 < k <= 1e5):
             raise ParameterError("object stiffness", k, "in (0, 1e5] N/mm")
 
     @classmethod
     def of(cls, pairs, stiffness_N_per_mm: float) -> "SpringProfile":
-        p = PressProfile.of(pairs)
-        return cls(p.t_s, p.y_mm, float(stiffness_N_per_mm))
+        return cls(PressProfile.of(pairs), float(stiffness_N_per_mm))
+
+    @property
+    def t_s(self) -> tuple:
+        """The knots' times (s): the pieces the circuit integrates."""
+        return self.path.t_s
 
     @property
     def duration(self) -> float:
-        return float(self.t_s[-1])
+        return self.path.duration
 
     def x(self, t):
-        return np.interp(t, self.t_s, self.x_mm)
+        return self.path.y(t)
 
     def rate(self, t0: float, t1: float) -> float:
         """ẋ (mm/s) of the spring's far end on a segment [t0, t1] between knots."""
-        return float((self.x(t1) - self.x(t0)) / (t1 - t0))
+        return self.path.rate(t0, t1)
 
     @property
     def extent(self) -> tuple[float, float]:
-        return float(min(self.x_mm)), float(max(self.x_mm))
+        return self.path.extent
 
     def travel(self, t: float, chamber, m_kg: float, t_K: float) -> float:
         """The plate travel (mm) where the gas (``m_kg`` at ``t_K``) carries the spring."""

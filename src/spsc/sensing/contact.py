@@ -175,11 +175,6 @@ class CusumContact:
         self.g, self.contact, self.n, self.sum = 0.0, False, 0, 0.0
         self.rate = rate_Hz
 
-    @property
-    def since(self):
-        """The onset's estimate of the scale nearest to firing."""
-        return max(self.scales, key=lambda s: s.g / s.h).since
-
     def push(self, t: float, p_raw: float, p_f: float, sigma_f: float, rest: float,
              settled: bool = True) -> dict | None:
         z = (p_raw - rest) / self.noise

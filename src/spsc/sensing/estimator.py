@@ -186,16 +186,14 @@ class Estimator:
         if not self.rest.settled:
             return False
         rest = self.rest.baseline(self.t)
-        self.offset = 0.0
-        if abs(rest - self.table.rest_kPa) < self.params.drift_step_kPa:
-            self.offset = rest - self.table.rest_kPa
-            return False
-        self.c_ch = self.dense.rest_content(rest)
-        if self.open:
-            self.p_res = rest
-        self._rebuild()
+        rebased = abs(rest - self.table.rest_kPa) >= self.params.drift_step_kPa
+        if rebased:
+            self.c_ch = self.dense.rest_content(rest)
+            if self.open:
+                self.p_res = rest
+            self._rebuild()
         self.offset = rest - self.table.rest_kPa
-        return True
+        return rebased
 
     def leave_rest(self) -> None:
         """Contact began: the baseline held (:meth:`~.rest.RestTracker.hold`)."""
