@@ -28,10 +28,17 @@ help:
 	@echo "make time-study                                                -> build/time-study/ (trace, Bode, hysteresis)"
 	@echo "make test | make test-slow | make test-all | make docs | make gate | make bench | make report [QUICK=1]"
 
+# the install takes about 3.5 GB (VTK, MKL, OpenCASCADE, CasADi); pip unpacks into a folder on
+# the venv's own disk (not a /tmp that may be a small RAM disk) and keeps no wheel cache
+PIP_TMP := $(CURDIR)/$(VENV)/.pip-tmp
+PIP     := TMPDIR=$(PIP_TMP) $(BIN)/python -m pip install --quiet --no-cache-dir
 $(STAMP): pyproject.toml
+	@echo "installing into $(VENV): about 4 GB needed, $$(df -Pk . | awk 'NR==2 {printf "%.1f", $$4/1048576}') GB free here"
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e ".[test,docs]"
+	mkdir -p $(PIP_TMP)
+	$(PIP) --upgrade pip
+	$(PIP) -e ".[test,docs]"
+	rm -rf $(PIP_TMP)
 	touch $(STAMP)
 
 venv: $(STAMP)
