@@ -16,7 +16,9 @@ The descent is a sequence of implicit (backward-Euler) steps of the gradient flo
 each solved by the engine's Newton with the plate's active set and the gas (:func:`.newton.
 newton` on :class:`Damped`), with M = |diag K| of the unstable state's tangent (so μ is
 dimensionless) and μ shrinking as the steps grow easy, until an undamped Newton solve from the
-current state converges to a stable equilibrium. Each implicit step lowers Π (it minimises
+current state converges to a stable equilibrium: tried once the flow is five pushes from the
+saddle, or where it has come to rest before that (a stable state a small jump away, found on
+the flow itself as μ → 0). Each implicit step lowers Π (it minimises
 Π(x) + μ/2 ‖x − x_k‖²_M near x_k), so the flow cannot return to the saddle. It starts from the
 unstable state pushed along its unstable mode, found by inverse iteration on the factorised
 tangent (the eigenvalue nearest zero is the one that just crossed it); both directions are
@@ -51,6 +53,8 @@ _log = logging.getLogger(__name__)
 MAX_FLOW_STEPS = 80
 #: the unstable mode's push (mm, largest nodal displacement)
 PUSH_MM = 0.02
+#: a flow step shorter than this fraction of the push has come to rest (a stationary point)
+STALL = 1e-3
 
 
 @dataclass(frozen=True)
@@ -176,8 +180,11 @@ def relax(model, x_u, load, active, engaged, settings, push: np.ndarray, metric,
                    np.max(np.abs(dx[:n])), moved)
         if sol.iterations <= 4:
             mu *= 0.5
-        if moved < 5 * PUSH_MM:
-            continue  # still by the saddle: Newton would go back to it
+        # by the saddle Newton would go back to it, unless the flow has come to rest there: a
+        # stable state a small jump away (the damped tangent is definite as μ → 0)
+        stalled = np.max(np.abs(dx[:n])) < STALL * PUSH_MM
+        if moved < 5 * PUSH_MM and not stalled:
+            continue
         try:
             end = newton(model, x, load, settings, active, engaged, grip)
         except model.recoverable as exc:
