@@ -288,6 +288,7 @@ def test_fingertip_bad_angle():
 
 # -- the gate on built parts (the command users run) -------------------------------------------
 
+@pytest.mark.slow  # 8-15 s: make test stays under 3 min on a 2-core machine
 def test_gate_passes_preset_and_fails_thin_wall(tmp_path, capsys):
     import json
 

@@ -123,6 +123,7 @@ def _run(model, pressure=0.01, stroke=0.6):
     return solve(model, steps, settings=Settings())
 
 
+@pytest.mark.slow  # 8-15 s: make test stays under 3 min on a 2-core machine
 def test_plate_force_balances_the_mount_reactions(dome_part, tmp_path):
     """With a closed cavity the gas pushes on the part with zero net force, so the plate force
     must equal the clamped nodes' reaction along the press: an identity of the discrete

@@ -128,6 +128,7 @@ def test_spsc_report_refuses_the_committed_report_from_a_dirty_tree(tmp_path, mo
     assert cmd_report.DEFAULT_OUT[True] == Path("build/report-quick")
 
 
+@pytest.mark.slow  # 8-15 s: make test stays under 3 min on a 2-core machine
 def test_a_new_model_plugs_in_with_one_registry_entry(tmp_path, monkeypatch):
     """A model with bending (like the wall model) added to the registry is run at every setup
     pressure, drawn, and enters the headline and the JND table without F_el."""
