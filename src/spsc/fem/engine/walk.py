@@ -6,10 +6,7 @@ Steps (:mod:`.steps`): :class:`Inflate` (prescribed cavity pressure ramp), :clas
 the stroke). Each increment is solved by Newton's method (:func:`.newton.newton`); a failed
 increment is cut in half until ``min_fraction`` of the nominal one, and a recorded equilibrium
 whose tangent has a negative eigenvalue stops the walk (it is unstable: no point past it is a
-result). With ``snap_through`` a plain press follows both instead (:mod:`.snap`): an unstable
-converged state by its unstable mode, a failure at the smallest increment past a stable state
-(a fold) by the energy descent from that state. A failure returns everything converged so far
-with the reason.
+result). A failure returns everything converged so far with the reason.
 """
 
 from __future__ import annotations
@@ -78,7 +75,6 @@ class _Walk:
         self.total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
         self.done, self.last_force, self.instability, self.iterations = 0, 0.0, "", 0
         self.jumps: list[Jump] = []
-        self.last = None  # the last accepted solution of a press (a fold's state before)
 
     def close_valve(self, step: CloseValve) -> None:
         gas = GasLaw(self.load.pressure, self.model.volume(self.x), step.reservoir,
@@ -171,7 +167,6 @@ class _Walk:
         #: snap-throughs are followed on a plain press only (not on a spring, not with Coulomb)
         plain = getattr(step, "spring", None) is None and getattr(step, "mu", None) is None
         t, dt, ti, history = 0.0, nominal, 0, []
-        self.last = None
         while ti < len(targets):
             t_new = min(t + dt, targets[ti])
             trial = load_at(t_new)
@@ -180,15 +175,9 @@ class _Walk:
             except self.model.recoverable as exc:
                 _log.debug("cut %s t=%.4g dt=%.3g: %s", kind, t_new, dt, exc)
                 dt *= 0.5
-                if dt >= self.s.min_fraction * nominal:
-                    continue
-                folds = kind == "press" and self.s.snap_through and plain \
-                    and len(self.jumps) < _MAX_JUMPS and self.last is not None
-                jumped = self.fold(step, load_at, t, t_new) if folds else None
-                if jumped is None:
+                if dt < self.s.min_fraction * nominal:
                     return Stop(k, kind, t_new, step, trial, str(exc))
-                t_new, sol = jumped
-                trial, history = load_at(t_new), []
+                continue
             if sol.unstable_modes and kind == "press" and self.s.snap_through \
                     and len(self.jumps) < _MAX_JUMPS and plain:
                 jumped = self.snap(step, load_at, t, t_new, sol)
@@ -197,7 +186,7 @@ class _Walk:
                     trial, history = load_at(t_new), []  # no secant across the jump
             self.x, self.active, self.engaged, t, self.load = (sol.x, sol.active, sol.engaged,
                                                                t_new, trial)
-            self.grip, self.last = sol.grip, sol
+            self.grip = sol.grip
             if self.balanced is not None:  # a spring's balance is accepted as found
                 self.indenter, self.balanced = self.indenter[-1:] + [self.balanced], None
             if hasattr(self.model, "commit"):  # a rate-dependent material closes its step
@@ -254,30 +243,6 @@ class _Walk:
             return None
         end, released, steps, its = best
         before, after = record(m, -1, "press", load, sol1), record(m, -1, "press", load, end)
-        self.jumps.append(Jump(step.travel_at(t1), before.force, after.force, before.pressure,
-                               after.pressure, before.volume, after.volume, released, steps,
-                               its))
-        self.iterations += its
-        self.instability = self.instability or self.jumps[-1].sentence()
-        return t1, end
-
-    def fold(self, step, load_at, t0, t1):
-        """Follow a fold: every increment past the stable state at ``t0`` failed down to the
-        smallest, to ``t1`` (the branch turned back at a limit point: no equilibrium on it
-        there). Descend Π at ``t1`` from that state (:func:`.snap.relax`, no push).
-        (t1, stable solution) or None (none found)."""
-        m, s, load = self.model, self.s, load_at(t1)
-        diag = np.abs(self.last.with_tangent(m, self.load).evaluation.K.diagonal()[: m.n_u])
-        metric = np.maximum(diag, 1e-6 * diag.max())
-        try:
-            end, released, steps, its = relax(m, self.x, load, self.active, self.engaged, s,
-                                              np.zeros_like(self.x), metric,
-                                              self.gripped(load))
-        except NewtonFailure as exc:
-            _log.debug("fold descent at t=%.4g failed: %s", t1, exc)
-            return None
-        before = record(m, -1, "press", self.load, self.last)
-        after = record(m, -1, "press", load, end)
         self.jumps.append(Jump(step.travel_at(t1), before.force, after.force, before.pressure,
                                after.pressure, before.volume, after.volume, released, steps,
                                its))
