@@ -78,7 +78,7 @@ class FEMCurveModel(ModelBase):
 
     def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
         from spsc.fem.solid.chamber import ChamberRun, run_chamber, write_vtu
-        from spsc.fem.engine import Settings
+        from spsc.fem.engine.settings import SEMISMOOTH_CONTACT, Settings
 
         spec = ChamberRun(geometry, material, load, mesh_size_mm=options.mesh_size,
                           layers=options.layers, full=bool(options.full),
@@ -88,8 +88,7 @@ class FEMCurveModel(ModelBase):
         # the wall's active-set choices (semi-smooth from the secant predictor): the report's
         # vented Type A curve 177 -> 102 Newton iterations, its pressurised Type B 70 -> 64
         # factorisations, the curves within 3e-10
-        settings = Settings(solver=options.solver, predictor=True, active_set="semismooth",
-                            active_set_update=1e-2, max_active_changes=40)
+        settings = Settings(solver=options.solver, **SEMISMOOTH_CONTACT)
         curve, result, model = run_chamber(spec, settings=settings,
                                            progress=progress, cache_dir=cache_dir)
         extra = {}

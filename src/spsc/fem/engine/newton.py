@@ -132,19 +132,16 @@ class _Newton:
     def measure(self, ev, rt, free) -> None:
         """The force scale (``settings.scale``) and the free displacements' residual (N)."""
         m, n_u = self.model, self.model.n_u
+        self.res = float(np.linalg.norm(rt[:n_u][free[:n_u]]))
+        loads = (np.linalg.norm(ev.pressure * ev.g), np.linalg.norm(ev.r[:n_u][m.fixed[:n_u]]),
+                 np.linalg.norm(ev.r[self.active]), m.force_floor)
         if self.s.scale == "running":
-            self.scale = max(self.scale, np.linalg.norm(ev.pressure * ev.g),
-                             np.linalg.norm(ev.r[:n_u][m.fixed[:n_u]]),
-                             np.linalg.norm(ev.r[self.active]), m.force_floor)
+            self.scale = max(self.scale, *loads)
         elif self.scale <= m.force_floor:
             # the first iterate that carries a load; a vented press starts from none (no
             # pressure, the plate just touching): its force is the plate's reactions once the
             # state moves, and a scale left at the floor asked for a residual of 1e-14 N
-            self.scale = max(np.linalg.norm(ev.pressure * ev.g), m.force_floor,
-                             np.linalg.norm(ev.r[:n_u][m.fixed[:n_u]]),
-                             np.linalg.norm(rt[:n_u][free[:n_u]]),
-                             np.linalg.norm(ev.r[self.active]))
-        self.res = float(np.linalg.norm(rt[:n_u][free[:n_u]]))
+            self.scale = max(*loads, self.res)
 
     def near(self, it, con, converged) -> bool:
         """Whether the active sets are updated in this iteration."""

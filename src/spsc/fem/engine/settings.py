@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Settings"]
+__all__ = ["Settings", "SEMISMOOTH_CONTACT"]
 
 _CHOICES = {"search": ("residual", "admissible"), "active_set": ("equilibrium", "semismooth"),
             "scale": ("initial", "running"), "gas_shift": ("full", "constrained")}
@@ -97,3 +97,10 @@ class Settings:
     @property
     def semismooth(self) -> bool:
         return self.active_set == "semismooth"
+
+
+#: the plate's contact as the wall model walks it: each increment from the secant prediction of
+#: the last two states, the active set updated at every iteration from the step's linearised
+#: reactions (1e-2 of the scale before the first; 40 changes); the 3D chamber curve takes it too
+SEMISMOOTH_CONTACT = dict(predictor=True, active_set="semismooth", active_set_update=1e-2,
+                          max_active_changes=40)

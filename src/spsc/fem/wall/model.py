@@ -22,7 +22,7 @@ from spsc.core.errors import require
 from spsc.materials import Material
 
 from ..engine.linsolve import available_solvers
-from ..engine.settings import Settings
+from ..engine.settings import SEMISMOOTH_CONTACT, Settings
 from ..engine.steps import Load
 from ..material import NearlyIncompressible
 from ..material_kernel import determinant
@@ -95,10 +95,9 @@ class WallSettings:
         each load's tail."""
         return Settings(rtol=self.rtol, max_iterations=self.max_iterations,
                         min_fraction=self.min_fraction, contact_tolerance=self.contact_tolerance,
-                        solver=_SOLVER, active_set_update=1e-2, search="admissible",
-                        active_set="semismooth", max_active_changes=40, scale="running",
-                        fresh_inertia=True, predictor=True, gas_shift="constrained",
-                        snap_through=True, modified_newton=self.modified_newton)
+                        solver=_SOLVER, search="admissible", scale="running",
+                        fresh_inertia=True, gas_shift="constrained", snap_through=True,
+                        modified_newton=self.modified_newton, **SEMISMOOTH_CONTACT)
 
     def profile_size(self, stadium: bool) -> float:
         """The element length along the profile (mm) for a dome or a stadium."""
