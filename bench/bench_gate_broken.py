@@ -16,7 +16,6 @@ import numpy as np
 import trimesh
 
 from spsc.cad.bladder import BladderSpec, build_bladder
-from spsc.cad.export import write_stl
 from spsc.cad.geometry import preset
 from spsc.cad.meshbuild import bladder_mesh
 

@@ -314,7 +314,7 @@ def report(args, res, inferred, acc, samples, seconds, n):
         print(f"\nswitch inferred from P (no valve column): precision {p:.3f} recall {rc:.3f} "
               f"F1 {f1:.3f} ({inferred['switch']})")
         out["switch_inferred"] = {"precision": p, "recall": rc, "f1": f1}
-    print(f"\nforce over the holds (true F > half its peak), estimate against the trace:")
+    print("\nforce over the holds (true F > half its peak), estimate against the trace:")
     print(f"{'type':4s} {'mode':4s} {'median |e|/F':>12s} {'95th pct':>9s} {'mean bias':>9s} "
           f"{'within max(5 %, band)':>22s}")
     out["force"] = {}

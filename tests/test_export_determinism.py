@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from spsc.cad.export import TriMesh, read_3mf, write_3mf, write_step, write_stl
+from spsc.cad.export import TriMesh, read_3mf, write_3mf, write_stl
 
 
 def _shuffled(mesh: TriMesh, seed: int) -> TriMesh:

@@ -18,7 +18,7 @@ from spsc.cad.geometry import preset
 from spsc.core.errors import ParameterError
 from spsc.core.indenter import Indenter, check_indenter, parse_indenter
 from spsc.fem.engine import CloseValve, Inflate, Load, Press, solve
-from spsc.fem.engine.active_set import first_contact, heights, surface
+from spsc.fem.engine.active_set import heights, surface
 from spsc.fem.engine.constraints import Constraints
 from spsc.fem.engine.leaning import Leaning
 from spsc.fem.wall import wall_curve

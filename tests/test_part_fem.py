@@ -469,7 +469,6 @@ def test_a_tilted_plate_pushes_along_its_normal(dome_part, tmp_path):
     """--indenter plate:tilt=10,axis=y on the dome part (full: no symmetry to break): the
     frictionless plate's nodal forces sum to a force along its normal, Σf_x / Σf_z =
     −tan 10° (to 1e-8), balanced by the mount's lateral reaction."""
-    from spsc.core.indenter import parse_indenter
     from spsc.fem.solid.chamber import contact_forces
 
     s, mesh = dome_part

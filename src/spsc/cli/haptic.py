@@ -4,7 +4,6 @@ part and code are the same), the summary and figure where ``spsc report`` finds 
 
 from __future__ import annotations
 
-from pathlib import Path
 
 from spsc.cli.options import check_output_dir, number
 

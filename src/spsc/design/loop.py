@@ -25,7 +25,7 @@ from spsc.core.errors import ParameterError
 
 from spsc.design.goal import METRIC_NAMES, Goal
 from spsc.design.problem import Problem
-from spsc.design.space import INPUTS, Space
+from spsc.design.space import INPUTS
 from spsc.design.journal import (INTERRUPTED, JOURNAL, STUDY_NAME, Lock, check_resumable, open_study,
                            optuna_module)
 

@@ -30,7 +30,7 @@ writes ``summary.json`` and ``bench-gap.png``; ``spsc report --bench-gap DIR`` s
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np

@@ -66,7 +66,7 @@ def _probe() -> tuple[str, ...]:
 
         out.append("pardiso")
     except ImportError:  # pragma: no cover - depends on the install
-        self.serial += 1  # a failed factorisation spoils the factors held too
+        pass
     return tuple(out + ["superlu", "superlu-mmd"])
 
 
@@ -183,17 +183,21 @@ def factorize(A: sp.spmatrix, solver: str = "auto", *, upper: bool = False) -> F
 
 def _symmetric_lu(A) -> Factor:
     """LDLᵀ-like LU without off-diagonal pivoting (symmetric mode): its U diagonal carries the
-    inertia. Falls back to pivoted LU (inertia unknown) if a pivot vanishes."""
+    inertia. Where a pivot vanishes SuperLU pivots off the diagonal after all (its row and
+    column permutations differ): the signs of U's diagonal then say nothing, and the inertia is
+    reported unknown (None) and, like a tiny pivot, the default pivoted LU solves."""
     A = sp.csc_matrix(A)
     try:
         lu = spla.splu(A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                        options={"SymmetricMode": True})
-        d = lu.U.diagonal()
-        if np.all(np.isfinite(d)) and np.min(np.abs(d)) > 1e-13 * np.max(np.abs(d)):
-            return Factor(lu.solve, int(np.sum(d < 0)))
-    except RuntimeError:
-        self.serial += 1  # a failed factorisation spoils the factors held too
-    return Factor(spla.splu(A).solve, None)
+    except RuntimeError:  # an exactly singular factor: the pivoted LU below
+        return Factor(spla.splu(A).solve, None)
+    d = lu.U.diagonal()
+    symmetric = np.array_equal(lu.perm_r, lu.perm_c) and np.all(np.isfinite(d)) \
+        and np.min(np.abs(d)) > 1e-13 * np.max(np.abs(d))
+    if symmetric:
+        return Factor(lu.solve, int(np.sum(d < 0)))
+    return Factor(spla.splu(A).solve, None)  # a tiny unpivoted pivot solves inaccurately
 
 
 #: solvers that take the matrix as assembled, not its upper triangle

@@ -38,7 +38,7 @@ def balance(solve_at, y: float, k: float, y_prev: float, f_prev: float, slope: f
     ``solve_at(y_p)`` → (solution, F) solves the chamber with the indenter at y_p; ``y_prev``,
     ``f_prev``: the last converged indenter travel and force; ``slope``: dF/dy_p there (N/mm,
     an estimate). Raises :class:`NewtonFailure` if no balance is found."""
-    lo, g_lo, hi, g_hi = y_prev, k * (y - y_prev), None, None
+    lo, g_lo, hi = y_prev, k * (y - y_prev), None
     a, g_a = lo, g_lo
     yp = min(y, lo + g_lo / (k + max(slope, 0.0)))
     for _ in range(MAX_TRIALS):
@@ -49,7 +49,7 @@ def balance(solve_at, y: float, k: float, y_prev: float, f_prev: float, slope: f
         if g > 0:
             lo, g_lo = yp, g
         else:
-            hi, g_hi = yp, g
+            hi = yp
         nxt = yp - g * (yp - a) / (g - g_a) if g != g_a else yp
         a, g_a = yp, g
         if hi is None:

@@ -25,7 +25,6 @@ import contextlib
 import os
 import tempfile
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
