@@ -4,7 +4,9 @@
   reduces it (Armijo-like), else the α with the smallest residual among admissible trials (1 if
   none is). The full step is evaluated with its tangent: it is accepted nearly always, and then
   that evaluation is the next iteration's. With a pending jump of the constraints the residual
-  of the unconstrained state is no merit to descend on: the first admissible α is taken.
+  of the unconstrained state is no merit to descend on: the full step is taken, and if it
+  inverts an element the load fails (the walk cuts the increment). No inverted trial is ever
+  taken: when every trial inverts one, the load fails at once.
 * ``admissible`` — the largest α that inverts no element (full Newton steps otherwise: the
   condensed mixed form's residual is no merit function to descend on).
 """
@@ -28,13 +30,20 @@ def _residual(model, x, step, free, load, base, con, tangent):
         try:
             ev = model.evaluate(xt, load, tangent=tangent and alpha == 1.0)
             rt = np.linalg.norm(con.condense(ev.r)[free])
-        except (np.linalg.LinAlgError, *model.inadmissible):
-            ev, rt = None, np.inf
-        if rt <= base * (1 - 1e-4 * alpha) or (np.isinf(base) and np.isfinite(rt)):
+        except (np.linalg.LinAlgError, *model.inadmissible) as exc:
+            ev, rt, why = None, np.inf, str(exc)
+        if np.isinf(base) and not np.isfinite(rt):
+            # a step onto new constraints that inverts the mesh: the increment is too long.
+            # Halving it here only wandered (the fingertip's inserts: 25 iterations, then the
+            # same failure); the walk cuts the increment instead
+            raise NewtonFailure(f"the step onto the new contact constraints fails: {why}")
+        if rt <= base * (1 - 1e-4 * alpha) or np.isinf(base):
             return alpha, ev if alpha == 1.0 else None
         if rt < best:
             best, best_alpha = rt, alpha
         alpha *= 0.5
+    if not np.isfinite(best):
+        raise NewtonFailure(f"every trial step fails down to α = {2 * alpha:g}: {why}")
     return best_alpha, None
 
 
