@@ -85,7 +85,6 @@ def _part(out: Path) -> tuple[Path, dict]:
 def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | None, log):
     from spsc.fem.part.run import ContactPatch, part_run, part_curve, part_model, write_part_vtu
     from spsc.fem.engine import solve
-    from spsc.fem.engine.settings import SEMISMOOTH_CONTACT, Settings
     from spsc.materials import material
 
     fem = design["fem"]
@@ -103,10 +102,7 @@ def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | 
     mesh_s = time.perf_counter() - t0
     log(f"  {path.stem}: {model.disc.n:,} unknowns, {model.mesh.n_tets:,} tetrahedra "
         f"(mesh {mesh_s:.0f} s)")
-    # the chamber curves' contact choices (semi-smooth from the secant predictor): the pulp
-    # case at 40 kPa 460 -> 364 s on one 166k-unknown mesh, its curve within 3e-10
-    settings = Settings(**SEMISMOOTH_CONTACT)
-    result = solve(model, run.steps(run.body(model, R)), settings=settings,
+    result = solve(model, run.steps(run.body(model, R)),
                    progress=lambda d, n: log(f"    step {d}/{n} ({time.perf_counter() - t0:.0f} s)"))
     curve = part_curve(run, model, result, surface, mesh_seconds=mesh_s)
     extra = {}
