@@ -508,3 +508,24 @@ def test_a_body_from_a_file_presses_as_the_body_it_describes(dome_part, tmp_path
         assert res.converged, (body, res.message)
         force[body] = np.array([r.force for r in res.of("press")])
     assert_allclose(force[str(stl)], force["sphere:R=4"], rtol=1e-2)
+
+
+def test_the_mesh_cache_key_is_the_same_for_a_design_in_memory_and_read_from_its_file(tmp_path):
+    """A design built in this process holds NumPy floats, the same design read back from its
+    JSON plain floats: both must find the one cached mesh (the fingertip re-meshed, 48 s, when
+    its study was run from the file instead of the build)."""
+    import json
+
+    from spsc.fem.part.run import _cache_path
+
+    stl = tmp_path / "dome.stl"
+    stl.write_bytes(b"solid x\nendsolid x\n")
+    port = {"axis_point": [0.0, np.float64(-6.0), 0.0], "axis_dir": [0.0, 0.0, 1.0],
+            "radius": np.float64(0.72), "z_range": [np.float64(-6.19), 0.0]}
+    built = part_run(str(stl), MAT, "z<=0", mesh_size_mm=2, design={"port": port})
+    read = part_run(str(stl), MAT, "z<=0", mesh_size_mm=2.0,
+                    design=json.loads(json.dumps({"port": port})))
+    assert _cache_path(built, tmp_path) == _cache_path(read, tmp_path)
+    other = part_run(str(stl), MAT, "z<=0", mesh_size_mm=2.0,
+                     design={"port": {**port, "radius": 0.8}})
+    assert _cache_path(other, tmp_path) != _cache_path(read, tmp_path)

@@ -19,6 +19,7 @@ per point (``force_motor_N``).
 from __future__ import annotations
 
 import hashlib
+import json
 import math
 import time
 from pathlib import Path
@@ -71,8 +72,10 @@ def _file_digest(path) -> str:
 def _cache_path(run: PartRun, cache_dir) -> Path:
     from ..solid.mesh import CACHE_DIR
 
-    port = (run.design or {}).get("port")
-    key = f"{_file_digest(run.part)}|{port}|{run.mesh_size_mm!r}|{MESH_VERSION}|part-2"
+    # JSON, not repr: a design built in this process holds NumPy floats (repr np.float64(…)),
+    # the same design read from its file plain ones; both must find the one mesh
+    port = json.dumps((run.design or {}).get("port"), sort_keys=True)
+    key = f"{_file_digest(run.part)}|{port}|{float(run.mesh_size_mm)!r}|{MESH_VERSION}|part-2"
     return Path(cache_dir or CACHE_DIR) / f"part-{hashlib.sha256(key.encode()).hexdigest()[:16]}.npz"
 
 
