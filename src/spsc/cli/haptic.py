@@ -4,7 +4,6 @@ part and code are the same), the summary and figure where ``spsc report`` finds 
 
 from __future__ import annotations
 
-
 from spsc.cli.options import check_output_dir, number
 
 _COLUMNS = ("force_N", "dp_kPa", "stiffness_N_per_mm", "sensitivity_kPa_per_mm", "kPa_per_N",

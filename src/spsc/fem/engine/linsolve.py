@@ -190,14 +190,13 @@ def _symmetric_lu(A) -> Factor:
     try:
         lu = spla.splu(A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                        options={"SymmetricMode": True})
-    except RuntimeError:  # an exactly singular factor: the pivoted LU below
-        return Factor(spla.splu(A).solve, None)
-    d = lu.U.diagonal()
-    symmetric = np.array_equal(lu.perm_r, lu.perm_c) and np.all(np.isfinite(d)) \
-        and np.min(np.abs(d)) > 1e-13 * np.max(np.abs(d))
-    if symmetric:
-        return Factor(lu.solve, int(np.sum(d < 0)))
-    return Factor(spla.splu(A).solve, None)  # a tiny unpivoted pivot solves inaccurately
+        d = lu.U.diagonal()
+        if np.array_equal(lu.perm_r, lu.perm_c) and np.all(np.isfinite(d)) \
+                and np.min(np.abs(d)) > 1e-13 * np.max(np.abs(d)):
+            return Factor(lu.solve, int(np.sum(d < 0)))
+    except RuntimeError:
+        pass  # exactly singular in symmetric mode
+    return Factor(spla.splu(A).solve, None)
 
 
 #: solvers that take the matrix as assembled, not its upper triangle

@@ -25,6 +25,7 @@ TRIALS = {"residual": 5, "admissible": 8}
 
 def _residual(model, x, step, free, load, base, con, tangent):
     best, best_alpha, alpha = np.inf, 1.0, 1.0
+    why = "a non-finite residual"  # unless an evaluation raised
     for _ in range(TRIALS["residual"]):
         xt = x + alpha * step
         try:
