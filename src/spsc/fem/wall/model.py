@@ -15,7 +15,6 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse as sp
 
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.errors import require
@@ -27,6 +26,7 @@ from ..engine.steps import Load
 from ..material import NearlyIncompressible
 from ..material_kernel import determinant
 from ..viscous import ViscousLaw
+from .pattern import Pattern
 from .section import section_mesh
 from .section_solid import InvertedSection, section_solid
 from .swept import SweptWall, sweep_stations
@@ -132,32 +132,6 @@ class _Dome:
         return float(self.section.positions(u)[self.section.cavity[0], 1])
 
 
-class _Pattern:
-    """The tangent's fixed sparsity: every element block (and the cavity's volume-Hessian
-    blocks, which lie inside them) scattered into one CSR pattern by a single bincount."""
-
-    def __init__(self, n: int, *blocks):
-        keys = [(np.repeat(d, d.shape[1], axis=1) * n + np.tile(d, (1, d.shape[1]))).ravel()
-                for d in blocks]
-        uniq, inv = np.unique(np.concatenate(keys), return_inverse=True)
-        self.n, self.nnz = n, len(uniq)
-        self.indices = (uniq % n).astype(np.int32)
-        self.indptr = np.searchsorted(uniq, np.arange(n + 1) * n).astype(np.int32)
-        self.positions = np.split(inv.ravel(), np.cumsum([k.size for k in keys])[:-1])
-        self._joined = {}  # the positions of each combination of blocks present, joined once
-
-    def matrix(self, *values) -> sp.csr_matrix:
-        """The CSR matrix of the blocks' ``values`` (each the size of its block array)."""
-        present = tuple(v is not None for v in values)
-        pos = self._joined.get(present)
-        if pos is None:
-            pos = self._joined[present] = np.concatenate(
-                [self.positions[i] for i, there in enumerate(present) if there])
-        val = np.concatenate([v.ravel() for v in values if v is not None])
-        data = np.bincount(pos, weights=val, minlength=self.nnz)
-        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n))
-
-
 class WallModel:
     """The wall of one chamber and its loads. l = 0: the axisymmetric dome. l > 0 (or
     ``stadium=True``): the swept wall of the quarter (:class:`~spsc.fem.wall.swept.SweptWall`).
@@ -208,7 +182,8 @@ class WallModel:
         #: smallest force scale of the convergence test (N): 1e-9 μ0 t0²
         self.force_floor = 1e-9 * self.mu * self.geometry.t0 ** 2
         _, _, cavity = self.part.volume_gradient(np.zeros(self.n_u))
-        self._pattern = _Pattern(self.n_u, self.solid.element_dofs, cavity)
+        self._pattern = Pattern(self.n_u, self.solid.element_dofs, cavity,
+                                per_node=per_node)
 
     @property
     def kind(self) -> str:
