@@ -31,26 +31,22 @@ with its gradient and Hessian for the follower pressure.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from spsc.cad.geometry import SPSCGeometry
 
 from ..material import NearlyIncompressible
-from ..material_kernel import cofactor
 from .section import Section, _GAUSS_T, _GAUSS_W, _edge_shape
-from .section_solid import MixedSolid, _pressure_basis
+from .cartesian_solid import CartesianSolid
+from .section_solid import _pressure_basis
 
 __all__ = ["Sweep", "sweep_stations", "SweptWall"]
 
 # quadratic Lagrange on ζ ∈ [−1, 1] (nodes −1, 0, 1) and a 3-point Gauss rule there
 _ZG, _ZW = np.polynomial.legendre.leggauss(3)
 _ZG4, _ZW4 = np.polynomial.legendre.leggauss(4)
-
-#: hexahedra per batch of the tangent's products (measured: 8 keeps them in cache, 5.1 ms
-#: against 8.1 ms all at once on the Table 1 stadium's 126)
-_CHUNK = 8
 
 
 def _phi(z):
@@ -106,68 +102,6 @@ def _frame(kind, a, R, s):
         with np.errstate(divide="ignore", invalid="ignore"):
             cS = np.stack([-sn / R, c / R, zero], -1)
     return X, cR, cS
-
-
-@dataclass(frozen=True, eq=False)
-class CartesianSolid(MixedSolid):
-    """A :class:`~spsc.fem.wall.section_solid.MixedSolid` whose displacement is Cartesian,
-    F = I + Σ_b u_b ⊗ ∇N_b, given by the shape gradients ``grad`` (ne, nq, nb, 3) instead of
-    the full ∂F/∂u (9× smaller, and its tangent 3× cheaper):
-
-        r_bi = ∫ P_ij ∂_j N_b dV,   K_bi,ck = ∫ ∂_j N_b 𝔸_ijkl ∂_l N_c dV.
-    """
-
-    grad: np.ndarray = field(default=None, repr=False)
-
-    def __post_init__(self):
-        super().__post_init__()
-        ne, nq, nb, _ = self.grad.shape
-        GdV = self.grad * self.dV[..., None, None]
-        # constant operands in the layouts the products need (contiguous: no copy per call)
-        object.__setattr__(self, "_Gt", np.ascontiguousarray(  # [e, b, (q j)]
-            np.transpose(GdV, (0, 2, 1, 3))).reshape(ne, nb, nq * 3))
-        object.__setattr__(self, "_Gl", np.ascontiguousarray(  # [e, q, l, c]
-            np.swapaxes(self.grad, 2, 3)))
-
-    def deformation(self, u) -> np.ndarray:
-        ue = np.asarray(u)[self.element_dofs].reshape(len(self.element_dofs), 1, -1, 3)
-        return np.eye(3) + np.swapaxes(self._Gl @ ue, -1, -2)
-
-    def _forces(self, P) -> np.ndarray:
-        """r_e[b, i] = ∫ P_ij ∂_j N_b dV, (ne, 3 nb)."""
-        ne, nq = P.shape[:2]
-        Pt = np.ascontiguousarray(np.swapaxes(P, -1, -2)).reshape(ne, nq * 3, 3)  # [(q j), i]
-        return (self._Gt @ Pt).reshape(ne, -1)
-
-    def residual(self, u, pc):
-        F, _, p, rp = self._fields(u, pc)
-        r = np.zeros(self.n_dofs)
-        np.add.at(r, self.element_dofs, self._forces(self.law.stress(F, p)))
-        return r, rp
-
-    def element_tangent(self, u, pc):
-        F, J, p, rp = self._fields(u, pc)
-        P, A = self.law.stress_tangent(F, p)  # A[i, j, k, l]
-        ne, nq, nb, _ = self.grad.shape
-        # U[e, q, j, (i k c)] = Σ_l A_ijkl ∂_l N_c, then K[b, (i k c)] = Σ_(q j) ∂_j N_b dV U,
-        # a few elements at a time: U of all of them at once is 60 MB, fresh pages every call
-        Aj = np.ascontiguousarray(np.transpose(A, (0, 1, 3, 2, 4, 5))).reshape(ne, nq, 27, 3)
-        Ke = np.empty((ne, nb, 3, nb, 3))
-        for e in range(0, ne, _CHUNK):
-            at = slice(e, e + _CHUNK)
-            U = (Aj[at] @ self._Gl[at]).reshape(-1, nq * 3, 9 * nb)
-            Ke[at] = np.transpose((self._Gt[at] @ U).reshape(-1, nb, 3, 3, nb), (0, 1, 2, 4, 3))
-        Ke = Ke.reshape(ne, 3 * nb, 3 * nb)
-        # G[k, (b i)] = ∫ q_k J F⁻ᵀ_ij ∂_j N_b dV
-        nk = self.q.shape[-1]
-        JFinv = np.swapaxes(cofactor(F)[1], -1, -2)  # J F⁻¹
-        Y = self.q[:, :, None, :, None] * JFinv[:, :, :, None, :]
-        G = (self._Gt @ Y.reshape(ne, nq * 3, nk * 3)).reshape(ne, nb, nk, 3)
-        G = np.ascontiguousarray(np.transpose(G, (0, 2, 1, 3))).reshape(ne, nk, 3 * nb)
-        Ke += self.law.kappa * (np.ascontiguousarray(np.swapaxes(G, 1, 2)) @ (self.Minv @ G))
-        r = np.zeros(self.n_dofs)
-        np.add.at(r, self.element_dofs, self._forces(P))
-        return r, rp, Ke, G
 
 
 class SweptWall:
@@ -283,10 +217,24 @@ class SweptWall:
         return (np.concatenate(nodes), np.array(kinds), np.array(s0s), np.array(s1s),
                 np.concatenate(sec))
 
-    def _surface(self, patches, u, zeta=_ZG4):
+    def _surface(self, patches, u):
         """At the patch points (t Gauss × ζ): positions P, ∂P/∂t, ∂P/∂ζ (np, nt, nz, 3) and
         the linear maps of each from the patch unknowns (nt, nz, 9) (shape value, t- and
         ζ-derivative of each local node; the same for the three components)."""
+        P0, Pt0, Pz0, Lv, Lt, Lz = self._surface_reference(patches)
+        ue = np.asarray(u).reshape(-1, 3)[patches[0]]  # (np, 9, 3)
+        P = P0 + np.einsum("tzb,pbi->ptzi", Lv, ue)
+        Pt = Pt0 + np.einsum("tzb,pbi->ptzi", Lt, ue)
+        Pz = Pz0 + np.einsum("tzb,pbi->ptzi", Lz, ue)
+        return P, Pt, Pz, Lv, Lt, Lz
+
+    def _surface_reference(self, patches, zeta=_ZG4):
+        """The undeformed part of :meth:`_surface` and its linear maps, made once per patch
+        set (every volume, gradient and contact area evaluates them)."""
+        cache = self.__dict__.setdefault("_references", {})
+        key = id(patches[0])
+        if key in cache:
+            return cache[key][1]
         nodes, kinds, s0, s1, edges = patches
         Nt, dNt = _edge_shape(_GAUSS_T)  # (nt, 3)
         ph, dph = _phi(zeta)  # (nz, 3)
@@ -322,11 +270,11 @@ class SweptWall:
         Lv = np.einsum("ta,zk->tzak", Nt, ph).reshape(len(_GAUSS_T), len(zeta), 9)
         Lt = np.einsum("ta,zk->tzak", dNt, ph).reshape(len(_GAUSS_T), len(zeta), 9)
         Lz = np.einsum("ta,zk->tzak", Nt, dph).reshape(len(_GAUSS_T), len(zeta), 9)
-        ue = np.asarray(u).reshape(-1, 3)[nodes]  # (np, 9, 3)
-        P = P + np.einsum("tzb,pbi->ptzi", Lv, ue)
-        Pt = Pt + np.einsum("tzb,pbi->ptzi", Lt, ue)
-        Pz = Pz + np.einsum("tzb,pbi->ptzi", Lz, ue)
-        return P, Pt, Pz, Lv, Lt, Lz
+        # the Hessian's bilinear maps: O[(t z), (a b)] = L1_a L2_b at each point
+        O = {name: np.einsum("tza,tzb->tzab", L1, L2).reshape(-1, 81)
+             for name, (L1, L2) in {"vt": (Lv, Lt), "vz": (Lv, Lz), "tz": (Lt, Lz)}.items()}
+        cache[key] = (patches, (P, Pt, Pz, Lv, Lt, Lz), O)  # the patches held: id stays theirs
+        return cache[key][1]
 
     def _weights(self, zeta_w=_ZW4):
         return 4.0 * np.einsum("t,z->tz", _GAUSS_W, zeta_w)
@@ -358,13 +306,15 @@ class SweptWall:
         if not hessian:
             return g
         H = np.zeros((npatch, 9, 3, 9, 3))
-        # z with x: ∂²/∂z_a∂x_b = Lv_a (yz Lt_b − yt Lz_b)
-        zx = np.einsum("tza,ptz,tzb,tz->pab", Lv, yz, Lt, w) \
-            - np.einsum("tza,ptz,tzb,tz->pab", Lv, yt, Lz, w)
-        zy = np.einsum("tza,ptz,tzb,tz->pab", Lv, xt, Lz, w) \
-            - np.einsum("tza,ptz,tzb,tz->pab", Lv, xz, Lt, w)
-        xy = np.einsum("tza,ptz,tzb,tz->pab", Lt, z, Lz, w) \
-            - np.einsum("tza,ptz,tzb,tz->pab", Lz, z, Lt, w)
+        # z with x: ∂²/∂z_a∂x_b = Lv_a (yz Lt_b − yt Lz_b), as (point values) @ (basis pairs)
+        O = self.__dict__["_references"][id(self._cavity[0])][2]
+        wz = (w * z).reshape(npatch, -1)
+        zx = ((w * yz).reshape(npatch, -1) @ O["vt"]
+              - (w * yt).reshape(npatch, -1) @ O["vz"]).reshape(npatch, 9, 9)
+        zy = ((w * xt).reshape(npatch, -1) @ O["vz"]
+              - (w * xz).reshape(npatch, -1) @ O["vt"]).reshape(npatch, 9, 9)
+        xy = (wz @ O["tz"]).reshape(npatch, 9, 9)
+        xy = xy - np.swapaxes(xy, 1, 2)  # Lt_a Lz_b − Lz_a Lt_b
         H[:, :, 2, :, 0] = zx
         H[:, :, 0, :, 2] = np.swapaxes(zx, 1, 2)
         H[:, :, 2, :, 1] = zy
