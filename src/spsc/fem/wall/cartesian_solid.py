@@ -39,18 +39,9 @@ class CartesianSolid(MixedSolid):
         object.__setattr__(self, "_Gl", np.ascontiguousarray(  # [e, q, l, c]
             np.swapaxes(self.grad, 2, 3)))
 
-    def deformation(self, u) -> np.ndarray:
-        """F (ne, nq, 3, 3), read-only; the last state's is kept (the line search's
-        admissibility check and the evaluation that follows ask for the same one)."""
-        u = np.asarray(u)
-        last = self.__dict__.get("_last")
-        if last is not None and np.array_equal(last[0], u):
-            return last[1]
+    def _deformation(self, u) -> np.ndarray:
         ue = u[self.element_dofs].reshape(len(self.element_dofs), 1, -1, 3)
-        F = np.eye(3) + np.swapaxes(self._Gl @ ue, -1, -2)
-        F.flags.writeable = False
-        object.__setattr__(self, "_last", (u.copy(), F))
-        return F
+        return np.eye(3) + np.swapaxes(self._Gl @ ue, -1, -2)
 
     def _forces(self, P) -> np.ndarray:
         """r_e[b, i] = ∫ P_ij ∂_j N_b dV, (ne, 3 nb)."""

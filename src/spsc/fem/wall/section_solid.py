@@ -107,8 +107,20 @@ class MixedSolid:
         return self.q.shape[-1] * len(self.element_dofs)
 
     def deformation(self, u) -> np.ndarray:
-        """F at the quadrature points, (ne, nq, 3, 3)."""
-        ue = np.asarray(u)[self.element_dofs]  # (ne, nd)
+        """F at the quadrature points, (ne, nq, 3, 3), read-only; the last state's is kept
+        (the line search's admissibility check and the evaluation that follows ask for the
+        same one: 87 of 194 on the Table 1 stadium curve)."""
+        u = np.asarray(u)
+        last = self.__dict__.get("_last")
+        if last is not None and np.array_equal(last[0], u):
+            return last[1]
+        F = self._deformation(u)
+        F.flags.writeable = False
+        object.__setattr__(self, "_last", (u.copy(), F))
+        return F
+
+    def _deformation(self, u) -> np.ndarray:
+        ue = u[self.element_dofs]  # (ne, nd)
         F = np.einsum("eqcd,ed->eqc", self.B, ue).reshape(ue.shape[0], -1, 3, 3)
         F += np.eye(3)
         return F
