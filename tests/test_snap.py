@@ -122,3 +122,23 @@ def test_a_descent_that_comes_to_rest_by_the_saddle_is_a_small_jump():
     small = [j for j in c.solver.details["jumps"] if j["y_mm"] == 5.5]
     assert len(small) == 1 and 0 < small[0]["energy_released_mJ"] < 1e-3
     assert abs(small[0]["force_after_N"] - small[0]["force_before_N"]) < 0.01
+
+
+@pytest.mark.slow
+def test_a_branch_that_ends_without_an_unstable_state_is_crossed_by_descent():
+    """Type C in the low mode at 30 kPa (the committed report's curve stopped at y = 4.91
+    mm): Newton finds no equilibrium past 4.906 mm however short the increment (it cycles
+    between two contact sets, 6e-4 N from balance) and no unstable state is reached to push
+    from. The walk descends Π from the last stable state with the plate at the failing
+    position: the top buckles in (the cavity loses volume), the force falls, energy is
+    released, and the press goes on to the end of its stroke on the stable branch."""
+    c = wall_curve(preset("C"), MAT, pressure_kPa=30.0, reservoir_mm3=4e4, stroke_mm=5.25,
+                   points=22)
+    assert c.solver.converged and np.all(c.converged), c.solver.message
+    (jump,) = c.solver.details["jumps"]
+    assert 4.75 < jump["y_mm"] < 5.0
+    assert jump["force_after_N"] < jump["force_before_N"] - 0.5  # 13.8 -> 12.6 N
+    assert jump["volume_after_mm3"] < jump["volume_before_mm3"] - 10.0
+    assert jump["energy_released_mJ"] > 0
+    after = c.y_mm > jump["y_mm"]
+    assert np.all(np.diff(c.force_N[after]) > 0)  # the new branch is stiff again

@@ -6,7 +6,11 @@ Steps (:mod:`.steps`): :class:`Inflate` (prescribed cavity pressure ramp), :clas
 the stroke). Each increment is solved by Newton's method (:func:`.newton.newton`); a failed
 increment is cut in half until ``min_fraction`` of the nominal one, and a recorded equilibrium
 whose tangent has a negative eigenvalue stops the walk (it is unstable: no point past it is a
-result). A failure returns everything converged so far with the reason.
+result). With ``settings.snap_through`` a press follows the jump instead: from an unstable state
+(:meth:`_Walk.snap`), or, where Newton finds no equilibrium past the last stable state at the
+smallest increment (the branch ends at a fold, or Newton cycles), by descending the potential
+from that state (:meth:`_Walk.cross`). A failure returns everything converged so far with the
+reason.
 """
 
 from __future__ import annotations
@@ -24,7 +28,7 @@ from .active_set import first_contact, plate_force
 from .coulomb import coulomb
 from .friction import Grip, tractions
 from .spring import balance, solver as spring_solver
-from .newton import newton
+from .newton import Converged, newton
 from .result import NewtonFailure, Record, Result, Stop
 from .snap import PUSH_MM, Jump, relax, unstable_mode
 from .steps import CloseValve, Cycle, Inflate, Load, Press
@@ -170,16 +174,20 @@ class _Walk:
         while ti < len(targets):
             t_new = min(t + dt, targets[ti])
             trial = load_at(t_new)
+            follow = kind == "press" and self.s.snap_through and plain \
+                and len(self.jumps) < _MAX_JUMPS
             try:
                 sol, trial = self.solve(step, trial, t_new, history)
             except self.model.recoverable as exc:
                 _log.debug("cut %s t=%.4g dt=%.3g: %s", kind, t_new, dt, exc)
                 dt *= 0.5
-                if dt < self.s.min_fraction * nominal:
+                if dt >= self.s.min_fraction * nominal:
+                    continue
+                sol = self.cross(step, load_at, t, t_new) if follow else None
+                if sol is None:
                     return Stop(k, kind, t_new, step, trial, str(exc))
-                continue
-            if sol.unstable_modes and kind == "press" and self.s.snap_through \
-                    and len(self.jumps) < _MAX_JUMPS and plain:
+                history = []  # no secant across the jump
+            if sol.unstable_modes and follow:
                 jumped = self.snap(step, load_at, t, t_new, sol)
                 if jumped is not None:
                     t_new, sol = jumped
@@ -249,6 +257,33 @@ class _Walk:
         self.iterations += its
         self.instability = self.instability or self.jumps[-1].sentence()
         return t1, end
+
+    def cross(self, step, load_at, t0, t1):
+        """A stable state at ``t1`` where Newton finds none from the stable one at ``t0``
+        however short the increment: the branch ends there (a fold: no equilibrium near it
+        past t0), or Newton cycles between contact sets. Π is descended from the state at t0
+        with the plate at t1 (:func:`.snap.relax`, no push) and the jump recorded like a
+        snap-through's; None if the descent finds no stable state either."""
+        m, s = self.model, self.s
+        load = load_at(t1)
+        try:
+            ev = m.evaluate(self.x, load_at(t0))
+            diag = np.abs(ev.K.diagonal()[: m.n_u])
+            end, released, steps, its = relax(
+                m, self.x, load, self.active, self.engaged, s, np.zeros_like(self.x),
+                np.maximum(diag, 1e-6 * diag.max()), self.gripped(load))
+        except m.recoverable as exc:  # NewtonFailure among them
+            _log.debug("crossing at t=%.4g failed: %s", t1, exc)
+            return None
+        start = Converged(self.x, self.active, self.engaged, 0, ev, 0, self.grip)
+        before, after = record(m, -1, "press", load_at(t0), start), \
+            record(m, -1, "press", load, end)
+        self.jumps.append(Jump(step.travel_at(t1), before.force, after.force, before.pressure,
+                               after.pressure, before.volume, after.volume, released, steps,
+                               its))
+        self.iterations += its
+        self.instability = self.instability or self.jumps[-1].sentence()
+        return end
 
     def keep(self, rec, kind, t, step) -> None:
         """Record a stable point; a plate force falling between points is reported."""
