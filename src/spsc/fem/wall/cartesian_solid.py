@@ -51,9 +51,7 @@ class CartesianSolid(MixedSolid):
 
     def residual(self, u, pc):
         F, _, p, rp = self._fields(u, pc)
-        r = np.zeros(self.n_dofs)
-        np.add.at(r, self.element_dofs, self._forces(self.law.stress(F, p)))
-        return r, rp
+        return self.assemble(self._forces(self.law.stress(F, p))), rp
 
     def element_tangent(self, u, pc):
         F, J, p, rp = self._fields(u, pc)
@@ -75,6 +73,4 @@ class CartesianSolid(MixedSolid):
         G = (self._Gt @ Y.reshape(ne, nq * 3, nk * 3)).reshape(ne, nb, nk, 3)
         G = np.ascontiguousarray(np.transpose(G, (0, 2, 1, 3))).reshape(ne, nk, 3 * nb)
         Ke += self.law.kappa * (np.ascontiguousarray(np.swapaxes(G, 1, 2)) @ (self.Minv @ G))
-        r = np.zeros(self.n_dofs)
-        np.add.at(r, self.element_dofs, self._forces(P))
-        return r, rp, Ke, G
+        return self.assemble(self._forces(P)), rp, Ke, G

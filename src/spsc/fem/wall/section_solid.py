@@ -149,14 +149,18 @@ class MixedSolid:
         """max |M⁻¹ r_p|: the element-mean error of J − 1 − p/κ (dimensionless)."""
         return float(np.max(np.abs(np.einsum("ekl,el->ek", self.Minv, rp)), initial=0.0))
 
+    def assemble(self, values) -> np.ndarray:
+        """The element arrays ``values`` (ne, nd) summed onto the unknowns, in order (as
+        ``np.add.at``, several times faster)."""
+        return np.bincount(self.element_dofs.ravel(), weights=np.asarray(values).ravel(),
+                           minlength=self.n_dofs)
+
     def residual(self, u, pc):
         """(r_u, r_p): nodal forces (N), shape (2n,), and the pressure residual (ne, 3)."""
         F, _, p, rp = self._fields(u, pc)
         P = self.law.stress(F, p).reshape(F.shape[0], F.shape[1], 9)
         re = np.einsum("eqc,eqcd,eq->ed", P, self.B, self.dV)
-        r = np.zeros(self.n_dofs)
-        np.add.at(r, self.element_dofs, re)
-        return r, rp
+        return self.assemble(re), rp
 
     def residual_tangent(self, u, pc):
         """(r_u, r_p, K, G): the residuals, the condensed tangent K + κ Gᵀ M⁻¹ G (N/mm, CSR)
@@ -182,16 +186,12 @@ class MixedSolid:
         JGB = np.einsum("eqc,eqcd->eqd", JG, BdV)  # (ne, nq, nd)
         G = np.ascontiguousarray(np.swapaxes(self.q, 1, 2)) @ JGB  # (ne, k, nd)
         Ke += self.law.kappa * (np.ascontiguousarray(np.swapaxes(G, 1, 2)) @ (self.Minv @ G))
-        r = np.zeros(self.n_dofs)
-        np.add.at(r, self.element_dofs, re)
-        return r, rp, Ke, G
+        return self.assemble(re), rp, Ke, G
 
     def condensed_rhs(self, G, rp) -> np.ndarray:
         """κ Gᵀ M⁻¹ r_p as nodal forces (N), to add to r_u in the condensed solve."""
         fe = self.law.kappa * np.einsum("ekd,ek->ed", G, np.einsum("ekl,el->ek", self.Minv, rp))
-        f = np.zeros(self.n_dofs)
-        np.add.at(f, self.element_dofs, fe)
-        return f
+        return self.assemble(fe)
 
     def recover(self, G, rp, du) -> np.ndarray:
         """Δp = κ M⁻¹ (r_p + G Δu), shape (ne, 3)."""

@@ -301,8 +301,7 @@ class SweptWall:
             - np.einsum("ptz,tzb,tz->pb", z * xz, Lt, w)
         nodes = self._cavity[0]
         d = (3 * nodes[:, :, None] + np.arange(3)).reshape(npatch, 27)
-        g = np.zeros(self.n_dofs)
-        np.add.at(g, d, ge.reshape(npatch, 27))
+        g = np.bincount(d.ravel(), weights=ge.ravel(), minlength=self.n_dofs)
         if not hessian:
             return g
         H = np.zeros((npatch, 9, 3, 9, 3))
