@@ -142,3 +142,21 @@ def test_a_branch_that_ends_without_an_unstable_state_is_crossed_by_descent():
     assert jump["energy_released_mJ"] > 0
     after = c.y_mm > jump["y_mm"]
     assert np.all(np.diff(c.force_N[after]) > 0)  # the new branch is stiff again
+
+
+@pytest.mark.slow
+def test_where_no_descent_from_the_unstable_state_ends_the_stable_side_is_crossed():
+    """A Type C design of the wall sweep (w 9.44, t0 0.99 mm, 35.8 kPa, high mode; a partial
+    row before): an unstable state at y = 4 mm whose descents, pushed either way, found no
+    stable state, and Newton failing between it and the last stable point. The bracket is
+    narrowed from the stable side (failures and unstable states both bound it) and Π
+    descended from there with the plate at its other end: the curve goes on to 6 mm, the
+    jump recorded within one narrowed bracket of the unstable point."""
+    g = dataclasses.replace(preset("C"), w=9.44285319694, t0=0.986569196283)
+    c = wall_curve(g, MAT, pressure_kPa=35.7859684601, stroke_mm=6.0, points=25)
+    assert c.solver.converged and np.all(c.converged), c.solver.message
+    (jump,) = c.solver.details["jumps"]
+    assert 3.75 < jump["y_mm"] <= 4.0
+    # a small jump: the plate's work over the bracket (F Δy, first order) bounds its energy
+    assert abs(jump["energy_released_mJ"]) < 1e-3
+    assert abs(jump["force_after_N"] - jump["force_before_N"]) < 0.05

@@ -247,8 +247,10 @@ class _Walk:
                 continue
             if best is None or released > best[1]:
                 best = (end, released, steps, its)
-        if best is None:
-            return None
+        if best is None:  # from the stable side of a narrowed bracket
+            t0, state, t1 = self.narrow(load_at, t0, t1, (x0, a0, e0, g0))
+            end = self.cross(step, load_at, t0, t1, state)
+            return None if end is None else (t1, end)
         end, released, steps, its = best
         before, after = record(m, -1, "press", load, sol1), record(m, -1, "press", load, end)
         self.jumps.append(Jump(step.travel_at(t1), before.force, after.force, before.pressure,
@@ -258,26 +260,50 @@ class _Walk:
         self.instability = self.instability or self.jumps[-1].sentence()
         return t1, end
 
-    def cross(self, step, load_at, t0, t1):
+    def narrow(self, load_at, t0, t1, state):
+        """(t0, its stable state, t1) with [t0, t1] halved ``snap_bisections`` times: at t1
+        Newton from the state at t0 fails or lands on an unstable state. ``state``: (x,
+        active, engaged, grip) at t0."""
+        m, s = self.model, self.s
+        for _ in range(s.snap_bisections):
+            tm = 0.5 * (t0 + t1)
+            try:
+                solm = newton(m, state[0], load_at(tm), s, *state[1:])
+            except m.recoverable:
+                t1 = tm
+                continue
+            if solm.unstable_modes:
+                t1 = tm
+            else:
+                t0, state = tm, (solm.x, solm.active, solm.engaged, solm.grip)
+        return t0, state, t1
+
+    def cross(self, step, load_at, t0, t1, state=None):
         """A stable state at ``t1`` where Newton finds none from the stable one at ``t0``
         however short the increment: the branch ends there (a fold: no equilibrium near it
-        past t0), or Newton cycles between contact sets. Π is descended from the state at t0
-        with the plate at t1 (:func:`.snap.relax`, no push) and the jump recorded like a
-        snap-through's; None if the descent finds no stable state either."""
+        past t0), or Newton cycles between contact sets; or where the descent from an
+        unstable state at t1 found none. Π is descended from the state at t0 (``state``:
+        (x, active, engaged, grip), the walk's by default) with the plate at t1
+        (:func:`.snap.relax`, no push) and the jump recorded like a snap-through's; None if
+        this descent finds no stable state either."""
         m, s = self.model, self.s
+        x, active, engaged, grip = state or (self.x, self.active, self.engaged, self.grip)
         load = load_at(t1)
+        anchors = (Grip.empty(m) if grip is None else grip) if load.stick else None
         try:
-            ev = m.evaluate(self.x, load_at(t0))
+            ev = m.evaluate(x, load_at(t0))
             diag = np.abs(ev.K.diagonal()[: m.n_u])
             end, released, steps, its = relax(
-                m, self.x, load, self.active, self.engaged, s, np.zeros_like(self.x),
-                np.maximum(diag, 1e-6 * diag.max()), self.gripped(load))
+                m, x, load, active, engaged, s, np.zeros_like(x),
+                np.maximum(diag, 1e-6 * diag.max()), anchors)
         except m.recoverable as exc:  # NewtonFailure among them
             _log.debug("crossing at t=%.4g failed: %s", t1, exc)
             return None
-        start = Converged(self.x, self.active, self.engaged, 0, ev, 0, self.grip)
+        start = Converged(x, active, engaged, 0, ev, 0, grip)
         before, after = record(m, -1, "press", load_at(t0), start), \
             record(m, -1, "press", load, end)
+        # Π holds no plate: the plate's work over the last short travel, F Δy, is added
+        released += before.force * (step.travel_at(t1) - step.travel_at(t0))
         self.jumps.append(Jump(step.travel_at(t1), before.force, after.force, before.pressure,
                                after.pressure, before.volume, after.volume, released, steps,
                                its))
