@@ -45,3 +45,19 @@ def test_pattern_refuses_blocks_that_are_not_whole_nodes():
     d = np.array([[0, 1, 2, 4, 5, 6]])  # node 1's unknowns start at 3, not 4
     with pytest.raises(ValueError, match="per_node = 3"):
         Pattern(9, d, per_node=3)
+
+
+def test_without_numba_bincount_sums_the_same(monkeypatch):
+    """The fallback (no Numba) sums the same values in the same order: bit for bit."""
+    from spsc.fem.wall import pattern as pattern_module
+
+    rng = np.random.default_rng(7)
+    elements = _blocks(rng, 30, 3, 20, 5)
+    patches = _blocks(rng, 30, 3, 6, 3)
+    pat = Pattern(90, elements, patches, per_node=3)
+    Ke = rng.standard_normal(elements.shape + elements.shape[1:])
+    He = rng.standard_normal(patches.shape + patches.shape[1:])
+    compiled = [pat.matrix(Ke, He).data, pat.matrix(Ke, None).data]
+    monkeypatch.setattr(pattern_module, "AVAILABLE", False)
+    assert_array_equal(pat.matrix(Ke, He).data, compiled[0])
+    assert_array_equal(pat.matrix(Ke, None).data, compiled[1])

@@ -77,7 +77,7 @@ class Pattern:
             for v, pos in zip(values, self.positions):
                 if v is not None:
                     _scatter(data, pos, np.ascontiguousarray(v).ravel())
-        else:  # pragma: no cover - depends on the install
+        else:  # no Numba: the same sums in the same order (tested by forcing it)
             present = tuple(v is not None for v in values)
             pos = self._joined.get(present)
             if pos is None:
