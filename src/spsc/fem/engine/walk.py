@@ -253,12 +253,15 @@ class _Walk:
             return None if end is None else (t1, end)
         end, released, steps, its = best
         before, after = record(m, -1, "press", load, sol1), record(m, -1, "press", load, end)
-        self.jumps.append(Jump(step.travel_at(t1), before.force, after.force, before.pressure,
-                               after.pressure, before.volume, after.volume, released, steps,
-                               its))
+        self.jump(step.travel_at(t1), before, after, released, steps, its)
+        return t1, end
+
+    def jump(self, y, before, after, released, steps, its) -> None:
+        """Record a jump at travel ``y`` (mm) between the records ``before`` and ``after``."""
+        self.jumps.append(Jump(y, before.force, after.force, before.pressure, after.pressure,
+                               before.volume, after.volume, released, steps, its))
         self.iterations += its
         self.instability = self.instability or self.jumps[-1].sentence()
-        return t1, end
 
     def narrow(self, load_at, t0, t1, state):
         """(t0, its stable state, t1) with [t0, t1] halved ``snap_bisections`` times: at t1
@@ -304,11 +307,7 @@ class _Walk:
             record(m, -1, "press", load, end)
         # Π holds no plate: the plate's work over the last short travel, F Δy, is added
         released += before.force * (step.travel_at(t1) - step.travel_at(t0))
-        self.jumps.append(Jump(step.travel_at(t1), before.force, after.force, before.pressure,
-                               after.pressure, before.volume, after.volume, released, steps,
-                               its))
-        self.iterations += its
-        self.instability = self.instability or self.jumps[-1].sentence()
+        self.jump(step.travel_at(t1), before, after, released, steps, its)
         return end
 
     def keep(self, rec, kind, t, step) -> None:

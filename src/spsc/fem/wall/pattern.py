@@ -3,10 +3,10 @@ blocks, which lie inside them) summed into one CSR pattern, found once per model
 
 The pattern is found on the nodes (a node pair couples all their unknowns, ``per_node`` of
 them, node-major): the swept wall's 92k node pairs sorted instead of its 830k unknown pairs
-(75 → 12 ms a model; each design of a sweep builds two). Each iteration's values are summed
-into it in the blocks' order by one compiled loop (:func:`_scatter`; ``np.bincount`` with
-weights where Numba is absent, the same sums in the same order): 2.6 → 0.9 ms a stadium
-tangent (issue 26's profile).
+(75 → 22 ms a Table 1 stadium model; each design of a sweep builds two). Each iteration's
+values are summed into it in the blocks' order by one compiled loop (:func:`_scatter`;
+``np.bincount`` with weights where Numba is absent, the same sums in the same order):
+2.2 → 0.8 ms a stadium tangent (issue 26's profile).
 """
 
 from __future__ import annotations
