@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-all docs bench bench-mold bench-compare bench-wall bench-speed bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap clean
+.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-long test-all docs bench bench-mold bench-compare bench-wall bench-speed bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -26,7 +26,7 @@ help:
 	@echo "make fingertip-fem [FT_MESH=2]                                 -> build/fingertip/fem/"
 	@echo "make haptic-fem                                                -> build/haptic-fem/ (the motor's cost)"
 	@echo "make time-study                                                -> build/time-study/ (trace, Bode, hysteresis)"
-	@echo "make test | make test-slow | make test-all | make docs | make gate | make bench | make report [QUICK=1]"
+	@echo "make test | make test-slow | make test-long | make test-all | make docs | make gate | make bench | make report [QUICK=1]"
 
 # the install takes about 3.5 GB (VTK, MKL, OpenCASCADE, CasADi); pip unpacks into a folder on
 # the venv's own disk (not a /tmp that may be a small RAM disk) and keeps no wheel cache
@@ -84,9 +84,13 @@ PYTEST = $(BIN)/python -m pytest -q -n auto --durations=5
 test: $(STAMP)
 	$(PYTEST)
 
-# the slow CAD/FEM/report cases only (@pytest.mark.slow): CI runs make test, then this
+# the slow CAD/FEM/report cases only (@pytest.mark.slow) but the longest: CI runs make test, then this
 test-slow: $(STAMP)
-	$(PYTEST) -m slow
+	$(PYTEST) -m "slow and not long"
+
+# the longest slow cases (@pytest.mark.long, minutes each), which CI leaves out for time
+test-long: $(STAMP)
+	$(PYTEST) -m long
 
 # everything in one run: the fast suite and the slow cases
 test-all: $(STAMP)

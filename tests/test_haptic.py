@@ -101,6 +101,7 @@ def test_a_chamber_too_narrow_for_the_motor():
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_the_motor_stiffens_the_first_millimetre(tmp_path):
     """The haptic chamber in the part FEM (coarse, 2 mm), pressed 2 mm at the apex, with the
     pocket empty and with the motor: the motor carries force from the first points on, makes the
