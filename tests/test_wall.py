@@ -128,6 +128,32 @@ def test_gas_law_holds_along_the_stroke():
     assert np.all(np.diff(c.force_N) > 0) and np.all(np.diff(c.pressure_kPa) > 0)
 
 
+def test_the_modes_share_one_inflation_bit_for_bit():
+    """wall_curves inflates once and presses from that state with each reservoir: the curves
+    are those of one uninterrupted walk (inflate, close the valve, press) per reservoir on a
+    fresh model exactly (the same increments from the same state), the inflation's iterations
+    counted in each. A resumed walk refuses a start that ended with the plate on."""
+    from spsc.fem.engine import CloseValve, Inflate, Press, solve
+    from spsc.fem.wall import wall_curves
+
+    g, mat, ws = preset("B", l=0.0), material("tpu60a"), WallSettings(mesh_size_mm=1.0)
+    y = np.linspace(0.0, 3.0, 4)
+    shared = wall_curves(g, mat, [0.0, 3000.0], pressure_kPa=20, stroke_mm=3, points=4,
+                         settings=ws)
+    for v, c in zip([0.0, 3000.0], shared):
+        model = WallModel(g, mat, ws)
+        walk = solve(model, [Inflate(0.02, ws.inflate_increments), CloseValve(v, 1.0),
+                             Press.through(y[1:])], settings=ws.newton_settings())
+        pressed = walk.of("press")
+        np.testing.assert_array_equal(c.force_N[1:], [r.force for r in pressed])
+        np.testing.assert_array_equal(c.pressure_kPa[1:], [1e3 * r.pressure for r in pressed])
+        assert c.solver.iterations == walk.newton_iterations and c.all_converged
+        assert c.inflated_volume_mm3 == walk.of("inflate")[-1].volume
+    assert shared[1].pressure_kPa[-1] < shared[0].pressure_kPa[-1]  # the reservoir softens
+    with pytest.raises(ValueError, match="^start: a converged walk that ended with no plate"):
+        solve(model, [Press.through(np.array([4.0]))], start=walk)
+
+
 @pytest.mark.parametrize("kwargs, name", [
     # the shared load case's limits (the same as every model and the CLI): the stroke below h
     # (13 mm here, not h + t0), the polytropic index of air, an integer number of points

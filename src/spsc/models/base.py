@@ -14,7 +14,7 @@ there.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 from typing import Any, Callable, ClassVar, Protocol, runtime_checkable
 
 __all__ = ["CurveModel", "ModelBase", "Outcome", "Progress", "option", "cli_options",
@@ -87,6 +87,11 @@ class CurveModel(Protocol):
         (reservoir 0: high stiffness), the plate pressed over the stroke. ``cache_dir``: where
         a meshed model may keep its meshes."""
 
+    def curves(self, geometry, material, load, reservoirs, options) -> list:
+        """The :class:`~spsc.core.curve.Curve` of ``load`` with each reservoir volume of
+        ``reservoirs`` (mm³) in turn: the modes of a design (a model may share the inflation
+        between them)."""
+
 
 @dataclass(frozen=True)
 class ModelBase:
@@ -108,6 +113,10 @@ class ModelBase:
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
         return None
+
+    def curves(self, geometry, material, load, reservoirs, options) -> list:
+        return [self.curve(geometry, material, replace(load, reservoir_mm3=v), options).curve
+                for v in reservoirs]
 
 
 def option(default, flag: str, help: str, *, kind: str = "value", group: str = "model",

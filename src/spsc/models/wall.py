@@ -95,3 +95,15 @@ class WallCurveModel(ModelBase):
                                   settings=ws, progress=step, friction=options.friction,
                                   object_stiffness=options.object_stiffness,
                                   indenter=options.indenter))
+
+    def curves(self, geometry, material, load, reservoirs, options) -> list:
+        """One model and one inflation for every reservoir (:func:`~spsc.fem.wall.wall_curves`:
+        the curves of separate solves, bit for bit)."""
+        from spsc.fem.wall import WallSettings, wall_curves
+
+        ws = WallSettings(mesh_size_mm=options.mesh_size, layers=options.layers)
+        return wall_curves(geometry, material, reservoirs, pressure_kPa=load.pressure_kPa,
+                           stroke_mm=load.stroke_mm, points=load.points,
+                           polytropic_n=load.polytropic_n, settings=ws,
+                           friction=options.friction, object_stiffness=options.object_stiffness,
+                           indenter=options.indenter)

@@ -21,7 +21,7 @@ import hashlib
 import json
 import math
 import time
-from dataclasses import asdict, fields, replace
+from dataclasses import asdict, fields
 from pathlib import Path
 
 from spsc.core.errors import ParameterError, require
@@ -81,7 +81,8 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
     """``{mode: Curve}`` of a design with ``model`` (membrane, simplified, wall, fem): ``high``
     the closed chamber (no reservoir), ``low`` with the design's reservoir (mm³); ``points``
     plate positions over ``stroke_mm`` (mm) from first contact, None: the model's defaults.
-    A design without a reservoir has one curve for both modes (computed once).
+    A design without a reservoir has one curve for both modes (computed once); the wall model
+    inflates once for both (:meth:`~spsc.models.base.CurveModel.curves`).
 
     ParameterError when the design, the load case or the model's own limits refuse it (before
     any solve)."""
@@ -98,14 +99,9 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
     options = entry.Options()
     entry.check(geometry, load, options, verb=_VERB, quiet=True)
     reservoirs = {"high": 0.0, "low": load.reservoir_mm3}
-    curves, by_reservoir = {}, {}
-    for mode in modes:
-        v = reservoirs[mode]
-        if v not in by_reservoir:
-            by_reservoir[v] = entry.curve(geometry, mat, replace(load, reservoir_mm3=v),
-                                          options).curve
-        curves[mode] = by_reservoir[v]
-    return curves
+    volumes = list(dict.fromkeys(reservoirs[mode] for mode in modes))
+    by_reservoir = dict(zip(volumes, entry.curves(geometry, mat, load, volumes, options)))
+    return {mode: by_reservoir[reservoirs[mode]] for mode in modes}
 
 
 def printability_columns(geometry, process: str) -> tuple[bool, str]:

@@ -102,6 +102,9 @@ class Result:
     newton_iterations: int = 0
     #: the snap-throughs followed (:class:`~spsc.fem.engine.snap.Jump`), in order
     jumps: tuple = ()
+    #: the load of the last converged state (:class:`~spsc.fem.engine.steps.Load`): where
+    #: another walk may go on from (``solve(..., start=result)``)
+    load: object = None
 
     def of(self, kind: str) -> list:
         return [r for r in self.records if r.kind == kind]

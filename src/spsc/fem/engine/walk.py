@@ -80,6 +80,21 @@ class _Walk:
         self.done, self.last_force, self.instability, self.iterations = 0, 0.0, "", 0
         self.jumps: list[Jump] = []
 
+    def resume(self, start: Result) -> None:
+        """Go on from the last state of ``start``, an earlier walk of this model that ended
+        converged with no plate (an inflation): its records, iterations and time are this
+        walk's first. Two presses from one inflation (the low and high modes) share it."""
+        last = start.records[-1]
+        if not start.converged or start.load is None or start.load.plate is not None \
+                or self.model.tie is not None \
+                or getattr(self.model, "viscous", None) is not None:  # its history is its own
+            raise ValueError("start: a converged walk that ended with no plate, of a model "
+                             "without a tie or a rate-dependent material")
+        self.x, self.load = last.x.copy(), start.load
+        self.records, self.iterations = list(start.records), start.newton_iterations
+        self.jumps, self.instability = list(start.jumps), start.instability
+        self.t_start -= start.seconds
+
     def close_valve(self, step: CloseValve) -> None:
         gas = GasLaw(self.load.pressure, self.model.volume(self.x), step.reservoir,
                      step.polytropic_n)
@@ -327,7 +342,7 @@ class _Walk:
         seconds = time.perf_counter() - self.t_start
         if stop is None:
             return Result(self.records, True, "converged", self.instability, seconds,
-                          None, self.iterations, tuple(self.jumps))
+                          None, self.iterations, tuple(self.jumps), self.load)
         if stop.record is not None:
             # an unstable equilibrium is not a result: stop before it (docs/design.md)
             message, instability = f"step {stop.index} ({stop.kind}) stopped: {stop.unstable}", \
@@ -335,17 +350,21 @@ class _Walk:
         else:
             message, instability = stop.failure, self.instability or stop.stall
         return Result(self.records, False, message, instability, seconds, stop,
-                      self.iterations, tuple(self.jumps))
+                      self.iterations, tuple(self.jumps), self.load)
 
 
-def solve(model, steps, *, settings=None, progress=None) -> Result:
+def solve(model, steps, *, settings=None, progress=None, start: Result | None = None) -> Result:
     """Walk ``steps`` (Inflate / CloseValve / Press) from the undeformed state of ``model``
-    (a :class:`~.protocol.Discretisation`) with ``settings`` (default: the model's).
+    (a :class:`~.protocol.Discretisation`) with ``settings`` (default: the model's), or from
+    the end of ``start``, an earlier converged walk of the same model that ended with no plate
+    (:meth:`_Walk.resume`: its records come first, its iterations and seconds are counted).
 
     ``progress(done, total)`` is called after each recorded point. Returns a :class:`Result`
     whose ``records`` hold every converged point (the undeformed state first).
     """
     walk = _Walk(model, steps, settings or model.default_settings(), progress)
+    if start is not None:
+        walk.resume(start)
     for k, step in enumerate(steps):
         if isinstance(step, CloseValve):
             walk.close_valve(step)

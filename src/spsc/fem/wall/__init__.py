@@ -4,7 +4,8 @@ wall (:mod:`.swept`) — as the engine's discretisation (:mod:`.model`), its cur
 (:mod:`.curve`: :func:`wall_curve`) and the material calibration against bench curves
 (:mod:`.calibrate`)."""
 
-from .curve import WallFailure, inflate, newton, wall_curve
+from .curve import WallFailure, inflate, newton, wall_curve, wall_curves
 from .model import WallModel, WallSettings
 
-__all__ = ["WallFailure", "WallModel", "WallSettings", "inflate", "newton", "wall_curve"]
+__all__ = ["WallFailure", "WallModel", "WallSettings", "inflate", "newton", "wall_curve",
+           "wall_curves"]

@@ -61,7 +61,8 @@ from ..engine import newton as _engine_newton
 from ..engine.walk import record
 from .model import WallModel, WallSettings
 
-__all__ = ["WallSettings", "WallModel", "WallFailure", "newton", "wall_curve", "inflate"]
+__all__ = ["WallSettings", "WallModel", "WallFailure", "newton", "wall_curve", "wall_curves",
+           "inflate"]
 
 #: a plate-force drop between recorded points larger than this fraction is reported as negative
 #: stiffness (the 3D solver's threshold, :class:`spsc.fem.engine.settings.Settings`)
@@ -145,53 +146,76 @@ def wall_curve(geometry: SPSCGeometry, material: Material, **kwargs) -> Curve:
     ``"sphere:R=10"``, :mod:`spsc.core.indenter`: y is then its tip's travel; a dome takes
     the plate and a sphere on its axis).
     """
+    reservoir = kwargs.pop("reservoir_mm3", 0.0)
+    return wall_curves(geometry, material, [reservoir], **kwargs)[0]
+
+
+def wall_curves(geometry: SPSCGeometry, material: Material, reservoirs, **kwargs) -> list:
+    """:func:`wall_curve` for each reservoir volume of ``reservoirs`` (mm³; 0: the closed
+    chamber, the high mode), the same in every other keyword: one model and one inflation
+    serve all, each press goes on from the inflated state (the curves are those of separate
+    calls, bit for bit; each curve's seconds and iterations include the shared inflation)."""
     from threadpoolctl import threadpool_limits
 
     # small dense blocks: one BLAS thread (threads spin on them, 100x slower when loaded)
     with threadpool_limits(limits=1, user_api="blas"):
-        return _wall_curve(geometry, material, **kwargs)
+        return _wall_curves(geometry, material, list(reservoirs), **kwargs)
 
 
-def _wall_curve(geometry: SPSCGeometry, material: Material, *, pressure_kPa: float = 40.0,
-               reservoir_mm3: float = 0.0, stroke_mm: float = 6.0, points: int = 25,
-               polytropic_n: float = 1.0, settings: WallSettings | None = None,
-               model: WallModel | None = None, progress=None, friction="0",
-               object_stiffness=None, indenter="plate") -> Curve:
+def _wall_curves(geometry: SPSCGeometry, material: Material, reservoirs: list, *,
+                 pressure_kPa: float = 40.0, stroke_mm: float = 6.0, points: int = 25,
+                 polytropic_n: float = 1.0, settings: WallSettings | None = None,
+                 model: WallModel | None = None, progress=None, friction="0",
+                 object_stiffness=None, indenter="plate") -> list:
     t_start = time.perf_counter()
     stick, mu = sticks(friction), coefficient(friction)
     spring = check_object_stiffness(object_stiffness)
     check_combination(mu, spring)
     body = check_body(indenter, friction)
-    load = check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=reservoir_mm3,
-                      stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
-    pressure_kPa, reservoir_mm3, stroke_mm = load.pressure_kPa, load.reservoir_mm3, load.stroke_mm
-    points, polytropic_n = load.points, load.polytropic_n
+    loads = [check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=v,
+                        stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
+             for v in reservoirs]
     settings = settings or (model.settings if model is not None else WallSettings())
     model = model or WallModel(geometry, material, settings)
     check_body(body, friction, axisymmetric=not model.stadium, quarter=True)
-    p_i = pressure_kPa / KPA_PER_MPA
-    y = np.linspace(0.0, stroke_mm, points)
-    steps = [Inflate(p_i, settings.inflate_increments), CloseValve(reservoir_mm3, polytropic_n)] \
-        if p_i > 0 else []
+    load = loads[0]
+    p_i = load.pressure_kPa / KPA_PER_MPA
+    y = np.linspace(0.0, load.stroke_mm, load.points)
     tick = (lambda done, total: progress()) if progress is not None else None
-    result = solve(model, steps + [Press.through(y[1:], stick=stick, spring=spring, mu=mu,
-                                                 indenter=body)],
-                   settings=settings.newton_settings(), progress=tick)
-    walked = _walked(result, pressure_kPa)
+    press = Press.through(y[1:], stick=stick, spring=spring, mu=mu, indenter=body)
+    inflated = solve(model, [Inflate(p_i, settings.inflate_increments)],
+                     settings=settings.newton_settings(), progress=tick) if p_i > 0 else None
+    shared = time.perf_counter() - t_start
+    curves = []
+    for lc in loads:
+        t0 = time.perf_counter()
+        if inflated is None or inflated.converged:
+            steps = [CloseValve(lc.reservoir_mm3, lc.polytropic_n)] if p_i > 0 else []
+            result = solve(model, steps + [press], settings=settings.newton_settings(),
+                           progress=tick, start=inflated)
+        else:
+            result = inflated  # the inflation failed: every curve ends there
+        curves.append(_finish(model, result, y, lc, shared + time.perf_counter() - t0,
+                              progress, stick, friction, body, spring))
+    return curves
+
+
+def _finish(model, result, y, lc, seconds, progress, stick, friction, body, spring) -> Curve:
+    """The :class:`Curve` of one walk (inflation, valve, press) of :func:`wall_curves`."""
+    walked = _walked(result, lc.pressure_kPa)
     if progress is not None and result.stop is not None and result.stop.record is not None:
         progress()  # the unstable point it stopped at is a point reached
     inflates = [st for st in walked.states if st.kind == "inflate"]
     pressed = [st for st in walked.states if st.kind == "press"]
     curve = _to_curve(model, walked, inflates[-1] if inflates else None, pressed, y,
-                      result.records[0].volume, pressure_kPa, reservoir_mm3, polytropic_n,
-                      time.perf_counter() - t_start)
+                      result.records[0].volume, lc.pressure_kPa, lc.reservoir_mm3,
+                      lc.polytropic_n, seconds)
     if stick:
         curve.solver.details.update(friction=check_friction(friction),
                                     shear_N=[0.0] + [st.shear for st in pressed])
     if body.curved:
         curve = curve.replace(setup={**curve.setup, "indenter": body.spec})
     return with_indenter(curve, spring, [st.indenter for st in pressed])
-
 
 
 def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reservoir,
