@@ -211,6 +211,7 @@ def _near_corner(params) -> bool:
 
 
 @pytest.mark.slow
+@pytest.mark.long
 @settings(max_examples=40, derandomize=True, **FAST)
 @given(design_space)
 def test_design_space_builds_or_rejects_many(params):

@@ -58,6 +58,7 @@ def test_random_valid_designs_pass_the_gate(seed):
 
 
 @pytest.mark.slow
+@pytest.mark.long
 @settings(max_examples=30, derandomize=True, **SLOW_DRAWS)
 @given(st.integers(0, 2**32 - 1))
 def test_random_valid_designs_pass_the_gate_many(seed):

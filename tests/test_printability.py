@@ -416,6 +416,7 @@ def test_gate_and_sweep_agree_on_the_issue_case_and_random_designs():
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_gate_and_sweep_agree_on_twenty_random_designs():
     """As above on 20 random designs (~4-10 s each: the gate)."""
     import numpy as np
