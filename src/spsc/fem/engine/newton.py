@@ -81,6 +81,15 @@ class _Newton:
         #: whether the next iteration reuses it (``settings.modified_newton``)
         self.factor = self.tangent_ev = None
         self.cheap = False
+        #: the last tangent factorised had negative eigenvalues: the next one skips
+        #: ``pardiso-spd``'s Cholesky attempt, which would fail (10 of 14 ms, stop 44)
+        self.indefinite = False
+
+    def linear(self) -> Settings:
+        """The settings of the next factorisation: LDLᵀ at once after an indefinite one."""
+        if self.indefinite and self.s.solver == "pardiso-spd":
+            return dataclasses.replace(self.s, solver="pardiso")
+        return self.s
 
     def evaluate(self):
         """The evaluation at x: the line search's, the residual alone for a modified Newton
@@ -189,8 +198,9 @@ class _Newton:
                                                self.model.system_residual(ev))
             elif con.lean.size:  # the slopes move with the nodes
                 self.restriction.bind(con, self.model.system_residual(ev))
-            st = linear_step(self.model, ev, self.restriction, free, con, self.s,
+            st = linear_step(self.model, ev, self.restriction, free, con, self.linear(),
                              multipliers=wanted)
+            self.indefinite = bool(st.factor.negative)
             self.factored, self.modes, self.lam = st.key, st.unstable_modes, st.multipliers
             self.factor, self.tangent_ev = st.factor, ev
             # a curved indenter's slopes change every iteration: no stale factorisation
@@ -209,7 +219,7 @@ class _Newton:
             red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT,
                               self.model.system_residual(ev))
             gc = red.take(con.condense(gas_vector(self.model, ev, con.n)))
-            modes = inertia(self.model, red, ev, gc, self.s)
+            modes = inertia(self.model, red, ev, gc, self.linear())
         grip = None if self.grip is None else hold(self.model, self.grip, self.x, self.active)
         return Converged(self.x, self.active, self.engaged, it, ev, modes, grip)
 
