@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.cad.geometry import preset
-from spsc.cli.curve import plot
+from spsc.cli.curve import _mark_jumps, title
 from spsc.core.curve import Curve
 from spsc.fem.solid.chamber import chamber_run, run_chamber
 from spsc.fem.wall import wall_curve
@@ -52,9 +52,32 @@ def main(argv=None) -> int:
         print(f"{name}: wall vs 3D FEM max |ΔF/F| {ef:.2%}, max |Δ(p−p_i)/(p−p_i)| {ep:.2%} "
               f"over {mask.sum()} points")
     Path(args.png).parent.mkdir(parents=True, exist_ok=True)
-    plot(wall, None, args.png)
+    _figure(wall, fem, args.png)
     print(f"figure: {args.png}")
     return 0
+
+
+def _figure(wall, fem, path) -> None:
+    """Force and pressure against travel: the wall model with the jump it followed, the 3D
+    FEM (no stability check: it passes the point on its own branch)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
+    for a, key, label in ((ax[0], "force_N", "plate force (N)"),
+                          (ax[1], "pressure_kPa", "gauge pressure (kPa)")):
+        a.plot(fem.y_mm, getattr(fem, key), "s", mfc="none", color="0.4", ms=5,
+               label="3D FEM (1 mm, 2 layers)")
+        a.plot(wall.y_mm, getattr(wall, key), "o-", ms=3, label="wall model")
+        a.set_xlabel("plate travel y (mm)")
+        a.set_ylabel(label)
+        a.grid(alpha=0.3)
+    _mark_jumps(wall, ax[0], ax[1])
+    ax[1].legend(fontsize=8, loc="upper left")
+    fig.suptitle(title(wall), fontsize=9)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
 
 
 if __name__ == "__main__":
