@@ -14,7 +14,7 @@ there.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, fields
 from typing import Any, Callable, ClassVar, Protocol, runtime_checkable
 
 __all__ = ["CurveModel", "ModelBase", "Outcome", "Progress", "option", "cli_options",
@@ -85,12 +85,13 @@ class CurveModel(Protocol):
               cache_dir=None) -> Outcome:
         """Solve: the chamber inflated to the setup pressure, the valve state of the load case
         (reservoir 0: high stiffness), the plate pressed over the stroke. ``cache_dir``: where
-        a meshed model may keep its meshes."""
+        a meshed model may keep its meshes.
 
-    def curves(self, geometry, material, load, reservoirs, options) -> list:
-        """The :class:`~spsc.core.curve.Curve` of ``load`` with each reservoir volume of
-        ``reservoirs`` (mm³) in turn: the modes of a design (a model may share the inflation
-        between them)."""
+        A model may also define ``curves(geometry, material, load, reservoirs, options)``: the
+        :class:`~spsc.core.curve.Curve` of ``load`` with each reservoir volume of
+        ``reservoirs`` (mm³), the modes of a design, sharing what they share (the wall model:
+        one inflation). Sweeps and the inverse design use it where it exists, one ``curve``
+        per reservoir otherwise (:func:`spsc.sweep.evaluate.design_curves`)."""
 
 
 @dataclass(frozen=True)
@@ -113,10 +114,6 @@ class ModelBase:
 
     def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
         return None
-
-    def curves(self, geometry, material, load, reservoirs, options) -> list:
-        return [self.curve(geometry, material, replace(load, reservoir_mm3=v), options).curve
-                for v in reservoirs]
 
 
 def option(default, flag: str, help: str, *, kind: str = "value", group: str = "model",

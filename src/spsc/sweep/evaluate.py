@@ -21,7 +21,7 @@ import hashlib
 import json
 import math
 import time
-from dataclasses import asdict, fields
+from dataclasses import asdict, fields, replace
 from pathlib import Path
 
 from spsc.core.errors import ParameterError, require
@@ -82,7 +82,7 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
     the closed chamber (no reservoir), ``low`` with the design's reservoir (mm³); ``points``
     plate positions over ``stroke_mm`` (mm) from first contact, None: the model's defaults.
     A design without a reservoir has one curve for both modes (computed once); the wall model
-    inflates once for both (:meth:`~spsc.models.base.CurveModel.curves`).
+    inflates once for both (its ``curves``, :class:`~spsc.models.base.CurveModel`).
 
     ParameterError when the design, the load case or the model's own limits refuse it (before
     any solve)."""
@@ -100,7 +100,12 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
     entry.check(geometry, load, options, verb=_VERB, quiet=True)
     reservoirs = {"high": 0.0, "low": load.reservoir_mm3}
     volumes = list(dict.fromkeys(reservoirs[mode] for mode in modes))
-    by_reservoir = dict(zip(volumes, entry.curves(geometry, mat, load, volumes, options)))
+    if hasattr(entry, "curves"):  # the modes share their inflation (the wall model)
+        solved = entry.curves(geometry, mat, load, volumes, options)
+    else:
+        solved = [entry.curve(geometry, mat, replace(load, reservoir_mm3=v), options).curve
+                  for v in volumes]
+    by_reservoir = dict(zip(volumes, solved))
     return {mode: by_reservoir[reservoirs[mode]] for mode in modes}
 
 
