@@ -83,27 +83,20 @@ class WallCurveModel(ModelBase):
                         force=bool(options.force), quiet=quiet, points=load.points)
 
     def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
-        from spsc.fem.wall import WallSettings, wall_curve
-
-        ws = WallSettings(mesh_size_mm=options.mesh_size, layers=options.layers)
         total = self.load_steps(load, options)
         done = itertools.count(1)
         step = None if progress is None else (lambda: progress(next(done), total))
-        return Outcome(wall_curve(geometry, material, pressure_kPa=load.pressure_kPa,
-                                  reservoir_mm3=load.reservoir_mm3, stroke_mm=load.stroke_mm,
-                                  points=load.points, polytropic_n=load.polytropic_n,
-                                  settings=ws, progress=step, friction=options.friction,
-                                  object_stiffness=options.object_stiffness,
-                                  indenter=options.indenter))
+        return Outcome(self.curves(geometry, material, load, [load.reservoir_mm3], options,
+                                   progress=step)[0])
 
-    def curves(self, geometry, material, load, reservoirs, options) -> list:
+    def curves(self, geometry, material, load, reservoirs, options, *, progress=None) -> list:
         """One model and one inflation for every reservoir (:func:`~spsc.fem.wall.wall_curves`:
-        the curves of separate solves, bit for bit)."""
+        the curves of separate solves, bit for bit); ``progress()`` once per point."""
         from spsc.fem.wall import WallSettings, wall_curves
 
         ws = WallSettings(mesh_size_mm=options.mesh_size, layers=options.layers)
         return wall_curves(geometry, material, reservoirs, pressure_kPa=load.pressure_kPa,
                            stroke_mm=load.stroke_mm, points=load.points,
-                           polytropic_n=load.polytropic_n, settings=ws,
+                           polytropic_n=load.polytropic_n, settings=ws, progress=progress,
                            friction=options.friction, object_stiffness=options.object_stiffness,
                            indenter=options.indenter)
