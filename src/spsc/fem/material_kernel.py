@@ -144,10 +144,11 @@ def _tangent(F, p, W1, W2, W11, W12, W22):
         diag = 2.0 * a1 + 2.0 * a2 * I1
         cG = (2.0 / 3.0) * a1 * I1 + (4.0 / 3.0) * a2 * I2 - pJ
         two_a2 = 2.0 * a2
+        # 𝔸 = ∂²Ψ/∂F∂F has the major symmetry: the upper triangle, mirrored
         for a in range(9):
             i, jj = a // 3, a % 3
             u0, u1, u2, u3 = U[0, a], U[1, a], U[2, a], U[3, a]
-            for c in range(9):
+            for c in range(a, 9):
                 kk, ll = c // 3, c % 3
                 v = (u0 * (m00 * U[0, c] + m01 * U[1, c] + m02 * U[2, c])
                      + u1 * (m01 * U[0, c] + m11 * U[1, c] + m12 * U[2, c])
@@ -159,7 +160,8 @@ def _tangent(F, p, W1, W2, W11, W12, W22):
                     v -= two_a2 * C[jj, ll]
                 if jj == ll:
                     v -= two_a2 * b[i, kk]
-                A[k, a, c] = v + cG * G[i, ll] * G[kk, jj] - two_a2 * f[i, ll] * f[kk, jj]
+                A[k, a, c] = A[k, c, a] = v + cG * G[i, ll] * G[kk, jj] \
+                    - two_a2 * f[i, ll] * f[kk, jj]
     return P, A
 
 
