@@ -83,7 +83,7 @@ def update(model, x, reaction, plate, active, force_tol, gap_tol, indenter=None)
     unknowns whose ``reaction`` (N, pushing > 0) does not pull below −``force_tol``, and the
     inactive ones past the plate by more than ``gap_tol`` (mm)."""
     keep = reaction >= -force_tol
-    inactive = np.setdiff1d(model.contact_dofs, active)
+    inactive = np.setdiff1d(model.contact_dofs, active, assume_unique=True)
     new = inactive[heights(model, x, inactive, indenter) > plate + gap_tol]
     if new.size == 0 and np.all(keep):
         return None

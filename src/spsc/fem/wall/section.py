@@ -17,6 +17,7 @@ plane.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -39,6 +40,13 @@ def _edge_shape(t):
     N = np.stack([(1 - t) * (1 - 2 * t), 4 * t * (1 - t), t * (2 * t - 1)], axis=-1)
     dN = np.stack([4 * t - 3, 4 - 8 * t, 4 * t - 1], axis=-1)
     return N, dN
+
+
+# the cavity edges' shape values at the Gauss points, and the products the Hessian sums
+# (q, a·b): made once (the volume and its gradient run at every Newton iteration)
+_N, _DN = _edge_shape(_GAUSS_T)
+_NN = (_N[:, :, None] * _N[:, None, :]).reshape(3, 9)
+_NDN = (_N[:, :, None] * _DN[:, None, :]).reshape(3, 9)
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,36 +101,31 @@ class Section:
         """Volume of the cavity this section encloses (mm³): dome −π∮ r² z' (the body of
         revolution closed by the axis and the base plane)."""
         e = self._cavity_edges(u)
-        N, dN = _edge_shape(_GAUSS_T)
-        r = np.einsum("qa,ea->eq", N, e[..., 0])
-        dz = np.einsum("qa,ea->eq", dN, e[..., 1])
-        f = math.pi * r * r
-        return -float(np.einsum("eq,eq,q->", f, dz, _GAUSS_W))
+        r, dz = e[..., 0] @ _N.T, e[..., 1] @ _DN.T  # (ne, q)
+        return -float(np.sum((math.pi * r * r * dz) @ _GAUSS_W))
 
     def volume_gradient(self, u, *, hessian: bool = True):
         """g = ∂V/∂u (2n,) in mm² and, if ``hessian``, the edge blocks of ∂²V/∂u², shape
         (ne, 6, 6), on the unknowns :meth:`cavity_edge_dofs`. The follower pressure p is the
         load p g; its consistent stiffness is p ∂²V/∂u² (the pressure does work p dV)."""
         e = self._cavity_edges(u)
-        N, dN = _edge_shape(_GAUSS_T)
-        r = np.einsum("qa,ea->eq", N, e[..., 0])
-        dz = np.einsum("qa,ea->eq", dN, e[..., 1])
-        w = _GAUSS_W
-        f, df, ddf = math.pi * r * r, 2.0 * math.pi * r, 2.0 * math.pi + 0.0 * r
-        gr = -np.einsum("eq,qa,eq,q->ea", df, N, dz, w)  # ∂V/∂r_a
-        gz = -np.einsum("eq,qb,q->eb", f, dN, w)  # ∂V/∂z_b
-        ge = np.stack([gr, gz], axis=-1).reshape(len(e), 6)
-        g = np.zeros(self.n_dofs)
-        np.add.at(g, self.cavity_edge_dofs, ge)
+        ne = len(e)
+        r, dz = e[..., 0] @ _N.T, e[..., 1] @ _DN.T  # (ne, q)
+        wdf = 2.0 * math.pi * r * _GAUSS_W  # ∂f/∂r w, f = π r²
+        ge = np.empty((ne, 3, 2))
+        ge[:, :, 0] = -(wdf * dz) @ _N  # ∂V/∂r_a
+        ge[:, :, 1] = -(math.pi * r * r * _GAUSS_W) @ _DN  # ∂V/∂z_b
+        g = np.bincount(self.cavity_edge_dofs.ravel(), weights=ge.ravel(),
+                        minlength=self.n_dofs)
         if not hessian:
             return g
-        H = np.zeros((len(e), 3, 2, 3, 2))
-        H[:, :, 0, :, 0] = -np.einsum("eq,qa,qb,eq,q->eab", ddf, N, N, dz, w)
-        H[:, :, 0, :, 1] = -np.einsum("eq,qa,qb,q->eab", df, N, dN, w)
+        H = np.zeros((ne, 3, 2, 3, 2))
+        H[:, :, 0, :, 0] = -((2.0 * math.pi * _GAUSS_W * dz) @ _NN).reshape(ne, 3, 3)
+        H[:, :, 0, :, 1] = -(wdf @ _NDN).reshape(ne, 3, 3)
         H[:, :, 1, :, 0] = np.swapaxes(H[:, :, 0, :, 1], 1, 2)
-        return g, H.reshape(len(e), 6, 6)
+        return g, H.reshape(ne, 6, 6)
 
-    @property
+    @functools.cached_property
     def cavity_edge_dofs(self) -> np.ndarray:
         """(ne, 6) unknowns of the quadratic cavity edges."""
         c = self.cavity
