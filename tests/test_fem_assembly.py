@@ -56,6 +56,22 @@ def test_compiled_element_loop_is_the_numpy_assembly(monkeypatch):
     np.testing.assert_allclose(K.data, K0.data, rtol=0, atol=1e-13 * np.abs(K0.data).max())
 
 
+def test_node_pair_pattern_is_the_pattern_of_the_unknown_pairs():
+    """The pattern found on node pairs (Pattern.from_element_dofs) against the plain one: every
+    unknown pair of every element, sorted and made unique. Same CSR arrays, same slot of every
+    element entry."""
+    mesh = spsc_wall(preset("B"), 3.0, layers=1)
+    d = discretise(mesh.nodes, mesh.tets)
+    m = d.dofs.shape[1]
+    pair = np.repeat(d.dofs, m, axis=1).astype(np.int64) * d.n + np.tile(d.dofs, (1, m))
+    keys, inverse = np.unique(pair, return_inverse=True)
+    p = d.pattern
+    assert np.array_equal(p.keys, keys)
+    assert np.array_equal(p.indptr, np.searchsorted(keys, np.arange(d.n + 1) * d.n))
+    assert np.array_equal(p.indices, keys % d.n)
+    assert np.array_equal(p.slots, inverse.reshape(p.slots.shape))
+
+
 def _affine_patch(F0, law_mat, curved, seed=0):
     m = block((1.0, 1.2, 0.8), (2, 2, 2))
     X = m.nodes.copy()

@@ -43,14 +43,50 @@ class Pattern:
     order: np.ndarray  # the elements by their lowest unknown (the compiled loop's order)
 
     @classmethod
-    def from_element_dofs(cls, dofs: np.ndarray, n: int) -> "Pattern":
-        m = dofs.shape[1]
-        rows = np.repeat(dofs, m, axis=1).astype(np.int64)
-        cols = np.tile(dofs, (1, m)).astype(np.int64)
-        keys, inverse = np.unique(rows * n + cols, return_inverse=True)
-        indptr = np.searchsorted(keys, np.arange(n + 1, dtype=np.int64) * n)
-        return cls(n, indptr, (keys % n).astype(np.int32), keys,
-                   inverse.reshape(dofs.shape[0], m, m),
+    def from_element_dofs(cls, dofs: np.ndarray, n: int, nodes: np.ndarray,
+                          local: np.ndarray) -> "Pattern":
+        """The pattern of the element unknowns ``dofs`` (nel, m) among ``n``, found on the
+        elements' ``nodes`` (nel, k): column j of ``dofs`` is an unknown of node
+        ``local[j]``, and an element lists every unknown of each of its nodes (a P2 node's
+        three displacements, a vertex's pressure too). Two unknowns couple where their nodes
+        share an element, so the node pairs (nel k², 9× fewer than the unknown pairs) are
+        sorted instead of the unknown pairs: 1.3 → 0.2 s a Type B quarter (issue 26)."""
+        nel, m = dofs.shape
+        n_nodes = int(nodes.max()) + 1
+        node_of = np.zeros(n, np.int64)
+        node_of[dofs.ravel()] = nodes[:, local].ravel()
+        # each node's unknowns in ascending order, and each unknown's rank among them
+        by_node = np.argsort(node_of * n + np.arange(n), kind="stable")
+        first = np.searchsorted(node_of[by_node], np.arange(n_nodes + 1))
+        rank = np.empty(n, np.int64)
+        rank[by_node] = np.arange(n) - first[node_of[by_node]]
+        count = np.diff(first)
+        # the node pairs: row node a, column node b, sorted; each element's pairs among them
+        k = nodes.shape[1]
+        pair_keys = (nodes[:, :, None].astype(np.int64) * n_nodes + nodes[:, None, :]).ravel()
+        pairs, inverse = np.unique(pair_keys, return_inverse=True)
+        a, b = pairs // n_nodes, pairs % n_nodes
+        # the columns of row node a: every unknown of every b, sorted (one list per node)
+        per = count[b]
+        start = np.concatenate([[0], np.cumsum(per)])
+        col = by_node[np.repeat(first[b] - start[:-1], per) + np.arange(start[-1])]
+        row_node = np.repeat(a, per)
+        order = np.argsort(row_node * n + col, kind="stable")
+        row_first = np.searchsorted(row_node[order], np.arange(n_nodes + 1))
+        where = np.empty(order.size, np.int64)  # position of each (pair, unknown) in its row
+        where[order] = np.arange(order.size) - row_first[row_node[order]]
+        sorted_cols = col[order]
+        length = np.diff(row_first)
+        indptr = np.concatenate([[0], np.cumsum(length[node_of])])
+        entry_row_node = np.repeat(node_of, length[node_of])
+        offset = np.arange(indptr[-1]) - np.repeat(indptr[:-1], length[node_of])
+        indices = sorted_cols[row_first[entry_row_node] + offset]
+        keys = np.repeat(np.arange(n, dtype=np.int64), length[node_of]) * n + indices
+        # element entry (i, j): row dofs[i]'s start + where of (pair (local i, local j),
+        # the rank of dofs[j] within its node)
+        pair = inverse.reshape(nel, k, k)[:, local[:, None], local[None, :]]
+        slots = indptr[dofs][:, :, None] + where[start[pair] + rank[dofs][:, None, :]]
+        return cls(n, indptr, indices.astype(np.int32), keys, slots,
                    np.argsort(dofs.min(axis=1), kind="stable"))
 
     def slots_of(self, dofs: np.ndarray) -> np.ndarray:
@@ -147,7 +183,8 @@ def discretise(X, tets, *, order: int = 2) -> Discretisation:
     pressure_dof[corner] = np.arange(corner.size)
     udofs = (3 * tets[:, :, None] + np.arange(3)).reshape(len(tets), 30)
     dofs = np.hstack([udofs, 3 * X.shape[0] + pressure_dof[tets[:, :4]]])
-    pattern = Pattern.from_element_dofs(dofs, 3 * X.shape[0] + corner.size)
+    local = np.concatenate([np.repeat(np.arange(10), 3), np.arange(4)])
+    pattern = Pattern.from_element_dofs(dofs, 3 * X.shape[0] + corner.size, tets, local)
     return Discretisation(X, tets, pressure_dof, dNdX, dV, tet_p1(xq), dofs, pattern)
 
 
