@@ -24,6 +24,7 @@ from pathlib import Path
 from spsc.core.errors import ParameterError
 
 from spsc.design.goal import METRIC_NAMES, Goal
+from spsc.design.polish import Polish
 from spsc.design.problem import Problem
 from spsc.design.space import INPUTS
 from spsc.design.journal import (INTERRUPTED, JOURNAL, STUDY_NAME, Lock, check_resumable, open_study,
@@ -107,6 +108,7 @@ def _loop(study, problem: Problem, client, evaluate, trials: int, inflight: int,
     from tqdm import tqdm
 
     optuna = optuna_module()
+    polish = Polish(problem)
     done = _counted(study)
     stop = _goal_met_already(study, problem.goal)
     pending: deque = deque()
@@ -116,7 +118,7 @@ def _loop(study, problem: Problem, client, evaluate, trials: int, inflight: int,
     try:
         while True:
             while not stop and len(pending) < inflight and done + len(pending) < trials:
-                trial = study.ask()
+                trial = polish.ask(study) or study.ask()
                 design = problem.space.suggest(trial)
                 trial.set_user_attr("design", design)
                 fut = client.submit(evaluate, design, problem.model, problem.process,
@@ -128,6 +130,10 @@ def _loop(study, problem: Problem, client, evaluate, trials: int, inflight: int,
             row = _result(fut)
             pending.popleft()
             feasible_met = _tell(study, problem, trial, design, row)
+            told = trial.user_attrs
+            ok = "reason" not in told
+            polish.tell(trial, told.get("metrics") if ok else None, told.get("miss"),
+                        ok and bool(told.get("printable")))
             done += 1
             evaluated += 1
             bar.set_postfix_str(_postfix(study, problem.goal), refresh=False)
@@ -238,7 +244,8 @@ def full_params(design: dict) -> dict:
 def trial_rows(study) -> list[dict]:
     """One dict per trial, in trial order: number, state, the design's inputs (CLI names, the
     preset's n1, n2, c_y filled in when valid), the metrics, miss, objective values, feasible,
-    printable, printability, status, reason, seconds."""
+    printable, printability, status, reason, seconds and who proposed it (``sampler``, or the
+    polish's ``jacobian`` / ``gauss-newton``: :mod:`.polish`)."""
     rows = []
     for t in study.get_trials(deepcopy=False):
         a = t.user_attrs
@@ -257,7 +264,8 @@ def trial_rows(study) -> list[dict]:
                     "feasible": complete and _feasible(t),
                     "printable": a.get("printable"), "printability": a.get("printability", ""),
                     "status": a.get("status", ""), "reason": a.get("reason", ""),
-                    "message": a.get("message", ""), "seconds": a.get("seconds")})
+                    "message": a.get("message", ""), "seconds": a.get("seconds"),
+                    "proposer": a.get("proposer", "sampler")})
         rows.append(row)
     return rows
 

@@ -34,7 +34,7 @@ __all__ = ["SCHEMA", "SCHEMA_VERSION", "document", "design_entry", "rerun_comman
 SCHEMA, SCHEMA_VERSION = "spsc.design", 1
 #: The columns of trials.parquet, in order.
 TABLE_COLUMNS = ("trial", "state") + INPUTS + METRIC_NAMES + (
-    "miss", "feasible", "printable", "printability", "status", "reason", "seconds")
+    "miss", "feasible", "printable", "printability", "status", "reason", "seconds", "proposer")
 _NUMERIC = ("w", "h", "l", "t0", "n1", "n2", "cy", "pressure", "reservoir") + METRIC_NAMES + (
     "miss", "seconds")
 
