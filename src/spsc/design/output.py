@@ -169,6 +169,9 @@ def _print_verify(v: dict) -> None:
     worst = v["max_abs_difference_pct"]
     print(f"  largest difference on the goal's metrics {_g(worst)} % "
           f"({'within' if v['agrees'] else 'NOT within'} {v['tolerance_pct']:g} %)")
+    if v.get("fem_miss") is not None:
+        print(f"  the FEM's own miss of the goal {_g(100 * v['fem_miss'])} % "
+              f"({'met' if v['fem_met'] else 'not met'} by the FEM)")
 
 
 def _g(x) -> str:
