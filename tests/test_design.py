@@ -213,7 +213,7 @@ def test_the_polish_jacobian_follows_each_step_and_a_worse_step_shrinks_the_trus
     pol.base = {"x": pol._scaled(base), "r": np.array([1.1, 0.9]), "miss": 0.1,
                 "params": base, "number": 7}
     pol.J = np.array([[0.5, -0.2, 0.1, 0.8], [-0.1, -0.6, 0.05, 0.2]])
-    pol.pending[9] = ("gauss-newton", None, 7)
+    pol.pending[9] = ("gauss-newton", None, 7, dict(base, w=10.3, t0=1.1))
     moved = dict(base, w=10.3, t0=1.1)
     worse = {"stiffness_high": 6 * 1.3, "sensitivity_high": 5 * 0.8}
     pol.tell(SimpleNamespace(number=9, params=moved), worse, 0.3, True)

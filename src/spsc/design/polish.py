@@ -72,15 +72,17 @@ class Polish:
         params, kind, column = self.queue.pop(0)
         study.enqueue_trial(params, user_attrs={"proposer": kind})
         trial = study.ask()
-        self.pending[trial.number] = (kind, column, self.base["number"])
+        self.pending[trial.number] = (kind, column, self.base["number"], params)
         return trial
 
     def tell(self, trial, metrics: dict | None, miss: float | None, feasible: bool) -> None:
         """A told trial: its metrics (None when it failed), miss and feasibility."""
         job = self.pending.pop(trial.number, None)
-        if job is None or self.base is None or job[2] != self.base["number"]:
-            return  # TPE's, or proposed for a base given up since
-        kind, column, _ = job
+        if job is None or self.base is None or job[2] != self.base["number"] \
+                or any(trial.params.get(k) != v for k, v in job[3].items()):
+            return  # TPE's, proposed for a base given up since, or (the ask took a proposal
+            # a killed run left waiting in the journal) not the design proposed
+        kind, column = job[:2]
         x = self._scaled(trial.params)
         ratios = self._ratios(metrics)
         if kind == "jacobian":
