@@ -158,10 +158,11 @@ def _level(model, p_kPa, travels, settings):
 
 def _level_job(geometry, material, settings, p_kPa, travels):
     """One level on a worker: its own wall model, one BLAS thread."""
-    from spsc.fem.threads import one_blas_thread
+    from threadpoolctl import threadpool_limits
+
     from spsc.fem.wall.model import WallModel
 
-    with one_blas_thread():
+    with threadpool_limits(limits=1, user_api="blas"):
         return _level(WallModel(geometry, material, settings), p_kPa, travels, settings)
 
 
@@ -202,13 +203,14 @@ def build_map(geometry, material, *, setup_kPa: float, top_kPa: float, y_max_mm:
     per core) or the cluster at ``scheduler``; the map is the same. ``progress(done, total)``
     after each level. Raises ParameterError naming the level when the wall model cannot reach
     ``y_max_mm`` there."""
-    from spsc.fem.threads import one_blas_thread
+    from threadpoolctl import threadpool_limits
+
     from spsc.fem.wall.model import WallModel, WallSettings
 
     settings = settings or WallSettings()
     model = WallModel(geometry, material, settings)
     ps = pressure_levels(setup_kPa, top_kPa, levels)
-    with one_blas_thread():
+    with threadpool_limits(limits=1, user_api="blas"):
         tops = _tops(model, ps, settings)
     z_ref = tops[float(setup_kPa)][1] if setup_kPa > 0 else tops[0.0][1]
     y_lo = -(max(t[1] for t in tops.values()) - z_ref)
@@ -221,7 +223,7 @@ def build_map(geometry, material, *, setup_kPa: float, top_kPa: float, y_max_mm:
         V[:, j], F[:, j], A[:, j] = v_free, 0.0, 0.0
     jobs = [(float(p), y[touching[j]] - (z_ref - tops[float(p)][1]))
             for j, p in enumerate(ps) if touching[j].any()]
-    with one_blas_thread():
+    with threadpool_limits(limits=1, user_api="blas"):
         results = _levels(model, jobs, settings, workers, scheduler, progress)
     for (p, _), (v, f, a, reached, message) in zip(jobs, results):
         j = int(np.flatnonzero(ps == p)[0])

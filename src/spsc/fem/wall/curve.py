@@ -59,7 +59,6 @@ from spsc.materials import Material
 from ..engine import CloseValve, Inflate, Load, NewtonFailure, Press, Record, solve
 from ..engine import newton as _engine_newton
 from ..engine.walk import record
-from ..threads import one_blas_thread
 from .model import WallModel, WallSettings
 
 __all__ = ["WallSettings", "WallModel", "WallFailure", "newton", "wall_curve", "wall_curves",
@@ -156,7 +155,10 @@ def wall_curves(geometry: SPSCGeometry, material: Material, reservoirs, **kwargs
     chamber, the high mode), the same in every other keyword: one model and one inflation
     serve all, each press goes on from the inflated state (the curves are those of separate
     calls, bit for bit; each curve's seconds and iterations include the shared inflation)."""
-    with one_blas_thread():  # small dense blocks; PARDISO keeps its threads
+    from threadpoolctl import threadpool_limits
+
+    # small dense blocks: one BLAS thread (threads spin on them, 100x slower when loaded)
+    with threadpool_limits(limits=1, user_api="blas"):
         return _wall_curves(geometry, material, list(reservoirs), **kwargs)
 
 

@@ -20,7 +20,6 @@ from spsc.core.constants import KPA_PER_MPA
 from spsc.core.errors import require
 
 from ..engine import CloseValve, Cycle, Inflate, solve
-from ..threads import one_blas_thread
 from .model import WallModel, WallSettings
 
 __all__ = ["CycleResult", "wall_cycle"]
@@ -54,7 +53,10 @@ def wall_cycle(geometry, material, prony, *, stroke_mm: float = 6.0, speed_mm_s:
     require("stroke", stroke_mm, gt=0, le=12, unit="mm")
     require("speed", speed_mm_s, gt=0, le=1e4, unit="mm/s")
     require("points", points, ge=3, le=500)
-    with one_blas_thread():  # as wall_curve: small dense blocks
+    from threadpoolctl import threadpool_limits
+
+    # one BLAS thread, as wall_curve: on small blocks threads spin (10-20x slower under load)
+    with threadpool_limits(limits=1, user_api="blas"):
         return _cycle(geometry, material, prony, stroke_mm, speed_mm_s, int(points),
                       pressure_kPa, reservoir_mm3, settings)
 

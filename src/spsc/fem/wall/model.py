@@ -36,8 +36,8 @@ __all__ = ["WallSettings", "WallModel"]
 #: PARDISO (symbolic analysis once per curve: 5× faster per factorisation than SuperLU here,
 #: the same curves to 1e-14), Cholesky first while the wall is stable and LDLᵀ with the
 #: inertia where it is not (``pardiso-spd``), SuperLU's symmetric mode where pypardiso is absent. Probed at
-#: import on purpose: MKL first loaded inside a thread limit that covered it (threadpoolctl)
-#: made PARDISO's factorisation segfault on the next curve (stop 33).
+#: import on purpose: MKL first loaded inside wall_curve's one-BLAS-thread limit
+#: (threadpoolctl) made PARDISO's factorisation segfault on the next curve (stop 33).
 _SOLVER = "pardiso-spd" if "pardiso" in available_solvers() else "superlu-sym"
 
 #: default element length along the profile (mm): the dome's 2D section is cheap, the
