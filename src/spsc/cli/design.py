@@ -114,7 +114,8 @@ def _search_options(e) -> None:
                    help="sampler seed (default: drawn and recorded); with the worker count, "
                    "it reproduces the study")
     e.add_argument("--sampler", choices=("tpe", "nsga2"), default=None,
-                   help="default tpe for targets only, nsga2 with --minimize/--maximize")
+                   help="default tpe for targets only (a printable trial within 30 %% of them is then "
+                        "polished by Gauss-Newton steps), nsga2 with --minimize/--maximize")
 
 
 def prepare(args):

@@ -55,9 +55,10 @@ class Polish:
         self.enabled = not goal.multi and bool(goal.targets) and bool(self.dims)
         self.tried: set[int] = set()  # bases given back to TPE
         self.queue: list = []  # (params, kind, column) not asked yet
-        self.pending: dict = {}  # trial number -> (kind, column)
+        self.pending: dict = {}  # trial number -> (kind, column, base's number, params)
         self.state = "idle"
         self.base = self.J = None
+        self.columns: dict = {}  # the Jacobian's columns told so far
         self.trust, self.failures = TRUST, 0
 
     # -- the loop's side ---------------------------------------------------------------------

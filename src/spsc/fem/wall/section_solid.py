@@ -103,7 +103,6 @@ class MixedSolid:
             BdV = Bl * self.dV[..., None, None]
             object.__setattr__(self, "_live", live)
             object.__setattr__(self, "_Bl", Bl)
-            object.__setattr__(self, "_Bu", Bl.reshape(ne, nq * live.size, -1))
             # contiguous: a transposed stack would send matmul down its slow loop
             object.__setattr__(self, "_BdVt", np.ascontiguousarray(
                 np.swapaxes(BdV.reshape(ne, nq * live.size, -1), 1, 2)))
@@ -129,7 +128,8 @@ class MixedSolid:
         ue = u[self.element_dofs]  # (ne, nd)
         ne, nq = self.dV.shape
         F = np.zeros((ne, nq, 9))
-        F[:, :, self._live] = (self._Bu @ ue[:, :, None]).reshape(ne, nq, -1)
+        F[:, :, self._live] = (self._Bl.reshape(ne, -1, ue.shape[1]) @ ue[:, :, None]).reshape(
+            ne, nq, -1)
         F = F.reshape(ne, nq, 3, 3)
         F += np.eye(3)
         return F
