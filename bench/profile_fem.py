@@ -13,6 +13,7 @@ import pstats
 import time
 
 from spsc.cad.geometry import preset
+from spsc.fem.engine.settings import SEMISMOOTH_CONTACT, Settings
 from spsc.fem.solid.chamber import build_model, chamber_run, run_chamber
 from spsc.materials import material
 
@@ -32,7 +33,9 @@ def main(argv=None) -> int:
     prof = cProfile.Profile()
     t0 = time.perf_counter()
     prof.enable()
-    curve, result, model = run_chamber(run, cache_dir=args.cache)
+    # the settings `spsc curve --model fem` takes (spsc.models.fem)
+    settings = Settings(warm_start=True, **SEMISMOOTH_CONTACT)
+    curve, result, model = run_chamber(run, cache_dir=args.cache, settings=settings)
     prof.disable()
     print(f"{time.perf_counter() - t0:.2f} s under the profiler, {result.iterations} Newton "
           f"iterations, {model.disc.n} unknowns, converged: {result.converged}")

@@ -51,10 +51,11 @@ def _gas_shift(gs, s, con: Constraints, how: str) -> float:
     return out + gs[con.slaves] @ con.sjump if con.slaves.size else out
 
 
-def inertia(model, restriction, ev, gc, settings) -> int | None:
-    """The displacement problem's negative eigenvalues on a restriction of ev's tangent."""
+def inertia(model, restriction, ev, gc, settings) -> tuple[int | None, Factor]:
+    """The displacement problem's negative eigenvalues on a restriction of ev's tangent, and
+    the factorisation they were read from."""
     factor = factorize(restriction.matrix(ev.K), settings.solver, upper=restriction.upper)
-    return model.unstable_modes(factor, ev.c, gc)
+    return model.unstable_modes(factor, ev.c, gc), factor
 
 
 def linear_step(model, ev, restriction, free, con: Constraints, settings, *,

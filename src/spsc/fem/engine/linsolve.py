@@ -77,13 +77,20 @@ def available_solvers() -> list[str]:
 @dataclass(frozen=True, eq=False)
 class Factor:
     """A factorisation: ``solve(b)`` for b of shape (n,) or (n, k); ``negative`` the number of
-    negative eigenvalues (None when the solver does not report it)."""
+    negative eigenvalues (None when the solver does not report it); ``held()`` whether it
+    can still solve (None: always; PARDISO's one factorisation per process is replaced by
+    the next)."""
 
     solve: object
     negative: int | None
+    held: object = None
 
     def __call__(self, b):
         return self.solve(b)
+
+    def current(self) -> bool:
+        """Whether this factorisation can still solve."""
+        return self.held is None or bool(self.held())
 
 
 class _Pardiso:
@@ -136,7 +143,7 @@ class _Pardiso:
             x = ps._call_pardiso(U, np.asfortranarray(b.reshape(n, -1)))
             return x.reshape(b.shape)
 
-        return Factor(solve, negative)
+        return Factor(solve, negative, lambda: self.serial == serial)
 
 
 _PARDISO: dict[int, _Pardiso] = {}

@@ -30,7 +30,7 @@ from .search import line_search
 from .settings import Settings
 from .steps import Load
 
-__all__ = ["Converged", "newton"]
+__all__ = ["Converged", "Warm", "newton"]
 
 #: the semi-smooth strategy takes the linearised reactions until the set changed this often
 _MULTIPLIER_CHANGES = 10
@@ -53,6 +53,7 @@ class Converged:
     evaluation: object
     unstable_modes: int | None
     grip: Grip | None = None
+    warm: "Warm | None" = None
 
     def with_tangent(self, model, load: Load) -> "Converged":
         """This state with an evaluation that carries its tangent (a modified Newton
@@ -62,13 +63,37 @@ class Converged:
         return dataclasses.replace(self, evaluation=model.evaluate(self.x, load))
 
 
+@dataclass(frozen=True, eq=False)
+class Warm:
+    """The last factorisation of a converged load, on its constraint set: the next load's
+    first step (``settings.warm_start``). ``evaluation`` carries the tangent it factorised,
+    ``restriction`` that set's restriction of it, ``active`` and ``engaged`` the set."""
+
+    factor: object
+    evaluation: object
+    restriction: object
+    active: np.ndarray
+    engaged: np.ndarray
+
+    def fits(self, active, engaged) -> bool:
+        """Whether a load starting from these sets can take it (and it can still solve)."""
+        return self.factor.current() \
+            and np.array_equal(self.active, np.asarray(active, int)) \
+            and np.array_equal(self.engaged, np.zeros(0, int) if engaged is None else engaged)
+
+
 class _Newton:
     """The state of one Newton solve between iterations."""
 
-    def __init__(self, model, load: Load, settings: Settings, x0, active, engaged, grip=None):
+    def __init__(self, model, load: Load, settings: Settings, x0, active, engaged, grip=None,
+                 warm: Warm | None = None):
         self.model, self.load, self.s = model, load, settings
         self.x = x0.copy()
-        self.active = start_active(model, self.x, load.plate, active, settings, load.indenter)
+        warm = warm if settings.warm_start and load.plate is not None and not load.stick \
+            and not curved(load.indenter) and warm is not None \
+            and warm.fits(active, engaged) else None
+        self.active = start_active(model, self.x, load.plate, active, settings, load.indenter) \
+            if warm is None else warm.active
         #: the sticking plate's anchors (None: frictionless)
         self.grip = None if not (load.stick and load.plate is not None) else \
             grip if grip is not None else Grip.empty(model)
@@ -81,6 +106,10 @@ class _Newton:
         #: whether the next iteration reuses it (``settings.modified_newton``)
         self.factor = self.tangent_ev = None
         self.cheap = False
+        if warm is not None:  # the first step on the last load's set and factorisation
+            self.factor, self.tangent_ev, self.restriction = warm.factor, warm.evaluation, \
+                warm.restriction
+            self.cheap = True
         #: the last tangent factorised had negative eigenvalues: the next one skips
         #: ``pardiso-spd``'s Cholesky attempt, which would fail (10 of 14 ms, stop 44)
         self.indefinite = False
@@ -214,24 +243,31 @@ class _Newton:
         """The converged state with the inertia of its tangent on its own constraint set."""
         key = constraint_key(free, con.slaves, con.lean)
         modes = self.modes if self.factored == key else None
-        if self.factored != key and self.s.fresh_inertia:
+        warm = None
+        if self.factored == key and self.factor is not None:
+            warm = Warm(self.factor, self.tangent_ev, self.restriction, self.active,
+                        self.engaged)
+        elif self.s.fresh_inertia:
             ev = self.full(ev)
             red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT,
                               self.model.system_residual(ev))
             gc = red.take(con.condense(gas_vector(self.model, ev, con.n)))
-            modes = inertia(self.model, red, ev, gc, self.linear())
+            modes, factor = inertia(self.model, red, ev, gc, self.linear())
+            warm = Warm(factor, ev, red, self.active, self.engaged)
         grip = None if self.grip is None else hold(self.model, self.grip, self.x, self.active)
-        return Converged(self.x, self.active, self.engaged, it, ev, modes, grip)
+        return Converged(self.x, self.active, self.engaged, it, ev, modes, grip,
+                         warm if not con.lean.size else None)
 
 
 def newton(model, x0, load: Load, settings: Settings, active=None, engaged=None,
-           grip: Grip | None = None) -> Converged:
+           grip: Grip | None = None, warm: Warm | None = None) -> Converged:
     """Solve r(x) = 0 from ``x0`` for one ``load``, starting from the plate's ``active``
     contact unknowns, the tie's ``engaged`` nodes and, on a sticking plate (``load.stick``),
     the anchors ``grip`` (None: none yet); the converged state's grip also holds the nodes
-    that touched in this load (:mod:`.friction`). Raises
+    that touched in this load (:mod:`.friction`). ``warm``: the last load's factorisation
+    (:class:`Warm`), its first step under ``settings.warm_start``. Raises
     :class:`NewtonFailure` with the reason when it does not converge."""
-    nw = _Newton(model, load, settings, x0, active, engaged, grip)
+    nw = _Newton(model, load, settings, x0, active, engaged, grip, warm)
     for it in range(1, settings.max_iterations + 1):
         con, free = nw.constrain()
         ev = nw.evaluate()

@@ -74,6 +74,7 @@ class _Walk:
         self.load = Load()
         self.active, self.engaged = np.zeros(0, int), np.zeros(0, int)
         self.grip = None  # a sticking plate's anchors (:mod:`.friction`)
+        self.warm = None  # the last load's factorisation (:class:`~.newton.Warm`)
         #: a spring-borne indenter's last two (travel mm, force N), and the trial's
         self.indenter, self.balanced = [(0.0, 0.0)], None
         self.total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
@@ -137,7 +138,8 @@ class _Walk:
             guess = x1 + (x1 - x0) * (t_new - t1) / (t1 - t0)
         grip = self.gripped(trial)
         try:
-            return newton(model, guess, trial, self.s, self.active, self.engaged, grip)
+            return newton(model, guess, trial, self.s, self.active, self.engaged, grip,
+                          self.warm)
         except model.recoverable:
             if guess is x:
                 raise
@@ -209,7 +211,7 @@ class _Walk:
                     trial, history = load_at(t_new), []  # no secant across the jump
             self.x, self.active, self.engaged, t, self.load = (sol.x, sol.active, sol.engaged,
                                                                t_new, trial)
-            self.grip = sol.grip
+            self.grip, self.warm = sol.grip, getattr(sol, "warm", None)
             if self.balanced is not None:  # a spring's balance is accepted as found
                 self.indenter, self.balanced = self.indenter[-1:] + [self.balanced], None
             if hasattr(self.model, "commit"):  # a rate-dependent material closes its step
