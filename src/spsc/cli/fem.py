@@ -215,6 +215,7 @@ def run_part_cli(args) -> int:
     from spsc.fem.part import load_part
     from spsc.fem.part.run import check_part_run, part_curve, part_model, write_part_vtu
     from spsc.fem.engine import Settings, solve
+    from spsc.fem.engine.settings import PART_CONTACT
 
     from spsc.models.resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 
@@ -245,7 +246,8 @@ def run_part_cli(args) -> int:
 
     try:
         body = run.body(model, R)
-        result = solve(model, run.steps(body), settings=Settings(solver=args.solver or "auto"),
+        result = solve(model, run.steps(body), settings=Settings(solver=args.solver or "auto",
+                                                             **PART_CONTACT),
                        progress=progress)
     finally:
         bar.close()

@@ -84,7 +84,8 @@ def _part(out: Path) -> tuple[Path, dict]:
 
 def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | None, log):
     from spsc.fem.part.run import ContactPatch, part_run, part_curve, part_model, write_part_vtu
-    from spsc.fem.engine import solve
+    from spsc.fem.engine import Settings, solve
+    from spsc.fem.engine.settings import PART_CONTACT
     from spsc.materials import material
 
     fem = design["fem"]
@@ -102,7 +103,7 @@ def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | 
     mesh_s = time.perf_counter() - t0
     log(f"  {path.stem}: {model.disc.n:,} unknowns, {model.mesh.n_tets:,} tetrahedra "
         f"(mesh {mesh_s:.0f} s)")
-    result = solve(model, run.steps(run.body(model, R)),
+    result = solve(model, run.steps(run.body(model, R)), settings=Settings(**PART_CONTACT),
                    progress=lambda d, n: log(f"    step {d}/{n} ({time.perf_counter() - t0:.0f} s)"))
     curve = part_curve(run, model, result, surface, mesh_seconds=mesh_s)
     extra = {}

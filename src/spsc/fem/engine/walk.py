@@ -181,13 +181,15 @@ class _Walk:
     def ramp(self, k, step) -> Stop | None:
         """Walk one Inflate or Press step through its targets with step halving; the
         :class:`Stop` where it failed or met an unstable equilibrium, else None."""
+        onset = isinstance(step, (Press, Cycle)) and self.load.plate is None  # first contact
         load_at, kind, targets = self.path(step)
         nominal = targets[0]
         if isinstance(step, Press) and step.stick:  # touch-downs interpolated per increment
             nominal = min(nominal, step.parameter_span(self.s.stick_increment))
         #: snap-throughs are followed on a plain press only (not on a spring, not with Coulomb)
         plain = getattr(step, "spring", None) is None and getattr(step, "mu", None) is None
-        t, dt, ti, history = 0.0, nominal, 0, []
+        t, dt, ti, history = 0.0, nominal * (self.s.onset_fraction if onset else 1.0), 0, []
+        calm = self.s.regrow_after  # increments solved since the last cut
         while ti < len(targets):
             t_new = min(t + dt, targets[ti])
             trial = load_at(t_new)
@@ -197,7 +199,7 @@ class _Walk:
                 sol, trial = self.solve(step, trial, t_new, history)
             except self.model.recoverable as exc:
                 _log.debug("cut %s t=%.4g dt=%.3g: %s", kind, t_new, dt, exc)
-                dt *= 0.5
+                dt, calm = 0.5 * dt, 0
                 if dt >= self.s.min_fraction * nominal:
                     continue
                 sol = self.cross(step, load_at, t, t_new) if follow else None
@@ -218,7 +220,9 @@ class _Walk:
                 self.model.commit(sol.x, trial)
             self.iterations += sol.iterations
             history.append((t, sol.x))
-            dt = min(nominal, 2 * dt)
+            calm += 1
+            if calm >= self.s.regrow_after:
+                dt = min(nominal, 2 * dt)
             if math.isclose(t, targets[ti], rel_tol=1e-12, abs_tol=1e-14):
                 rec = record(self.model, k, kind, self.load, sol)
                 if getattr(step, "spring", None):

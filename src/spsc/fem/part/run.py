@@ -30,6 +30,7 @@ from spsc.core.curve import Curve
 from spsc.core.errors import ParameterError, require
 
 from ..engine import Result, Settings, solve
+from ..engine.settings import PART_CONTACT
 from ..solid.insert import RigidInsert
 from ..solid.mesh import MESH_VERSION, TetMesh
 from ..solid.model import FEMModel
@@ -258,12 +259,15 @@ def part_model(run: PartRun, *, cache_dir=None, surface: PartSurface | None = No
 
 def run_part(run: PartRun, *, settings: Settings | None = None, progress=None,
              cache_dir=None):
-    """Solve ``run``; returns (Curve, Result, FEMModel, R). The Curve's ``series`` hold the
-    force through each contact patch (``force_<name>_N``)."""
+    """Solve ``run`` (``settings`` default: the engine's with a part's onset,
+    :data:`~spsc.fem.engine.settings.PART_CONTACT`); returns (Curve, Result, FEMModel, R).
+    The Curve's ``series`` hold the force through each contact patch
+    (``force_<name>_N``)."""
     t0 = time.perf_counter()
     model, R, surface = part_model(run, cache_dir=cache_dir)
     mesh_seconds = time.perf_counter() - t0
-    result = solve(model, run.steps(run.body(model, R)), settings=settings, progress=progress)
+    result = solve(model, run.steps(run.body(model, R)),
+                   settings=settings or Settings(**PART_CONTACT), progress=progress)
     return part_curve(run, model, result, surface, mesh_seconds=mesh_seconds), result, model, R
 
 
