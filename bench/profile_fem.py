@@ -34,7 +34,7 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     prof.enable()
     # the settings `spsc curve --model fem` takes (spsc.models.fem)
-    settings = Settings(warm_start=True, **SEMISMOOTH_CONTACT)
+    settings = Settings(warm_start=True, low_rank=16, **SEMISMOOTH_CONTACT)
     curve, result, model = run_chamber(run, cache_dir=args.cache, settings=settings)
     prof.disable()
     print(f"{time.perf_counter() - t0:.2f} s under the profiler, {result.iterations} Newton "

@@ -88,8 +88,9 @@ class FEMCurveModel(ModelBase):
         # the wall's active-set choices (semi-smooth from the secant predictor): the report's
         # vented Type A curve 177 -> 102 Newton iterations, its pressurised Type B 70 -> 64
         # factorisations, the curves within 3e-10; each press load from the last one's
-        # factorisation (``warm_start``)
-        settings = Settings(solver=options.solver, warm_start=True, **SEMISMOOTH_CONTACT)
+        # factorisation (``warm_start``), small set changes by updating it (``low_rank``)
+        settings = Settings(solver=options.solver, warm_start=True, low_rank=16,
+                            **SEMISMOOTH_CONTACT)
         curve, result, model = run_chamber(spec, settings=settings,
                                            progress=progress, cache_dir=cache_dir)
         extra = {}

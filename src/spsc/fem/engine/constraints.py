@@ -194,6 +194,7 @@ class Masked:
         pat = _upper_pattern(K, index)
         held = ~free[index]  # the system's prescribed unknowns
         self.sel, self.indptr, self.indices, self.n = pat.sel, pat.indptr, pat.indices, pat.n
+        self.rows = pat.r  # each stored entry's row (its column: ``indices``)
         rows = np.flatnonzero(held)
         self.unit = pat.diagonal[rows]
         if np.any(self.unit < 0):

@@ -25,6 +25,7 @@ from .restrict import restriction
 from .friction import Grip, hold, release, stuck
 from .linear import gas_vector, inertia, linear_step
 from .linsolve import FULL_INPUT
+from .lowrank import updated
 from .result import NewtonFailure
 from .search import line_search
 from .settings import Settings
@@ -131,6 +132,23 @@ class _Newton:
         """ev with its tangent: modified Newton ends here."""
         self.cheap = False
         return ev if ev.K is not None else self.model.evaluate(self.x, self.load)
+
+    def refit(self, ev):
+        """After the constraint set changed: ev with its tangent (a new factorisation
+        follows), or, where at most ``settings.low_rank`` unknowns changed, ev alone with the
+        last factorisation updated for them (:mod:`.lowrank`; a modified Newton step)."""
+        if self.s.low_rank and self.factor is not None and self.tangent_ev is not None \
+                and self.model.tie is None and not curved(self.load.indenter):
+            con, free = self.constrain()
+            K = self.tangent_ev.K
+            new = restriction(K, free, con, self.s.solver in FULL_INPUT,
+                              self.model.system_residual(self.tangent_ev))
+            factor = updated(self.factor, self.restriction, new, K, self.s.low_rank)
+            if factor is not None:
+                self.restriction, self.factor, self.cheap = new, factor, True
+                self.factored, self.modes = new.key, None
+                return ev if ev.K is None else dataclasses.replace(ev, K=None)
+        return self.full(ev)
 
     def constrain(self):
         """(Constraints, free mask) of the current sets at x."""
@@ -281,7 +299,7 @@ def newton(model, x0, load: Load, settings: Settings, active=None, engaged=None,
         if ev.K is None and not converged and nw.res > _CONTRACTION * before:
             ev = nw.full(ev)  # the old tangent no longer contracts enough
         if nw.near(it, con, converged) and nw.update(ev):
-            ev = nw.full(ev)  # a new constraint set: a new factorisation
+            ev = nw.refit(ev)  # a new constraint set: a new or an updated factorisation
             if not settings.semismooth:
                 nw.carried = ev  # x is unchanged: its evaluation stands
                 continue
