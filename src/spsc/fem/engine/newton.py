@@ -20,7 +20,7 @@ import numpy as np
 
 from .active_set import curved, jumps, start as start_active, surface, \
     update as update_active
-from .constraints import Constraints, constraint_key
+from .constraints import Constraints, Masked, constraint_key
 from .restrict import restriction
 from .friction import Grip, hold, release, stuck
 from .linear import gas_vector, inertia, linear_step
@@ -138,8 +138,13 @@ class _Newton:
         follows), or, where at most ``settings.low_rank`` unknowns changed, ev alone with the
         last factorisation updated for them (:mod:`.lowrank`; a modified Newton step)."""
         if self.s.low_rank and self.factor is not None and self.tangent_ev is not None \
-                and self.model.tie is None and not curved(self.load.indenter):
+                and self.model.tie is None and not curved(self.load.indenter) \
+                and isinstance(self.restriction, Masked):
             con, free = self.constrain()
+            old = self.restriction
+            if np.setxor1d(np.flatnonzero(old.index)[old.held], con.presc).size \
+                    > self.s.low_rank:  # decided before the new restriction is built
+                return self.full(ev)
             K = self.tangent_ev.K
             new = restriction(K, free, con, self.s.solver in FULL_INPUT,
                               self.model.system_residual(self.tangent_ev))
