@@ -112,3 +112,22 @@ def test_chamber_curve_with_updated_factorisations(tmp_path, monkeypatch):
     assert_allclose(upd.force_N, fresh.force_N, rtol=1e-7, atol=1e-9)
     assert_allclose(upd.pressure_kPa, fresh.pressure_kPa, rtol=1e-7, atol=1e-9)
     assert n_upd < n_fresh, (n_upd, n_fresh)
+
+
+@pytest.mark.skipif("pardiso" not in available_solvers(), reason="pypardiso not installed")
+@pytest.mark.parametrize("before, after", [([5, 9, 20], [5, 9, 20, 31]), ([5, 9, 20], [9]),
+                                           ([5, 9], [9, 21, 22, 40])])
+def test_updated_factor_counts_the_negative_eigenvalues(before, after):
+    """On an indefinite K (a quarter of its diagonal made negative) the updated factor's
+    inertia, by Haynsworth's additivity, is the fresh LDLᵀ's."""
+    K, free = _system(seed=3)
+    K = K.tolil()
+    for i in range(0, K.shape[0], 4):
+        K[i, i] = -K[i, i]
+    K = K.tocsr()
+    old, new = _masked(K, free, before), _masked(K, free, after)
+    factor = factorize(old.matrix(K), "pardiso", upper=True)
+    up = updated(factor, old, new, K, max_rank=8)
+    fresh = factorize(new.matrix(K), "pardiso", upper=True)
+    assert fresh.negative > 0
+    assert up.negative == fresh.negative

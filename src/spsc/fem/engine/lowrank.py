@@ -10,7 +10,7 @@ C⁻¹ = [[E_ΔΔ, I], [I, 0]]. Then
 
 one 2k-column solve with A₀'s factorisation and a 2k × 2k dense system instead of a new
 factorisation. Both matrices are of one tangent (the factorised one): the step is a modified
-Newton step on the new set, and its inertia is not known.
+Newton step on the new set; its inertia follows from A₀'s by Haynsworth's inertia additivity.
 """
 
 from __future__ import annotations
@@ -62,10 +62,22 @@ def updated(factor: Factor, old, new, K, max_rank: int) -> Factor | None:
     eye = np.eye(k)
     c_inv = np.block([[E[delta], eye], [eye, np.zeros((k, k))]])
     Z = factor(U)
-    lu = sla.lu_factor(c_inv + U.T @ Z)
+    S = c_inv + U.T @ Z
+    lu = sla.lu_factor(S)
 
     def solve(b):
         y = factor(b)
         return y - Z @ sla.lu_solve(lu, U.T @ y)
 
-    return Factor(solve, None, factor.current)
+    return Factor(solve, _negative(factor.negative, S, c_inv), factor.current)
+
+
+def _negative(before, S, c_inv) -> int | None:
+    """A₁'s negative eigenvalues from A₀'s: the bordered [[A₀, U], [Uᵀ, −C⁻¹]] has the
+    inertia of A₀ plus that of its Schur complement −S, and of −C⁻¹ plus that of A₁
+    (Haynsworth), so neg(A₁) = neg(A₀) + pos(S) − pos(C⁻¹). None if A₀'s is unknown."""
+    if before is None:
+        return None
+    S = 0.5 * (S + S.T)  # symmetric up to round-off
+    return int(before + np.sum(np.linalg.eigvalsh(S) > 0)
+               - np.sum(np.linalg.eigvalsh(c_inv) > 0))

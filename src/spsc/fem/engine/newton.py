@@ -151,7 +151,10 @@ class _Newton:
             factor = updated(self.factor, self.restriction, new, K, self.s.low_rank)
             if factor is not None:
                 self.restriction, self.factor, self.cheap = new, factor, True
-                self.factored, self.modes = new.key, None
+                gc = new.take(con.condense(gas_vector(self.model, self.tangent_ev, con.n)))
+                self.factored = new.key
+                self.modes = None if factor.negative is None else \
+                    self.model.unstable_modes(factor, self.tangent_ev.c, gc)
                 return ev if ev.K is None else dataclasses.replace(ev, K=None)
         return self.full(ev)
 

@@ -80,8 +80,8 @@ class Settings:
 
     low_rank : when the plate's active set changes by at most this many unknowns, the last
     factorisation is updated for them (:mod:`.lowrank`, Sherman–Morrison–Woodbury: one
-    2k-column solve) instead of a new one, and the step on the new set is a modified Newton
-    step (0: never). The tail of a load's set changes is a few nodes (162 -> 160 -> …): on
+    2k-column solve, the inertia by Haynsworth's additivity) instead of a new one, and the
+    step on the new set is a modified Newton step (0: never). The tail of a load's set changes is a few nodes (162 -> 160 -> …): on
     the Type B Table 1 curve 16 takes 34 -> 24 factorisations at 56 instead of 54
     iterations, the curve within 3e-9; 64 took 13 but 69 iterations and was slower.
 
