@@ -80,33 +80,13 @@ def test_updated_factor_of_a_replaced_factorisation_is_refused():
     assert updated(factor, old, new, K, 4) is None
 
 
-def test_chamber_curve_with_updated_factorisations(tmp_path, monkeypatch):
+def test_chamber_curve_with_updated_factorisations(counted_chamber):
     """A 3D chamber curve whose small active-set changes update the last factorisation
     (``Settings.low_rank``) is the curve of fresh factorisations, with fewer of them."""
-    import sys
-
-    from spsc.cad.geometry import preset
     from spsc.fem.engine.settings import SEMISMOOTH_CONTACT, Settings
-    from spsc.fem.solid.chamber import chamber_run, run_chamber
-    from spsc.materials import material
 
-    linear = sys.modules["spsc.fem.engine.linear"]
-    count = [0]
-
-    def counting(*args, **kwargs):
-        count[0] += 1
-        return factorize(*args, **kwargs)
-
-    monkeypatch.setattr(linear, "factorize", counting)
-    run = chamber_run(preset("B"), material("tpu60a"), pressure_kPa=40.0, stroke_mm=3.0,
-                      points=7, mesh_size_mm=3.0, layers=1)
-    out = {}
-    for rank in (0, 16):
-        count[0] = 0
-        curve, result, _ = run_chamber(run, cache_dir=tmp_path, settings=Settings(
-            warm_start=True, low_rank=rank, **SEMISMOOTH_CONTACT))
-        assert result.converged, result.message
-        out[rank] = curve, count[0]
+    out = {rank: counted_chamber(Settings(warm_start=True, low_rank=rank, **SEMISMOOTH_CONTACT))
+           for rank in (0, 16)}
     (fresh, n_fresh), (upd, n_upd) = out[0], out[16]
     # both converge each point to 1e-8 of its force scale (1e-7: room for the conditioning)
     assert_allclose(upd.force_N, fresh.force_N, rtol=1e-7, atol=1e-9)

@@ -5,43 +5,19 @@ factorisation replaced since is not used."""
 
 from __future__ import annotations
 
-import sys
-
 import numpy as np
 import pytest
 import scipy.sparse as sp
 from numpy.testing import assert_allclose
 
-from spsc.cad.geometry import preset
 from spsc.fem.engine.linsolve import available_solvers, factorize
 from spsc.fem.engine.newton import Warm
 from spsc.fem.engine.settings import SEMISMOOTH_CONTACT, Settings
-from spsc.fem.solid.chamber import chamber_run, run_chamber
-from spsc.materials import material
-
-_linear = sys.modules["spsc.fem.engine.linear"]
 
 
-def _curve(tmp_path, monkeypatch, warm: bool):
-    count = [0]
-
-    def counting(*args, **kwargs):
-        count[0] += 1
-        return factorize(*args, **kwargs)
-
-    monkeypatch.setattr(_linear, "factorize", counting)
-    run = chamber_run(preset("B"), material("tpu60a"), pressure_kPa=40.0, stroke_mm=3.0,
-                      points=7, mesh_size_mm=3.0, layers=1)
-    curve, result, _ = run_chamber(run, settings=Settings(warm_start=warm,
-                                                          **SEMISMOOTH_CONTACT),
-                                   cache_dir=tmp_path)
-    assert result.converged, result.message
-    return curve, count[0]
-
-
-def test_warm_start_gives_the_same_curve_with_fewer_factorisations(tmp_path, monkeypatch):
-    cold, n_cold = _curve(tmp_path, monkeypatch, False)
-    warm, n_warm = _curve(tmp_path, monkeypatch, True)
+def test_warm_start_gives_the_same_curve_with_fewer_factorisations(counted_chamber):
+    cold, n_cold = counted_chamber(Settings(warm_start=False, **SEMISMOOTH_CONTACT))
+    warm, n_warm = counted_chamber(Settings(warm_start=True, **SEMISMOOTH_CONTACT))
     # both converge each point to 1e-8 of its force scale: the curves agree far below any
     # figure a report prints (1e-7 leaves room for the wall's conditioning)
     assert_allclose(warm.force_N, cold.force_N, rtol=1e-7, atol=1e-9)
