@@ -66,3 +66,13 @@ def test_increment_regrows_after_solved_ones(tmp_path, monkeypatch, regrow, expe
     with 2 the increment doubles after two solved at its length."""
     _, travels = _press(tmp_path, monkeypatch, Settings(regrow_after=regrow), 3, 0.3)
     assert travels == pytest.approx(expected)
+
+
+@pytest.mark.parametrize("kw, name", [({"onset_fraction": 0.0}, "onset_fraction"),
+                                      ({"onset_fraction": 1.5}, "onset_fraction"),
+                                      ({"regrow_after": 0}, "regrow_after"),
+                                      ({"low_rank": -1}, "low_rank"),
+                                      ({"low_rank": 2.5}, "low_rank")])
+def test_bad_step_control_settings_are_refused_by_name(kw, name):
+    with pytest.raises(ValueError, match=f"^{name} = "):
+        Settings(**kw)

@@ -118,6 +118,12 @@ class Settings:
         for name, allowed in _CHOICES.items():
             if getattr(self, name) not in allowed:
                 raise ValueError(f"{name} = {getattr(self, name)!r}: one of {allowed}")
+        if not 0.0 < self.onset_fraction <= 1.0:
+            raise ValueError(f"onset_fraction = {self.onset_fraction!r}: a fraction in (0, 1]")
+        for name in ("regrow_after", "low_rank"):
+            least = 1 if name == "regrow_after" else 0
+            if int(getattr(self, name)) != getattr(self, name) or getattr(self, name) < least:
+                raise ValueError(f"{name} = {getattr(self, name)!r}: a whole number ≥ {least}")
 
     @property
     def semismooth(self) -> bool:
