@@ -79,8 +79,10 @@ gate: $(STAMP)
 	@set -e; for t in A B C D; do $(BIN)/spsc mold --type $$t --no-render; done
 	@$(BIN)/spsc mold --type B --process compression --no-render --out build/mold-B-compression
 
-# the fast suite on every core (pytest-xdist), progress as a count, the slowest five at the end
-PYTEST = $(BIN)/python -m pytest -q -n auto --durations=5
+# the fast suite on every core (pytest-xdist), progress as a count, the slowest five at the end;
+# a module's tests stay on one worker (--dist loadscope), so a module-scoped fixture (a built
+# bladder, a meshed chamber) is built once, not once per worker
+PYTEST = $(BIN)/python -m pytest -q -n auto --dist loadscope --durations=5
 test: $(STAMP)
 	$(PYTEST)
 

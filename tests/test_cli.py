@@ -142,3 +142,17 @@ def test_console_script_help():
                          capture_output=True, encoding="utf-8", check=True).stdout
     for verb in KEY_OPTIONS:
         assert verb in out
+
+
+def test_a_verb_imports_its_own_module_only():
+    """``spsc bladder`` builds the bladder's parser, not all 17 (each imports its stack); a
+    missing or unknown verb still gets the whole list of choices."""
+    import argparse
+
+    code = ("import sys; from spsc.cli.main import main; main(['bladder', '--type', 'Q']); "
+            "print(sorted(m for m in sys.modules if m.startswith('spsc.cli.')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert "spsc.cli.bladder" in out.stdout and "spsc.cli.fem'" not in out.stdout, out.stdout
+    sub = next(a for a in build_parser({"bladder"})._actions
+               if isinstance(a, argparse._SubParsersAction))
+    assert list(sub.choices) == ["bladder"]

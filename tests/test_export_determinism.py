@@ -67,3 +67,19 @@ def test_step_of_two_runs_is_the_same(tmp_path):
         subprocess.run([sys.executable, "-c", script, str(p)], check=True)
     assert paths[0].read_bytes() == paths[1].read_bytes()
     assert b"2000-01-01T00:00:00" in paths[0].read_bytes()
+
+
+def test_a_3mf_written_and_read_leaves_the_locale_and_the_text_encoding(sphere, tmp_path):
+    """lib3mf sets the C locale to "C" on write and read; after both, Python still writes and
+    reads UTF-8 text by default (it fell to ASCII: a JSON with a "Δ" then failed)."""
+    import locale
+
+    from spsc.cad.meshload import load_mesh
+
+    before = locale.setlocale(locale.LC_ALL), locale.getpreferredencoding(False)
+    path = write_3mf(sphere, tmp_path / "s.3mf")
+    read_3mf(path)
+    load_mesh(path)
+    assert (locale.setlocale(locale.LC_ALL), locale.getpreferredencoding(False)) == before
+    (tmp_path / "t.txt").write_text("Δp ≤ 1 kPa")
+    assert (tmp_path / "t.txt").read_text() == "Δp ≤ 1 kPa"

@@ -15,6 +15,8 @@ import lib3mf
 import numpy as np
 import trimesh
 
+from spsc.core.clocale import keeps_locale
+
 __all__ = ["TriMesh", "tessellate", "write_step", "write_stl", "write_3mf", "read_3mf"]
 
 #: Chord sag (mm) and angular deflection (rad) of the export tessellation.
@@ -114,6 +116,7 @@ def write_stl(mesh: TriMesh, path: Path) -> Path:
     return Path(path)
 
 
+@keeps_locale
 def write_3mf(mesh: TriMesh, path: Path, name: str = "bladder") -> Path:
     """3MF written with lib3mf (the 3MF Consortium's reference library), unit millimetre; the
     mesh in the canonical order and the production extension's UUIDs derived from it (lib3mf
@@ -148,6 +151,7 @@ def write_3mf(mesh: TriMesh, path: Path, name: str = "bladder") -> Path:
     return Path(path)
 
 
+@keeps_locale
 def read_3mf(path: Path) -> TriMesh:
     """Read every mesh object of a 3MF file into one mesh (for checks and tests)."""
     wrapper = lib3mf.get_wrapper()

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from spsc.core.clocale import keeps_locale
 from spsc.core.errors import ParameterError
 
 __all__ = ["load_mesh", "load_surface", "MESH_SUFFIXES", "SURFACE_SUFFIXES", "STEP_TOLERANCE_MM"]
@@ -165,6 +166,7 @@ def _read_3mf_xml(path: Path):
     return np.vstack(verts) * unit, np.vstack(faces)
 
 
+@keeps_locale
 def _read_3mf_lib3mf(path: Path):
     import lib3mf
 

@@ -14,6 +14,8 @@ from pathlib import Path
 import lib3mf
 import numpy as np
 
+from spsc.core.clocale import keeps_locale
+
 from .export import TriMesh, write_3mf, write_step, write_stl
 from .meshbuild import manifold_mesh
 from .mold import Mold
@@ -113,6 +115,7 @@ def read_mold(path) -> dict:
     return info
 
 
+@keeps_locale
 def _assembly(path: Path, meshes: dict, part: TriMesh) -> Path:
     """One 3MF with every piece and the part as separate objects, in place."""
     wrapper = lib3mf.get_wrapper()
