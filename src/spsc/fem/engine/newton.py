@@ -39,6 +39,13 @@ _MULTIPLIER_CHANGES = 10
 #: modified Newton goes on while each step shrinks the residual at least this much
 _CONTRACTION = 0.25
 
+#: returns to a set met before, without progress, that end a load (:meth:`_Newton.cycles`)
+_RETURNS = 2
+
+#: iterations on one constraint set without halving the residual that end a load
+#: (:meth:`_Newton.stuck`)
+_STUCK = 10
+
 
 @dataclass(frozen=True, eq=False)
 class Converged:
@@ -102,6 +109,11 @@ class _Newton:
         self.engaged = np.zeros(0, int) if engaged is None or tie is None \
             else np.asarray(engaged)
         self.scale, self.res, self.changes = 0.0, np.inf, 0
+        #: the sets entered after the multipliers' changes, with the least residual there,
+        #: and the returns to one of them without progress (:meth:`cycles`)
+        self.visits, self.returns = {}, 0
+        #: (sets, residual) of each iteration (:meth:`stuck`)
+        self.trail = []
         self.lam = self.carried = self.restriction = self.factored = self.modes = None
         #: modified Newton: the last factorisation, the evaluation it was made from, and
         #: whether the next iteration reuses it (``settings.modified_newton``)
@@ -235,7 +247,41 @@ class _Newton:
             self.changes += 1
             if self.changes > s.max_active_changes:
                 raise NewtonFailure("the contact active set does not settle")
+            if self.cycles():
+                raise NewtonFailure(f"the contact active set cycles between two sets "
+                                    f"(residual {self.res:.3g} N against {tol:.3g} N)")
         return changed
+
+    def cycles(self) -> bool:
+        """Whether the sets just entered close a cycle that makes no progress: once the
+        reactions are the residual's (after ``_MULTIPLIER_CHANGES``), a second return to sets
+        met before in this load with a residual not below half of what it was there. The
+        reactions and the next set are functions of a state that repeats: the load would
+        spend its remaining iterations in the cycle and fail. Seen where the wall turns
+        unstable: a node at the plate's edge pulls as active and penetrates as free (A, B, A,
+        …; 20 of the 29 failed loads of the Table 1 Type C wall curve at 30 kPa with the
+        reservoir), or a ring released and taken back (69, 94, 88, 81, 76, 73, 69, … nodes;
+        Type B at 10 kPa with the reservoir), 25 iterations each."""
+        key = (self.active.tobytes(), self.engaged.tobytes())
+        if self.changes > _MULTIPLIER_CHANGES:
+            before = self.visits.get(key)
+            if before is not None and self.res > 0.5 * before:
+                self.returns += 1
+            self.visits[key] = self.res if before is None else min(before, self.res)
+        return self.returns >= _RETURNS
+
+    def stuck(self) -> bool:
+        """Whether the last ``_STUCK`` iterations stayed on one constraint set without halving
+        the residual: Newton on a fixed set that far from a solution is not converging (the
+        admissible line search takes ever shorter steps; where the wall turns unstable a load
+        spent 25 iterations there at 1-10 times the force scale, and none that converged
+        did)."""
+        key = (self.active.tobytes(), self.engaged.tobytes())
+        self.trail = (self.trail + [(key, self.res)])[-(_STUCK + 1):]
+        if len(self.trail) <= _STUCK:
+            return False
+        (k0, r0), last = self.trail[0], self.trail[1:]
+        return all(k == k0 for k, _ in last) and min(r for _, r in last) > 0.5 * r0
 
     def step(self, ev, con, free, rt) -> None:
         """The constrained Newton step and its line search; x moves. Without ev's tangent
@@ -302,6 +348,9 @@ def newton(model, x0, load: Load, settings: Settings, active=None, engaged=None,
         rt = con.condense(ev.r)
         before = nw.res
         nw.measure(ev, rt, free)
+        if nw.stuck():
+            raise NewtonFailure(f"no progress in {_STUCK} iterations on one contact set "
+                                f"(residual {nw.res:.3g} N against {settings.rtol * nw.scale:.3g} N)")
         converged = con.settled and it > 1 and nw.res <= settings.rtol * nw.scale \
             and model.pressure_error(ev) <= 1e-3 * settings.rtol
         if ev.K is None and not converged and nw.res > _CONTRACTION * before:
