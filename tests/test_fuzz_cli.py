@@ -7,8 +7,9 @@ function that builds, solves or checks raises if it is called (and a case still 
 
 Every case carries its class of mistake (``Case.kind``, one of ``KINDS``), and no refused
 invocation may leave a file behind (under the fixtures' folder or the current folder). The whole
-table (about 2,600 cases) takes about a minute in-process. ``bench/bench_badinput.py`` runs
-the same table as subprocesses and counts the outcomes.
+table (about 2,600 cases) takes about 25 s of CPU in-process (each case builds only its verb's
+parser). ``bench/bench_badinput.py`` runs the same table as subprocesses and counts the
+outcomes.
 """
 
 from __future__ import annotations
@@ -128,8 +129,8 @@ def _files(*roots) -> set:
     return {p for r in roots for p in Path(r).rglob("*") if not p.is_dir()}
 
 
-#: the table runs in this many shards, so pytest-xdist spreads it over the cores (one shard
-#: took 19 s, the longest test of make test)
+#: the table runs in this many shards, each a test of a few seconds (make test keeps a module
+#: on one worker: --dist loadscope)
 SHARDS = 4
 
 
