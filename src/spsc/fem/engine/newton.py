@@ -248,8 +248,9 @@ class _Newton:
             if self.changes > s.max_active_changes:
                 raise NewtonFailure("the contact active set does not settle")
             if self.cycles():
-                raise NewtonFailure(f"the contact active set cycles between two sets "
-                                    f"(residual {self.res:.3g} N against {tol:.3g} N)")
+                raise NewtonFailure(f"the contact active set cycles: back to earlier sets "
+                                    f"without progress (residual {self.res:.3g} N against "
+                                    f"{tol:.3g} N)")
         return changed
 
     def cycles(self) -> bool:
@@ -349,8 +350,9 @@ def newton(model, x0, load: Load, settings: Settings, active=None, engaged=None,
         before = nw.res
         nw.measure(ev, rt, free)
         if nw.stuck():
-            raise NewtonFailure(f"no progress in {_STUCK} iterations on one contact set "
-                                f"(residual {nw.res:.3g} N against {settings.rtol * nw.scale:.3g} N)")
+            raise NewtonFailure(f"no progress in {_STUCK} iterations on one constraint set "
+                                f"(residual {nw.res:.3g} N against "
+                                f"{settings.rtol * nw.scale:.3g} N)")
         converged = con.settled and it > 1 and nw.res <= settings.rtol * nw.scale \
             and model.pressure_error(ev) <= 1e-3 * settings.rtol
         if ev.K is None and not converged and nw.res > _CONTRACTION * before:
