@@ -1,10 +1,11 @@
 """The interactive-speed figures of issue 26 that take minutes, not hours: the wall model's Table 1
-Type B stadium and dome curves (warm, in this process, best of ``--repeat``), the 3D FEM's Type B
+Type B stadium and dome curves (warm, in this process, best of ``--repeat``), the report's slowest
+wall curve (Type C at 30 kPa with the reservoir: a snap-through, best of two), the 3D FEM's Type B
 curve on the Table 1 chamber and on the dome (whole ``spsc curve`` processes, the median of
 ``--repeat``: start-up, mesh from the cache and solve) and the CLI's start-up. The rows that
 take longer print the command that measures them. Run on a quiet machine.
 
-    python bench/bench_speed.py [--repeat 3] [--no-fem]
+    python bench/bench_speed.py [--repeat 3] [--no-fem] [--no-snap]
 """
 
 from __future__ import annotations
@@ -47,6 +48,18 @@ def _wall(dome: bool, repeat: int) -> tuple[float, int]:
     return best, its
 
 
+def _snap(repeat: int) -> tuple[float, int, int]:
+    """The report's slowest wall curve: Type C, 30 kPa, the 40 cm³ reservoir, 25 points over
+    6 mm, with its snap-through (best of ``repeat``; seconds, iterations, jumps)."""
+    kw = dict(pressure_kPa=30, reservoir_mm3=40000, stroke_mm=6, points=25)
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        c = wall_curve(preset("C"), material("tpu60a"), **kw)
+        best = min(best, time.perf_counter() - t0)
+    return best, c.solver.iterations, len(c.solver.details.get("jumps", []))
+
+
 def _process(args: list[str], repeat: int) -> float:
     """The median wall time of ``spsc ARGS`` as a new process (one unmeasured run first)."""
     cmd = [sys.executable, "-m", "spsc.cli.main", *args]
@@ -63,6 +76,8 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--no-fem", action="store_true", help="the wall rows only")
+    ap.add_argument("--no-snap", action="store_true",
+                    help="without the Type C snap-through curve (about 30 s a run)")
     args = ap.parse_args(argv)
     if args.repeat < 1:
         ap.error(f"repeat = {args.repeat}: at least 1 run")
@@ -72,6 +87,12 @@ def main(argv=None) -> int:
         name = "dome" if dome else "Table 1 stadium"
         print(f"{'wall: Type B ' + name + ', inflation + 17 points / 4 mm':64} "
               f"{t:9.3f}s  {target}  ({its} Newton iterations, best of {args.repeat})",
+              flush=True)
+    if not args.no_snap:
+        n = min(args.repeat, 2)
+        t, its, jumps = _snap(n)
+        print(f"{'wall: Type C, 30 kPa + 40 cm³, 25 points / 6 mm (snap-through)':64} "
+              f"{t:9.2f}s  —  ({its} Newton iterations, {jumps} jump, best of {n})",
               flush=True)
     if not args.no_fem:
         with tempfile.TemporaryDirectory() as tmp:

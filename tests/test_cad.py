@@ -83,16 +83,18 @@ def test_bladder_wall_is_t0_thick(bladder_b, bladder_b_mesh):
     np.testing.assert_allclose(d_outer[~on_outer], g.t0, rtol=0, atol=1e-5)
 
 
-def test_bladder_solid_is_one_watertight_part_of_designed_genus(bladder_b, bladder_b_mesh):
+def test_bladder_solid_is_one_watertight_part_of_designed_genus(bladder_b):
     s = bladder_b.solid
     assert s.isValid() and len(s.Solids()) == 1
-    mesh = bladder_b_mesh.to_trimesh()
+    # the topology does not depend on the chord sag: 0.01 mm takes 2 s, the export's 0.002 mm
+    # 8 s (the slow wall-thickness test measures that one)
+    mesh = tessellate(s, 0.01).to_trimesh()
     assert mesh.is_watertight and mesh.body_count == 1
     assert _genus(mesh) == bladder_b.design["genus"] == 4
     # OCCT's BoundingBox is padded by tolerances; the mesh's is tight (vertices lie on the
-    # exact surfaces, chord sag 0.002 mm only shrinks curved extents)
+    # exact surfaces, a chord sag of 0.01 mm only shrinks curved extents)
     lo, hi = np.array(bladder_b.design["bbox_mm"])
-    np.testing.assert_allclose(mesh.bounds, [lo, hi], atol=3e-3)
+    np.testing.assert_allclose(mesh.bounds, [lo, hi], atol=0.011)
     # part coordinates: base plane z = 0, dome top at h + t0, floor below
     g = bladder_b.spec.geometry
     np.testing.assert_allclose(mesh.bounds[1, 2], g.h + g.t0, atol=1e-6)

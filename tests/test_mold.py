@@ -108,6 +108,8 @@ def test_gate_fails_on_an_undercut():
     assert "undercut" in rep["pull_upper"].message
 
 
+# 5 s of make test's 3 minutes (the B-rep mold through OCCT): with the slow cases (CI runs both)
+@pytest.mark.slow
 def test_brep_mold_matches_the_mesh_mold():
     b = BladderSpec(preset("D"))
     mesh = _mold("D")

@@ -160,6 +160,8 @@ def test_simulate_with_continuous_stiffness_reports_the_step(tmp_path):
     assert 0.0 < steps[0]["rise_s"] < 0.1
 
 
+# 3-4 s of make test's 3 minutes (a two-worker cluster): with the slow cases (CI runs both)
+@pytest.mark.slow
 def test_the_map_built_on_dask_is_the_map_built_here():
     """The levels pressed on two local worker processes give the map pressed one after the
     other: the same solves elsewhere, equal to round-off (alone, bit for bit; after other
