@@ -69,15 +69,15 @@ def updated(factor: Factor, old, new, K, max_rank: int) -> Factor | None:
         y = factor(b)
         return y - Z @ sla.lu_solve(lu, U.T @ y)
 
-    return Factor(solve, _negative(factor.negative, S, c_inv), factor.current)
+    return Factor(solve, _negative(factor.negative, S), factor.current)
 
 
-def _negative(before, S, c_inv) -> int | None:
+def _negative(before, S) -> int | None:
     """A₁'s negative eigenvalues from A₀'s: the bordered [[A₀, U], [Uᵀ, −C⁻¹]] has the
     inertia of A₀ plus that of its Schur complement −S, and of −C⁻¹ plus that of A₁
-    (Haynsworth), so neg(A₁) = neg(A₀) + pos(S) − pos(C⁻¹). None if A₀'s is unknown."""
+    (Haynsworth), so neg(A₁) = neg(A₀) + pos(S) − pos(C⁻¹), and pos(C⁻¹) = k:
+    C⁻¹ = Pᵀ [[0, I], [I, 0]] P with P = [[I, 0], [E_ΔΔ/2, I]]. None if A₀'s is unknown."""
     if before is None:
         return None
     S = 0.5 * (S + S.T)  # symmetric up to round-off
-    return int(before + np.sum(np.linalg.eigvalsh(S) > 0)
-               - np.sum(np.linalg.eigvalsh(c_inv) > 0))
+    return int(before + np.sum(np.linalg.eigvalsh(S) > 0) - S.shape[0] // 2)

@@ -253,6 +253,10 @@ class _Newton:
                                     f"{tol:.3g} N)")
         return changed
 
+    def sets(self) -> tuple:
+        """The plate's active set and the tie's engaged set, hashable."""
+        return self.active.tobytes(), self.engaged.tobytes()
+
     def cycles(self) -> bool:
         """Whether the sets just entered close a cycle that makes no progress: once the
         reactions are the residual's (after ``_MULTIPLIER_CHANGES``), a second return to sets
@@ -263,7 +267,7 @@ class _Newton:
         …; 20 of the 29 failed loads of the Table 1 Type C wall curve at 30 kPa with the
         reservoir), or a ring released and taken back (69, 94, 88, 81, 76, 73, 69, … nodes;
         Type B at 10 kPa with the reservoir), 25 iterations each."""
-        key = (self.active.tobytes(), self.engaged.tobytes())
+        key = self.sets()
         if self.changes > _MULTIPLIER_CHANGES:
             before = self.visits.get(key)
             if before is not None and self.res > 0.5 * before:
@@ -277,7 +281,7 @@ class _Newton:
         admissible line search takes ever shorter steps; where the wall turns unstable a load
         spent 25 iterations there at 1-10 times the force scale, and none that converged
         did)."""
-        key = (self.active.tobytes(), self.engaged.tobytes())
+        key = self.sets()
         self.trail = (self.trail + [(key, self.res)])[-(_STUCK + 1):]
         if len(self.trail) <= _STUCK:
             return False

@@ -81,9 +81,10 @@ class Settings:
     low_rank : when the plate's active set changes by at most this many unknowns, the last
     factorisation is updated for them (:mod:`.lowrank`, Sherman–Morrison–Woodbury: one
     2k-column solve, the inertia by Haynsworth's additivity) instead of a new one, and the
-    step on the new set is a modified Newton step (0: never). The tail of a load's set changes is a few nodes (162 -> 160 -> …): on
-    the Type B Table 1 curve 16 takes 34 -> 24 factorisations at 56 instead of 54
-    iterations, the curve within 3e-9; 64 took 13 but 69 iterations and was slower.
+    step on the new set is a modified Newton step (0: never). The tail of a load's set
+    changes is a few nodes (162 -> 160 -> …): on the Type B Table 1 curve 16 takes 34 -> 24
+    factorisations at 56 instead of 54 iterations, the curve within 3e-9; 64 took 13 but 69
+    iterations and was slower.
 
     stick_increment : the longest plate travel (mm) of one increment on a sticking plate
     (:mod:`.friction`): a node is held from the end of the increment it touched in, an
@@ -120,10 +121,10 @@ class Settings:
                 raise ValueError(f"{name} = {getattr(self, name)!r}: one of {allowed}")
         if not 0.0 < self.onset_fraction <= 1.0:
             raise ValueError(f"onset_fraction = {self.onset_fraction!r}: a fraction in (0, 1]")
-        for name in ("regrow_after", "low_rank"):
-            least = 1 if name == "regrow_after" else 0
-            if int(getattr(self, name)) != getattr(self, name) or getattr(self, name) < least:
-                raise ValueError(f"{name} = {getattr(self, name)!r}: a whole number ≥ {least}")
+        for name, least in (("regrow_after", 1), ("low_rank", 0)):
+            value = getattr(self, name)
+            if int(value) != value or value < least:
+                raise ValueError(f"{name} = {value!r}: a whole number ≥ {least}")
 
     @property
     def semismooth(self) -> bool:
