@@ -173,8 +173,10 @@ def dask_client(workers: int | None = None, scheduler: str | None = None):
         with Client(cluster) as client:
             yield client
     finally:
-        _close_workers_first(cluster)
-        cluster.close()
+        try:
+            _close_workers_first(cluster)
+        finally:
+            cluster.close()
 
 
 def _close_workers_first(cluster, timeout_s: float = 10.0) -> None:
