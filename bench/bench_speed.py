@@ -28,9 +28,11 @@ LONG = [
      "python bench/bench_sweep.py --membrane 0 --wall 200 --workers 2 --out /tmp/bench-sweep"),
     ("spsc design, two targets, wall model", "≤ 2 min",
      "spsc design --target stiffness_high=6 --target 'sensitivity_high>=5' --model wall "
-     "--out /tmp/design"),
-    ("3D FEM, one fingertip case (2 mm)", "≤ 3 min",
-     "spsc fingertip --fem --cases pulp-high-40 --out /tmp/fingertip"),
+     "--seed 0 --out /tmp/design (seeds 0-3)"),
+    ("3D FEM, one fingertip case (2 mm), 40 kPa", "≤ 3 min",
+     "spsc fingertip --fem --cases pulp-high-40 --out /tmp/fingertip-40"),
+    ("3D FEM, one fingertip case (2 mm), 10 kPa", "≤ 3 min",
+     "spsc fingertip --fem --cases pulp-high-10 --out /tmp/fingertip-10"),
     ("clean make report", "≤ 5 min", "spsc report --cache EMPTY_DIR (in a clean worktree)"),
     ("Type C at 10 kPa, complete with its jump", "complete", "python bench/bench_snap.py"),
 ]
