@@ -26,9 +26,9 @@ from spsc.materials import material
 LONG = [
     ("wall sweep, 200 designs, 2 workers", "≤ 5 min, 0 partial from snaps",
      "python bench/bench_sweep.py --membrane 0 --wall 200 --workers 2 --out /tmp/bench-sweep"),
-    ("spsc design, two targets, wall model", "≤ 2 min",
+    ("spsc design, two targets, wall model, --seed 0 to 3", "≤ 2 min",
      "spsc design --target stiffness_high=6 --target 'sensitivity_high>=5' --model wall "
-     "--seed 0 --out /tmp/design (seeds 0-3)"),
+     "--seed 0 --out /tmp/design"),
     ("3D FEM, one fingertip case (2 mm), 40 kPa", "≤ 3 min",
      "spsc fingertip --fem --cases pulp-high-40 --out /tmp/fingertip-40"),
     ("3D FEM, one fingertip case (2 mm), 10 kPa", "≤ 3 min",
