@@ -11,6 +11,7 @@ Names and meanings are the same in every verb: ``--footprint`` is a preset's foo
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
 from pathlib import Path
@@ -47,6 +48,24 @@ def number(name: str, unit: str = ""):
             raise argparse.ArgumentTypeError(str(ParameterError(name, text, allowed))) from None
     parse.__name__ = "number"
     return parse
+
+
+def gas_option(name: str, text):
+    """``N[,TAU]``: the :class:`~spsc.dynamics.gas.Gas` (n in [1, 1.67], τ ≥ 0 s or inf);
+    one ParameterError naming ``name`` otherwise."""
+    from spsc.dynamics.gas import Gas  # here: every verb imports this module at start-up
+
+    allowed = ("N or N,TAU: n in [1, 1.67] (1: isothermal, 1.4: air) and the thermal time "
+               "τ >= 0 s or inf (adiabatic), e.g. 1.4,0.5")
+    parts = [x.strip() for x in str(text).split(",")]
+    try:
+        values = [float(x) for x in parts]
+    except ValueError:
+        raise ParameterError(name, text, allowed) from None
+    if len(values) not in (1, 2) or any(math.isnan(v) for v in values) \
+            or not 1.0 <= values[0] <= 1.67 or (len(values) == 2 and values[1] < 0):
+        raise ParameterError(name, text, allowed)
+    return Gas(values[0], values[1] if len(values) == 2 else math.inf)
 
 
 def integer(name: str):

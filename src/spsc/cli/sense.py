@@ -15,11 +15,12 @@ DIR/sense.png (docs/guides/sensing.md). Exit 0, 2 on invalid input (one line on 
 from __future__ import annotations
 
 import json
+import math
 import sys
 from pathlib import Path
 
 from spsc.cli.options import (add_geometry_options, add_quiet_option, check_output_dir,
-                              geometry_from_args, number, warn)
+                              gas_option, geometry_from_args, number, warn)
 from spsc.core.errors import ParameterError, require
 
 __all__ = ["register", "run"]
@@ -58,6 +59,19 @@ def register(subparsers) -> None:
                    "press the chamber map's levels when it is built (default: one per core)")
     g.add_argument("--scheduler", default=None, metavar="ADDR", help="address of a running "
                    "Dask scheduler (tcp://host:8786) instead")
+    _sensing_options(p)
+    h = p.add_argument_group("haptic loop (sec. 4.2)")
+    h.add_argument("--haptic-calibrate", metavar="SQUEEZE.csv", default=None,
+                   help="write DIR/haptic.json from a maximal squeeze in the low mode")
+    h.add_argument("--haptic-fraction", type=number("haptic fraction"), default=0.02,
+                   metavar="F", help="threshold = rest + F × max (default 0.02, the paper's)")
+    h.add_argument("--haptic", metavar="HAPTIC.json", default=None,
+                   help="run the haptic loop: joint angle per sample, valve/vibrate commands")
+    add_quiet_option(p)
+    p.set_defaults(func=run)
+
+
+def _sensing_options(p) -> None:
     s = p.add_argument_group("sensing")
     s.add_argument("--noise", default="auto", metavar="auto|KPA", help="the sensor's σ, kPa "
                    "(auto: from the log's first differences; with --follow the ELVH's 0.086)")
@@ -66,6 +80,10 @@ def register(subparsers) -> None:
                    "see the guide; calibrate and set it)")
     s.add_argument("--smoothing", type=number("smoothing", "s"), default=0.005, metavar="S",
                    help="time constant of the pressure filter, s (default 0.005)")
+    s.add_argument("--gas", default="1", metavar="N[,TAU]", help="the air's ratio of heat "
+                   "capacities n and thermal time τ (s; inf: adiabatic), as spsc simulate's "
+                   "gas = {n, thermal_time_s}: 1 the isothermal gas (default, the paper's "
+                   "static tests), 1.4,0.5 air relaxing in 0.5 s (the examples' scenarios)")
     s.add_argument("--detector", choices=("cusum", "threshold"), default="cusum",
                    help="contact detector: CUSUM (default) or the paper's thresholds")
     s.add_argument("--valve", choices=("open", "closed"), default="closed",
@@ -78,15 +96,6 @@ def register(subparsers) -> None:
                    "pressure_measured_kPa)")
     s.add_argument("--follow", action="store_true", help="read samples from standard input "
                    "(a CSV header, then a line each); print events as JSON lines")
-    h = p.add_argument_group("haptic loop (sec. 4.2)")
-    h.add_argument("--haptic-calibrate", metavar="SQUEEZE.csv", default=None,
-                   help="write DIR/haptic.json from a maximal squeeze in the low mode")
-    h.add_argument("--haptic-fraction", type=number("haptic fraction"), default=0.02,
-                   metavar="F", help="threshold = rest + F × max (default 0.02, the paper's)")
-    h.add_argument("--haptic", metavar="HAPTIC.json", default=None,
-                   help="run the haptic loop: joint angle per sample, valve/vibrate commands")
-    add_quiet_option(p)
-    p.set_defaults(func=run)
 
 
 def _check_chamber(args):
@@ -163,7 +172,8 @@ def _params(args, noise: float, rate_Hz: float):
 
     require("smoothing", args.smoothing, ge=0, le=10, unit="s")
     est = EstimatorParams(args.pressure, args.reservoir, noise, args.model_error,
-                          smoothing_s=args.smoothing, valve_open=args.valve == "open")
+                          smoothing_s=args.smoothing, valve_open=args.valve == "open",
+                          gas=gas_option("--gas", args.gas))
     comp = (ComplianceParams(args.stiff_mm_per_deg) if args.stiff_mm_per_deg is not None
             else None)
     return SenseParams(est, ContactParams(method=args.detector), compliance=comp,
@@ -254,23 +264,36 @@ def _batch(args) -> int:
     return _finish(args, stream, states, log.pressure_kPa, joints, commands)
 
 
-def _check_rest(log, setup_kPa: float, noise_kPa: float) -> None:
-    """A warning when the log's first 0.1 s sit off the setup pressure by more than their
-    noise allows (a sensor's offset, a wrong --pressure): the detectors measure from the
-    setup, so the log reads as a contact from its first sample."""
-    import numpy as np
+def _finite_or_text(x: float):
+    return x if math.isfinite(x) else str(x)
 
-    t = np.asarray(log.t_s, float)
-    head = np.asarray(log.pressure_kPa, float)[t <= t[0] + 0.1]
-    if head.size < 5:
+
+def _check_rest(log, setup_kPa: float, noise_kPa: float) -> None:
+    """A warning when the log starts off the setup pressure by more than its noise allows (a
+    sensor's offset, a wrong --pressure, a log that starts in a hold): the detectors measure
+    from the setup, so the log reads as a contact from its first sample. A log whose
+    pressure moves from its first sample (a press under way) is judged by where its line
+    starts, not by its first 0.1 s's level."""
+    from spsc.sensing.log import start_of
+
+    head = start_of(log.t_s, log.pressure_kPa, noise_kPa)
+    if head is None:
         return
-    start = float(np.median(head))
+    start, rate, moving = head
     sigmas = (start - setup_kPa) / noise_kPa
-    if abs(sigmas) > 3.0 + 3.0 / np.sqrt(head.size):
-        print(f"spsc sense: warning: the log starts at {start:.4g} kPa, {sigmas:+.1f} σ from "
-              f"the setup pressure {setup_kPa:g} kPa; the detectors measure from the setup, "
-              f"so a rest there reads as a contact. If the chamber was at rest, pass "
-              f"--pressure {start:.4g}", file=sys.stderr)
+    if abs(sigmas) <= 4.0:
+        return
+    if moving:
+        print(f"spsc sense: warning: the log starts moving ({rate:+.3g} kPa/s) from "
+              f"{start:.4g} kPa, {sigmas:+.1f} σ from the setup pressure {setup_kPa:g} kPa: "
+              "it starts in a press or a release, or --pressure is not the chamber's rest; "
+              "the detectors measure from the setup", file=sys.stderr)
+        return
+    print(f"spsc sense: warning: the log starts at {start:.4g} kPa, {sigmas:+.1f} σ from "
+          f"the setup pressure {setup_kPa:g} kPa; the detectors measure from the setup, so a "
+          f"rest there reads as a contact. If the chamber was at rest there (a sensor's "
+          f"offset, another setup), pass --pressure {start:.4g}; if the log starts in a "
+          "hold, it is read as a contact from its first sample", file=sys.stderr)
 
 
 def _finish(args, stream, states, pressures, joints, commands) -> int:
@@ -291,6 +314,8 @@ def _finish(args, stream, states, pressures, joints, commands) -> int:
             "model_error": prm.estimator.model_error, "detector": prm.contact.method,
             "rate_Hz": prm.rate_Hz, "setup_kPa": prm.estimator.setup_kPa,
             "reservoir_mm3": prm.estimator.reservoir_mm3, "material": args.material,
+            "gas": {"n": prm.estimator.gas.n,
+                    "thermal_time_s": _finite_or_text(prm.estimator.gas.thermal_time_s)},
             "geometry": getattr(args, "chamber", None), "design": args.design}
     files = write(out, table, stream.events, meta)
     if commands:

@@ -15,7 +15,7 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 
-__all__ = ["Log", "read_log", "LineReader", "noise_of"]
+__all__ = ["Log", "read_log", "LineReader", "noise_of", "start_of"]
 
 
 @dataclass
@@ -152,3 +152,19 @@ def noise_of(pressure_kPa) -> float:
         raise ParameterError("noise", "0 (the log's first differences are all equal)",
                              "a log with sensor noise, or --noise KPA")
     return s
+
+
+def start_of(t_s, pressure_kPa, noise_kPa: float, window_s: float = 0.1):
+    """(the pressure at the log's first sample, kPa, from the line through its first
+    ``window_s``; its rate kPa/s; whether that rate is beyond 6 standard errors: a press or
+    a release under way, not a rest) — None for fewer than 5 samples in the window."""
+    t = np.asarray(t_s, float)
+    sel = t <= t[0] + window_s
+    x, p = t[sel] - t[0], np.asarray(pressure_kPa, float)[sel]
+    if p.size < 5:
+        return None
+    sxx = float(((x - x.mean()) ** 2).sum())
+    rate = float(((x - x.mean()) * (p - p.mean())).sum() / sxx) if sxx > 0 else 0.0
+    moving = sxx > 0 and abs(rate) > 6.0 * noise_kPa / math.sqrt(sxx)
+    start = float(p.mean() - rate * x.mean()) if moving else float(np.median(p))
+    return start, rate, moving

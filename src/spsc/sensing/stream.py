@@ -102,10 +102,13 @@ class SenseStream:
             if ev is not None:
                 events.append(ev)
         if events:  # a switch in contact: the release measured against the new level
-            to = events[-1].get("pooled_kPa", p if est.p_s is None else est.p_s)
+            to = events[-1].get("pooled_kPa", p if est.p_s is None else est.iso(est.p_s))
             self.contact.rebase((to - est.baseline_kPa) / est.params.noise_kPa)
         e = est.update(t, p)
-        ev = self.contact.push(t, p, e.pressure_kPa, est.sigma_kPa, est.baseline_kPa,
+        # the detectors read the gas at the ambient temperature (the estimator's P_iso): a
+        # release's cooling is no contact, a hold's no plate backing off
+        q = est.iso(p)
+        ev = self.contact.push(t, q, e.iso_kPa, est.sigma_kPa, est.baseline_kPa,
                                est.rest.settled)
         in_contact = self.contact.contact
         if ev is not None:
@@ -113,17 +116,17 @@ class SenseStream:
             if in_contact:
                 est.leave_rest()
         if not in_contact:
-            est.track_rest(p)
-        self.recent.append((t, e.pressure_kPa, e.depth_mm))
+            est.track_rest(q)
+        self.recent.append((t, e.iso_kPa, e.depth_mm))
         while t - self.recent[0][0] > self.params.switch_window_s:
             self.recent.popleft()
         if fsr is not None:
-            ev = self.slip.push(t, e.pressure_kPa, est.sigma_kPa, est.rest_kPa, fsr, in_contact)
+            ev = self.slip.push(t, e.iso_kPa, est.sigma_kPa, est.rest_kPa, fsr, in_contact)
             if ev is not None:
                 events.append(ev)
         if self.compliance is not None and angle_deg is not None:
             started = next((x for x in events if x["kind"] == "contact"), None)
-            ev = self.compliance.push(t, float(angle_deg), e.depth_mm, e.pressure_kPa, started,
+            ev = self.compliance.push(t, float(angle_deg), e.depth_mm, e.iso_kPa, started,
                                       in_contact)
             if ev is not None:
                 events.append(ev)

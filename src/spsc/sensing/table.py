@@ -76,6 +76,34 @@ class DenseMap:
         return float((1 - u) * ((1 - v) * g[i, j] + v * g[i, j + 1])
                      + u * ((1 - v) * g[i + 1, j] + v * g[i + 1, j + 1]))
 
+    def compliance(self, y_mm: float, p_kPa: float) -> float:
+        """∂V/∂P (mm³/kPa) at (y, P): the slope of the bilinear volume along P."""
+        i = min(max(bisect_right(self._y, y_mm) - 1, 0), len(self._y) - 2)
+        j = min(max(bisect_right(self._p, p_kPa) - 1, 0), len(self._p) - 2)
+        u = min(max((y_mm - self._y[i]) / (self._y[i + 1] - self._y[i]), 0.0), 1.0)
+        g = self.volume
+        dv = (1 - u) * (g[i, j + 1] - g[i, j]) + u * (g[i + 1, j + 1] - g[i + 1, j])
+        return float(dv / (self._p[j + 1] - self._p[j]))
+
+    def travel(self, volume_mm3: float, p_kPa: float) -> tuple[float, bool]:
+        """(y mm, within the map) where the cavity at ``p_kPa`` holds ``volume_mm3``: the
+        inverse of V(·, P), which pressing lowers (bilinear, as :meth:`at`); the map's
+        first travel when the cavity is not pressed that far (no contact), its last when
+        pressed beyond it (not within)."""
+        j = min(max(bisect_right(self._p, p_kPa) - 1, 0), len(self._p) - 2)
+        v = min(max((p_kPa - self._p[j]) / (self._p[j + 1] - self._p[j]), 0.0), 1.0)
+        col = (1.0 - v) * self.volume[:, j] + v * self.volume[:, j + 1]
+        inside = self._p[0] <= p_kPa <= self._p[-1]
+        if volume_mm3 >= col[0]:
+            return float(self.y[0]), inside
+        if volume_mm3 <= col[-1]:
+            return float(self.y[-1]), False
+        # V falls along y (flat before contact): the first node at or below the volume
+        i = int(np.searchsorted(-col, -volume_mm3, side="left"))
+        v0, v1 = col[i - 1], col[i]
+        u = (v0 - volume_mm3) / (v0 - v1) if v0 > v1 else 1.0
+        return float(self.y[i - 1] + u * (self.y[i] - self.y[i - 1])), inside
+
     def table(self, content: float, extra_mm3: float = 0.0) -> "ForceTable":
         """The table P -> (y, F) of the gas content ``content`` (kPa·mm³) shared with
         ``extra_mm3``. Raises ParameterError when no pressure of the map holds it."""
