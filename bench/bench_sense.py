@@ -14,11 +14,17 @@ the paper's 40 cm³ reservoir, the ELVH's noise at 1 kHz):
 * force error per type and mode over the holds (the trace's true force against the estimate);
 * streaming samples per second on one core.
 
+``--gas N,TAU`` generates the traces with that air (the examples' 1.4,0.5: adiabatic with
+thermal relaxation; default 1, the isothermal gas of the paper's static tests) and senses them
+with it; ``--sense-gas`` senses them with another (1: the isothermal estimator on air, what
+``spsc sense`` without ``--gas`` did before issue 53).
+
 The traces run on the same chamber maps the estimator reads (1 mm wall mesh: the map's own
 accuracy against the 3D FEM is docs/theory/wall.md's, not what is measured here), built once
 into ``--cache`` (default build/cache).
 
     python bench/bench_sense.py [--per-type 50] [--types ABCD] [--json F] [--cache DIR]
+        [--gas N,TAU] [--sense-gas N,TAU]
 """
 
 from __future__ import annotations
@@ -31,7 +37,8 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.dynamics import Sensor
+from spsc.cli.options import gas_option
+from spsc.dynamics import Gas, Sensor
 from spsc.dynamics.circuit import CircuitFailure
 from spsc.sensing import DenseMap, EstimatorParams, SenseParams, SenseStream
 from spsc.sensing.chamber import chamber_map
@@ -39,6 +46,8 @@ from spsc.sensing.detectors import ComplianceParams, ContactParams
 from spsc.testing import sense_traces as st
 
 RES, SETUP, STROKE = 40000.0, 40.0, 3.0
+#: the air the traces are generated with, and the one the estimator assumes (--gas, --sense-gas)
+GAS, SENSE_GAS = Gas(1.0), Gas(1.0)
 LEVER = 0.12  # mm of the chamber's travel per degree of closure on a rigid object
 #: the windows a detection must fall in after (before) the true event, s
 WINDOW = {"contact": (-0.02, 0.4), "release": (-0.15, 0.3), "slip": (-0.02, 0.2),
@@ -67,13 +76,14 @@ def _scenario(m, rng, i):
     depth = float(rng.uniform(1.0, 2.8))
     if kind == "press":
         t = st.press(m, depth_mm=depth, speed_mm_s=float(rng.choice([5, 10, 20, 50])),
-                     hold_s=float(rng.uniform(0.2, 0.6)), valve_open=opened, seed=seed)
+                     hold_s=float(rng.uniform(0.2, 0.6)), valve_open=opened, seed=seed,
+                     gas=GAS)
     elif kind == "switch":
         t = st.press(m, depth_mm=depth, speed_mm_s=10.0, hold_s=0.8, seed=seed,
-                     switches=[(0.3 + (depth + 0.3) / 10.0 + 0.4, True)])
+                     switches=[(0.3 + (depth + 0.3) / 10.0 + 0.4, True)], gas=GAS)
     elif kind in ("slip", "partial"):
         t = st.slip_press(m, depth_mm=depth, slip=kind == "slip", valve_open=opened,
-                          seed=seed)
+                          seed=seed, gas=GAS)
     else:
         # an object on a spring (N/mm), stiff or soft against these chambers: the chamber
         # takes 0.7–0.95 and 0.15–0.35 of the closure's first 10° (stiff or soft is the
@@ -81,7 +91,7 @@ def _scenario(m, rng, i):
         k = float(np.exp(rng.uniform(np.log(5.0), np.log(50.0)) if i % 2 else
                          rng.uniform(np.log(0.3), np.log(1.0))))
         t = st.grasp(m, object_N_per_mm=k, lever_mm_per_deg=LEVER, valve_open=opened,
-                     seed=seed)
+                     seed=seed, gas=GAS)
     t.meta["mode"] = "low" if opened else "high"
     t.meta["scenario"] = kind
     return t
@@ -89,7 +99,7 @@ def _scenario(m, rng, i):
 
 def run_stream(dense, trial, method, *, valve=True):
     prm = SenseParams(EstimatorParams(SETUP, RES, trial.meta["noise_kPa"], 0.05,
-                                      valve_open=trial.meta["valve_open"]),
+                                      valve_open=trial.meta["valve_open"], gas=SENSE_GAS),
                       ContactParams(method=method),
                       compliance=ComplianceParams(stiff_mm_per_deg=0.5 * LEVER))
     s = SenseStream(dense, prm)
@@ -197,8 +207,8 @@ DRIFTS = {
 def quiet(dense, method, seconds, seed, drift):
     t = np.arange(int(seconds * 1000)) * 1e-3
     p = Sensor.preset("elvh", seed=seed).read(SETUP + DRIFTS[drift](t, seconds))
-    prm = SenseParams(EstimatorParams(SETUP, RES, Sensor.preset("elvh").noise_kPa, 0.05),
-                      ContactParams(method=method))
+    prm = SenseParams(EstimatorParams(SETUP, RES, Sensor.preset("elvh").noise_kPa, 0.05,
+                                      gas=SENSE_GAS), ContactParams(method=method))
     s = SenseStream(dense, prm)
     for a, b in zip(t.tolist(), p.tolist()):
         s.push(a, b, 0)
@@ -219,7 +229,12 @@ def main():
     ap.add_argument("--quiet-s", type=float, default=120.0)
     ap.add_argument("--cache", default="build/cache")
     ap.add_argument("--json", default="build/bench-sense.json")
+    ap.add_argument("--gas", default="1", help="the traces' air: N[,TAU] (1: isothermal)")
+    ap.add_argument("--sense-gas", default=None, help="the estimator's (default: --gas)")
     args = ap.parse_args()
+    global GAS, SENSE_GAS
+    GAS = gas_option("--gas", args.gas)
+    SENSE_GAS = gas_option("--sense-gas", args.sense_gas) if args.sense_gas else GAS
     rng = np.random.default_rng(29)
     res = {m: {"counts": {}, "lat": {}, "rel": {}, "quiet_events": dict.fromkeys(DRIFTS, 0)}
            for m in ("cusum", "threshold")}
@@ -256,9 +271,13 @@ def main():
 
 
 def report(args, res, inferred, acc, samples, seconds, n):
-    out = {"scenarios": n, "streaming_samples_per_s": samples / seconds, "detectors": {}}
+    out = {"scenarios": n, "streaming_samples_per_s": samples / seconds, "detectors": {},
+           "gas": [GAS.n, GAS.thermal_time_s], "sense_gas": [SENSE_GAS.n,
+                                                             SENSE_GAS.thermal_time_s]}
     print(f"\n{n} scenarios, Types {args.types}, 1 kHz, ELVH noise (σ 0.086 kPa), "
-          f"reservoir {RES:g} mm³, setup {SETUP:g} kPa")
+          f"reservoir {RES:g} mm³, setup {SETUP:g} kPa; the traces' gas n = {GAS.n:g}, "
+          f"τ = {GAS.thermal_time_s:g} s, sensed with n = {SENSE_GAS.n:g}, "
+          f"τ = {SENSE_GAS.thermal_time_s:g} s")
     quiet_min = len(args.types) * args.quiet_s / 60.0
     for method, r in res.items():
         print(f"\n== contact detector: {method}")
