@@ -129,17 +129,18 @@ class ToyModel:
     style: str = ":"
     seconds_per_point: float = 1e-3
     zero_stroke: bool = False
+    contact: bool = False
 
-    def load_steps(self, load, options) -> int:
+    def load_steps(self, setup, options) -> int:
         return 0
 
-    def check(self, geometry, load, options, *, verb, quiet) -> None:
+    def check(self, setup, options, *, verb, quiet) -> None:
         pass
 
-    def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
-        self.calls.append(load)
-        return Outcome(_toy_curve(geometry, material, load, converged=options.toy_knob < 5),
-                       {"knob": options.toy_knob})
+    def curve(self, setup, options, *, progress=None, cache_dir=None):
+        self.calls.append(setup.load)
+        return Outcome(_toy_curve(setup.body, setup.material, setup.load,
+                                  converged=options.toy_knob < 5), {"knob": options.toy_knob})
 
 
 @pytest.fixture

@@ -159,14 +159,15 @@ def test_row_has_every_column_and_the_shared_metrics():
 
 
 def test_membrane_row_uses_the_model_registry_like_spsc_curve():
-    from spsc.core.loadcase import LoadCase
+    from spsc.core.setup import Setup
     from spsc.models import MODELS
 
     row = evaluate(B, "membrane", "fdm", 7, 4.0)
     assert row["status"] == "ok", row["message"]
     g, mat, _ = resolve_design(B)
     m = MODELS["membrane"]
-    high = m.curve(g, mat, LoadCase(40.0, 0.0, 4.0, 7, 1.0), m.Options()).curve
+    high = m.curve(Setup.of(g, mat, pressure_kPa=40.0, stroke_mm=4.0, points=7),
+                   m.Options()).curve
     assert row["stiffness_high"] == pytest.approx(high.mean_stiffness(), rel=1e-9)
 
 

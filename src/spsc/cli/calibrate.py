@@ -73,10 +73,11 @@ def run(args) -> int:
     from tqdm import tqdm
 
     from spsc.core.loadcase import check_load
+    from spsc.core.setup import Setup
     from spsc.fem.wall.calibrate import calibrate
-    from spsc.fem.wall import WallSettings, wall_curve
     from spsc.core.bench import REQUIRED, read_bench
     from spsc.materials import material
+    from spsc.models import MODELS
 
     if args.json is not None:
         check_output_file("--json", args.json)
@@ -87,7 +88,8 @@ def run(args) -> int:
     geom = geometry_from_args(args)
     mat = material(args.material)
     require("pressure", args.pressure, ge=0, le=PRESSURE_MAX_KPA, unit="kPa gauge")
-    settings = WallSettings(mesh_size_mm=args.mesh_size, layers=args.layers)
+    wall = MODELS["wall"]
+    options = wall.Options(mesh_size=args.mesh_size, layers=args.layers)
     setups = _predictions(args)
     require("predict_stroke", args.predict_stroke, gt=0, lt=geom.h,
             unit=f"mm, below the chamber height h = {geom.h:g} mm")
@@ -101,13 +103,15 @@ def run(args) -> int:
                     quiet=args.quiet, points=17)
     bar = tqdm(desc="spsc calibrate", unit="solve", disable=args.quiet, file=sys.stderr)
     try:
+        def solve(m, stroke_mm, points, p=args.pressure, r=args.reservoir):
+            setup = Setup.of(geom, m, pressure_kPa=p, reservoir_mm3=r, stroke_mm=stroke_mm,
+                             points=points, polytropic_n=args.polytropic_n)
+            return wall.curve(setup, options).curve
+
         cal = calibrate(bench, geom, mat, pressure_kPa=args.pressure,
                         reservoir_mm3=args.reservoir, polytropic_n=args.polytropic_n,
-                        settings=settings, progress=lambda: bar.update(1))
-        preds = [wall_curve(geom, cal.material, pressure_kPa=p, reservoir_mm3=r,
-                            stroke_mm=args.predict_stroke, points=17,
-                            polytropic_n=args.polytropic_n, settings=settings,
-                            progress=None) for p, r in setups]
+                        progress=lambda: bar.update(1), solve=solve)
+        preds = [solve(cal.material, args.predict_stroke, 17, p, r) for p, r in setups]
         bar.update(len(preds))
     finally:
         bar.close()

@@ -21,6 +21,7 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 from spsc.models import MODELS, cli_options, options_from
+from spsc.models.meshed import ContactOptions
 
 from spsc.cli.options import (PLOT_SUFFIXES, add_geometry_options, add_output_options,
                               output_cache_dir,
@@ -32,14 +33,17 @@ __all__ = ["Job", "add_curve_parser", "add_model_options", "prepare", "register"
 
 @dataclass(frozen=True)
 class Job:
-    """A checked invocation: the model, the chamber, the material, the load case and the
-    model's options, ready to solve."""
+    """A checked invocation: the model, the setup (:class:`~spsc.core.setup.Setup`: the
+    chamber, the material, the load case, the contact) and the model's options, ready to
+    solve."""
 
     model: object
-    geometry: object
-    material: object
-    load: object
+    setup: object
     options: object
+
+    geometry = property(lambda self: self.setup.body, doc="the chamber")
+    material = property(lambda self: self.setup.material, doc="the material")
+    load = property(lambda self: self.setup.load, doc="the load case")
 
 
 def _argument(group, name: str, meta: dict) -> None:
@@ -60,10 +64,17 @@ def _argument(group, name: str, meta: dict) -> None:
 def add_model_options(parser, models) -> None:
     """The options of ``models`` (names of :data:`MODELS`), from their options dataclasses:
     those of a shared group (the meshed models' ``discretisation``, the plate's ``contact``)
-    once in that group, each model's own in its group. Every option defaults to None (not
-    given), so a model can refuse another's."""
+    once in that group, each model's own in its group; the contact's
+    (:class:`~spsc.models.meshed.ContactOptions`) once for the models that take it. Every
+    option defaults to None (not given), so a model can refuse another's."""
     done = set()
-    for group in ("discretisation", "contact"):
+    takers = [m for m in models if MODELS[m].contact]
+    if takers:
+        g = parser.add_argument_group(f"{' and '.join(takers)} contact")
+        for name, meta in cli_options(ContactOptions).items():
+            _argument(g, name, meta)
+            done.add(name)
+    for group in ("discretisation",):
         shared = {}
         for m in models:
             for name, meta in cli_options(MODELS[m].Options).items():
@@ -120,8 +131,14 @@ def register(subparsers) -> None:
 
 
 def model_options(args, model):
-    """The model's options from the arguments; an option of another model is refused. Fills
-    in the model's default stroke and points."""
+    """The model's options from the arguments; an option of another model is refused (the
+    contact's by a model that takes none). Fills in the model's default stroke and points."""
+    if not model.contact:
+        for dest, meta in cli_options(ContactOptions).items():
+            if getattr(args, dest, None) is not None:
+                owners = [m for m in args.models if MODELS[m].contact]
+                raise ParameterError(meta["flag"], getattr(args, dest),
+                                     "only with --model " + " or ".join(owners))
     own = cli_options(model.Options)
     for other in args.models:
         for dest, meta in cli_options(MODELS[other].Options).items():
@@ -148,22 +165,30 @@ def _check_outputs(args) -> None:
 
 
 def prepare(args) -> Job:
-    """Every check of the invocation, before any work: the model's options, the outputs, the
-    chamber, the material, the load case (the same limits for every model) and the model's own
-    limits and size. ParameterError (one line) on the first problem."""
-    from spsc.core.loadcase import check_load
+    """Every check of the invocation, before any work: the model's options, the outputs, then
+    the setup once (the chamber, the material, the load case with the same limits for every
+    model, the contact) and the model's own limits and size. ParameterError (one line) on the
+    first problem."""
+    from spsc.core.setup import Setup
     from spsc.materials import material
 
     model = MODELS[args.model]
     options = model_options(args, model)
     _check_outputs(args)
-    geom = geometry_from_args(args)
-    mat = material(args.material)
-    load = check_load(geom, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
-                      stroke_mm=args.stroke, points=args.points, polytropic_n=args.polytropic_n,
-                      allow_zero_stroke=model.zero_stroke)
-    model.check(geom, load, options, verb=args.command, quiet=bool(args.quiet))
-    return Job(model, geom, mat, load, options)
+    setup = Setup.of(geometry_from_args(args), material(args.material),
+                     pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
+                     stroke_mm=args.stroke, points=args.points, polytropic_n=args.polytropic_n,
+                     allow_zero_stroke=model.zero_stroke,
+                     **_contact(args))
+    model.check(setup, options, verb=args.command, quiet=bool(args.quiet))
+    return Job(model, setup, options)
+
+
+def _contact(args) -> dict:
+    """The contact's spellings given on the command line (the defaults otherwise: the
+    frictionless rigid plate), for :meth:`~spsc.core.setup.Contact.of`."""
+    given = {k: getattr(args, k, None) for k in cli_options(ContactOptions)}
+    return {k: v for k, v in given.items() if v is not None}
 
 
 def solve(job: Job, *, verb: str, quiet: bool, cache_dir=None):
@@ -172,7 +197,7 @@ def solve(job: Job, *, verb: str, quiet: bool, cache_dir=None):
     default)."""
     from tqdm import tqdm
 
-    total = job.model.load_steps(job.load, job.options)
+    total = job.model.load_steps(job.setup, job.options)
     bar = tqdm(total=total, desc=f"spsc {verb}", unit="step", disable=quiet or not total,
                file=sys.stderr)
 
@@ -181,8 +206,8 @@ def solve(job: Job, *, verb: str, quiet: bool, cache_dir=None):
         bar.update(done - bar.n)
 
     try:
-        return job.model.curve(job.geometry, job.material, job.load, job.options,
-                               progress=progress, cache_dir=cache_dir)
+        return job.model.curve(job.setup, job.options, progress=progress,
+                               cache_dir=cache_dir)
     finally:
         bar.close()
 

@@ -38,18 +38,17 @@ def mode_curve(params: dict, model: str, mode: str, *, points: int | None, strok
     ``model`` of :data:`spsc.models.MODELS` in ``mode`` high (closed chamber) or low
     (with the design's reservoir); ``options`` override the model's defaults (e.g. the FEM's
     ``mesh_size``). The same checks and defaults as ``spsc curve``."""
-    m, geom, mat, load, opts = check_mode(params, model, mode, points=points,
-                                          stroke_mm=stroke_mm, options=options)
-    return m.curve(geom, mat, load, opts).curve
+    m, setup, opts = check_mode(params, model, mode, points=points, stroke_mm=stroke_mm,
+                                options=options)
+    return m.curve(setup, opts).curve
 
 
 def check_mode(params: dict, model: str, mode: str, *, points: int | None, stroke_mm: float,
                options: dict | None = None):
-    """``(model, geometry, material, load, options)`` of :func:`mode_curve`, checked against
-    the load case's and the model's limits (ParameterError, one line) without solving
-    anything."""
+    """``(model, setup, options)`` of :func:`mode_curve`, checked against the load case's and
+    the model's limits (ParameterError, one line) without solving anything."""
     from spsc.cad.geometry import SPSCGeometry
-    from spsc.core.loadcase import check_load
+    from spsc.core.setup import Setup
     from spsc.materials import material
 
     from spsc.models import get, options_from
@@ -57,12 +56,12 @@ def check_mode(params: dict, model: str, mode: str, *, points: int | None, strok
     entry = get(model)
     geom = SPSCGeometry(**{k: float(params[k]) for k in _PARAMS})
     reservoir = 0.0 if mode == "high" else float(params["reservoir"])
-    load = check_load(geom, pressure_kPa=params["pressure"], reservoir_mm3=reservoir,
-                      stroke_mm=stroke_mm, points=entry.points if points is None else points,
-                      polytropic_n=1.0)
+    setup = Setup.of(geom, material(params["material"]), pressure_kPa=params["pressure"],
+                     reservoir_mm3=reservoir, stroke_mm=stroke_mm,
+                     points=entry.points if points is None else points)
     opts = options_from(entry.Options, options or {})
-    entry.check(geom, load, opts, verb="design", quiet=True)
-    return entry, geom, material(params["material"]), load, opts
+    entry.check(setup, opts, verb="design", quiet=True)
+    return entry, setup, opts
 
 
 def metrics_of(high, low) -> dict:

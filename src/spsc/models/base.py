@@ -2,10 +2,12 @@
 through (:class:`CurveModel`), what it returns (:class:`Outcome`) and how a model declares its
 own options (:func:`option`, read by the command line).
 
-A model takes the chamber (an :class:`~spsc.cad.geometry.SPSCGeometry`), a material (an
-:class:`~spsc.materials.Material`), the load case every model shares (an
-:class:`~spsc.core.loadcase.LoadCase`: setup pressure kPa gauge, reservoir mm³, stroke mm,
-plate positions, polytropic index) and its own options (a frozen dataclass), and returns a
+A model takes one :class:`~spsc.core.setup.Setup` — the chamber (an
+:class:`~spsc.cad.geometry.SPSCGeometry`), a material (an :class:`~spsc.materials.Material`),
+the load case every model shares (an :class:`~spsc.core.loadcase.LoadCase`: setup pressure kPa
+gauge, reservoir mm³, stroke mm, plate positions, polytropic index) and what presses it (a
+:class:`~spsc.core.setup.Contact`: the body, the plate's friction, the object's stiffness),
+checked once where it entered — and its own options (a frozen dataclass), and returns a
 :class:`~spsc.core.curve.Curve` F, p, A, ΔV over the plate travel y. ``spsc curve``, the
 sweep, the inverse design, the calibration, the report's runner and the fused estimate reach
 models only through :data:`spsc.models.MODELS`; adding a model is one module and one line
@@ -57,6 +59,8 @@ class CurveModel(Protocol):
     seconds_per_point : a rough compute time per plate position (s) at a 1 mm mesh with two
         layers, to start the longest runs of a study first.
     zero_stroke : it computes the inflation alone (stroke 0, one plate position).
+    contact : it takes a contact other than the frictionless rigid plate (friction, a
+        spring-borne object, another body: :class:`~spsc.core.setup.Contact`).
     """
 
     name: str
@@ -73,22 +77,24 @@ class CurveModel(Protocol):
     style: str
     seconds_per_point: float
     zero_stroke: bool
+    contact: bool
 
-    def load_steps(self, load, options) -> int:
+    def load_steps(self, setup, options) -> int:
         """The load steps the solve reports through ``progress`` (0: it reports none)."""
 
-    def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        """The model's own limits and what the run will cost, before any work
-        (:class:`~spsc.core.errors.ParameterError`, one line, when refused)."""
+    def check(self, setup, options, *, verb: str, quiet: bool) -> None:
+        """The model's own limits on the (already checked) setup and what the run will cost,
+        before any work (:class:`~spsc.core.errors.ParameterError`, one line, when
+        refused)."""
 
-    def curve(self, geometry, material, load, options, *, progress: Progress | None = None,
+    def curve(self, setup, options, *, progress: Progress | None = None,
               cache_dir=None) -> Outcome:
-        """Solve: the chamber inflated to the setup pressure, the valve state of the load case
-        (reservoir 0: high stiffness), the plate pressed over the stroke. ``cache_dir``: where
-        a meshed model may keep its meshes.
+        """Solve ``setup`` (:class:`~spsc.core.setup.Setup`): the chamber inflated to the
+        setup pressure, the valve state of the load case (reservoir 0: high stiffness), the
+        body pressed over the stroke. ``cache_dir``: where a meshed model may keep its meshes.
 
-        A model may also define ``curves(geometry, material, load, reservoirs, options)``: the
-        :class:`~spsc.core.curve.Curve` of ``load`` with each reservoir volume of
+        A model may also define ``curves(setup, reservoirs, options)``: the
+        :class:`~spsc.core.curve.Curve` of ``setup`` with each reservoir volume of
         ``reservoirs`` (mm³), the modes of a design, sharing what they share (the wall model:
         one inflation). Sweeps and the inverse design use it where it exists, one ``curve``
         per reservoir otherwise (:func:`spsc.sweep.evaluate.design_curves`)."""
@@ -98,22 +104,40 @@ class CurveModel(Protocol):
 class ModelBase:
     """What most models share, for a model to override: no bending, no mesh, fast, run at every
     setup pressure by the report, no stroke-0 inflation, no progress to report and no limits of
-    its own beyond the load case's."""
+    its own beyond the load case's, and the paper's contact only (the frictionless rigid
+    plate)."""
 
     bending: bool = False
     meshed: bool = False
     fast: bool = True
     sweep: bool = True
     zero_stroke: bool = False
+    contact: bool = False
     color: str = "C4"
     style: str = "-"
     seconds_per_point: float = 0.1
 
-    def load_steps(self, load, options) -> int:
+    def load_steps(self, setup, options) -> int:
         return 0
 
-    def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        return None
+    def check(self, setup, options, *, verb: str, quiet: bool) -> None:
+        self.check_contact(setup)
+
+    def check_contact(self, setup) -> None:
+        """A model without ``contact`` refuses any but the frictionless rigid plate, naming
+        the first value that is not its."""
+        c = setup.contact
+        if self.contact or c.default:
+            return
+        from spsc.core.errors import ParameterError
+
+        name, value = next((n, v) for n, v, d in (
+            ("friction", c.friction, c.friction == "0"),
+            ("object_stiffness", c.object_stiffness, c.object_stiffness is None),
+            ("indenter", c.indenter.spec, c.indenter.spec == "plate")) if not d)
+        raise ParameterError(name, value, f"the frictionless rigid plate with the {self.name} "
+                             "model (friction, a compliant object and other bodies: the wall "
+                             "model or the 3D FEM)")
 
 
 def option(default, flag: str, help: str, *, kind: str = "value", group: str = "model",
@@ -144,3 +168,4 @@ def options_from(options_type, values) -> Any:
     get = values.get if isinstance(values, dict) else (lambda k: getattr(values, k, None))
     given = {k: get(k) for k in cli_options(options_type)}
     return options_type(**{k: v for k, v in given.items() if v is not None})
+

@@ -6,8 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .base import ModelBase, Outcome, option
-from .meshed import (force_option, friction_option, layers_option, mesh_size_option,
-                     object_stiffness_option, indenter_option)
+from .meshed import force_option, layers_option, mesh_size_option
 
 __all__ = ["FEMCurveModel", "FEMOptions"]
 
@@ -16,16 +15,12 @@ __all__ = ["FEMCurveModel", "FEMOptions"]
 class FEMOptions:
     """``mesh_size`` (mm), ``layers`` through the wall, ``force`` (beyond the size limits),
     ``full`` (the whole chamber, not the quarter on the symmetry planes), ``solver`` (sparse
-    linear solver), ``vtu`` (a folder for one VTU per converged step, or None), ``friction``
-    (the plate's: ``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``), ``object_stiffness`` (N/mm, None: rigid), ``indenter`` (the body that presses:
-    ``"plate"``, ``"sphere:R=10"``, …, :mod:`spsc.core.indenter`)."""
+    linear solver), ``vtu`` (a folder for one VTU per converged step, or None). What presses
+    the chamber is the setup's :class:`~spsc.core.setup.Contact`."""
 
     mesh_size: float = mesh_size_option(1.0)
     layers: int = layers_option(2)
     force: bool = force_option()
-    friction: str = friction_option()
-    object_stiffness: float | None = object_stiffness_option()
-    indenter: str = indenter_option()
     full: bool = option(False, "--full", "full model instead of the quarter on the symmetry "
                         "planes", kind="flag")
     solver: str = option("auto", "--solver", "sparse linear solver (default auto: pardiso if "
@@ -47,26 +42,26 @@ class FEMCurveModel(ModelBase):
     points: int = 11
     bending: bool = True
     meshed: bool = True
+    contact: bool = True
     fast: bool = False
     sweep: bool = False
     color: str = "C3"
     style: str = "o"
     seconds_per_point: float = 12.0
 
-    def load_steps(self, load, options) -> int:
+    def load_steps(self, setup, options) -> int:
         from spsc.fem.solid.chamber import ChamberRun
 
+        load = setup.load
         inflate = ChamberRun.inflate_increments if load.pressure_kPa > 0 else 0
         return load.points - 1 + inflate
 
-    def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        from spsc.core.contact import (check_body, check_combination, check_friction,
-                                       check_object_stiffness, coefficient)
+    def check(self, setup, options, *, verb: str, quiet: bool) -> None:
+        from spsc.core.contact import check_body
         from spsc.fem.solid.mesh import check_mesh_size, wall_mesh_counts
 
-        check_combination(coefficient(check_friction(options.friction)),
-                          check_object_stiffness(options.object_stiffness))
-        check_body(options.indenter, options.friction, quarter=not options.full)
+        geometry, load, c = setup.body, setup.load, setup.contact
+        check_body(c.indenter, c.friction, quarter=not options.full)
         from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 
         size, layers = check_mesh_size(geometry, options.mesh_size, options.layers)
@@ -76,15 +71,15 @@ class FEMCurveModel(ModelBase):
                    gib=fem_memory_gib(counts["unknowns"]), force=bool(options.force),
                    quiet=quiet, mesh_size=size, points=load.points)
 
-    def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
+    def curve(self, setup, options, *, progress=None, cache_dir=None):
         from spsc.fem.solid.chamber import ChamberRun, run_chamber, write_vtu
         from spsc.fem.engine.settings import SEMISMOOTH_CONTACT, Settings
 
-        spec = ChamberRun(geometry, material, load, mesh_size_mm=options.mesh_size,
-                          layers=options.layers, full=bool(options.full),
-                          friction=options.friction,
-                          object_stiffness=options.object_stiffness,
-                          indenter=options.indenter)
+        c = setup.contact
+        spec = ChamberRun(setup.body, setup.material, setup.load,
+                          mesh_size_mm=options.mesh_size, layers=options.layers,
+                          full=bool(options.full), friction=c.friction,
+                          object_stiffness=c.object_stiffness, indenter=c.indenter)
         # the wall's active-set choices (semi-smooth from the secant predictor): the report's
         # vented Type A curve 177 -> 102 Newton iterations, its pressurised Type B 70 -> 64
         # factorisations, the curves within 3e-10; each press load from the last one's
@@ -96,8 +91,7 @@ class FEMCurveModel(ModelBase):
         extra = {}
         if options.vtu:
             from spsc.cad.heightfield import resolve
-            from spsc.core.indenter import parse_indenter
 
             extra["vtu"] = [p.name for p in write_vtu(model, result, options.vtu,
-                                                      resolve(parse_indenter(options.indenter)))]
+                                                      resolve(c.indenter))]
         return Outcome(curve, extra, (model, result))

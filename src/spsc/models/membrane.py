@@ -52,13 +52,15 @@ class MembraneModel(ModelBase):
     seconds_per_point: float = 0.025
     zero_stroke: bool = True
 
-    def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        check_membrane_load(load)
+    def check(self, setup, options, *, verb: str, quiet: bool) -> None:
+        self.check_contact(setup)
+        check_membrane_load(setup.load)
 
-    def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
+    def curve(self, setup, options, *, progress=None, cache_dir=None):
         from spsc.membrane.solver import SolverSettings, solve
 
-        r = solve(geometry, material, pressure_kPa=load.pressure_kPa,
+        load = setup.load
+        r = solve(setup.body, setup.material, pressure_kPa=load.pressure_kPa,
                   reservoir_mm3=load.reservoir_mm3, stroke_mm=load.stroke_mm,
                   points=load.points, polytropic_n=load.polytropic_n,
                   settings=SolverSettings(wrinkling=options.wrinkling != "off"))

@@ -1,13 +1,16 @@
-"""The options every meshed model shares (mesh size, layers through the wall, --force; the
-plate's friction), declared once so that the wall model and the 3D FEM spell and explain them
-alike."""
+"""The options every meshed model shares (mesh size, layers through the wall, --force) and the
+command line's spelling of the contact (the body, the plate's friction, the object's
+stiffness: :class:`ContactOptions`), declared once so that every verb spells and explains
+them alike."""
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 from .base import option
 
 __all__ = ["mesh_size_option", "layers_option", "force_option", "friction_option",
-           "object_stiffness_option", "indenter_option"]
+           "object_stiffness_option", "indenter_option", "ContactOptions"]
 
 
 def mesh_size_option(default: float | None):
@@ -56,3 +59,14 @@ def indenter_option():
                   "y is its tip's travel; all but the level plate are "
                   "frictionless; the wall model takes a sphere on a dome and every symmetric "
                   "body on a stadium", kind="value", group="contact", metavar="BODY")
+
+
+@dataclass(frozen=True)
+class ContactOptions:
+    """The command line's spelling of a :class:`~spsc.core.setup.Contact` (``--friction``,
+    ``--object-stiffness``, ``--indenter``), offered by the verbs whose models take it
+    (``contact``); :meth:`~spsc.core.setup.Contact.of` checks it."""
+
+    friction: str = friction_option()
+    object_stiffness: float | None = object_stiffness_option()
+    indenter: str = indenter_option()

@@ -31,14 +31,16 @@ class SimplifiedModel(ModelBase):
     style: str = "--"
     seconds_per_point: float = 0.004
 
-    def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        check_membrane_load(load)
+    def check(self, setup, options, *, verb: str, quiet: bool) -> None:
+        self.check_contact(setup)
+        check_membrane_load(setup.load)
 
-    def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
+    def curve(self, setup, options, *, progress=None, cache_dir=None):
         from spsc.membrane.simplified import simplified_curve
 
-        return Outcome(simplified_curve(geometry, pressure_kPa=load.pressure_kPa,
+        load = setup.load
+        return Outcome(simplified_curve(setup.body, pressure_kPa=load.pressure_kPa,
                                         reservoir_mm3=load.reservoir_mm3,
                                         stroke_mm=load.stroke_mm, points=load.points,
                                         polytropic_n=load.polytropic_n,
-                                        material=material.name))
+                                        material=setup.material.name))

@@ -7,8 +7,7 @@ import itertools
 from dataclasses import dataclass
 
 from .base import ModelBase, Outcome
-from .meshed import (force_option, friction_option, layers_option, mesh_size_option,
-                     object_stiffness_option, indenter_option)
+from .meshed import force_option, layers_option, mesh_size_option
 
 __all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
 
@@ -16,16 +15,12 @@ __all__ = ["WallCurveModel", "WallOptions", "wall_size_check"]
 @dataclass(frozen=True)
 class WallOptions:
     """``mesh_size`` (mm; None: 0.5 on a dome, 1.0 on a stadium), ``layers`` through the wall,
-    ``force``: run beyond the size limits, ``friction``: the plate's, ``"0"``, a Coulomb coefficient such as ``"0.3"`` or ``"stick"``,
-    ``object_stiffness``: N/mm, None for a rigid object, ``indenter``: the body that presses
-    (``"plate"``, ``"sphere:R=10"``, …, :mod:`spsc.core.indenter`)."""
+    ``force``: run beyond the size limits. What presses the chamber is the setup's
+    :class:`~spsc.core.setup.Contact`."""
 
     mesh_size: float | None = mesh_size_option(None)
     layers: int = layers_option(2)
     force: bool = force_option()
-    friction: str = friction_option()
-    object_stiffness: float | None = object_stiffness_option()
-    indenter: str = indenter_option()
 
 
 def wall_size_check(verb: str, geometry, mesh_size, layers, steps: int, *, force: bool,
@@ -60,43 +55,43 @@ class WallCurveModel(ModelBase):
     points: int = 25
     bending: bool = True
     meshed: bool = True
+    contact: bool = True
     color: str = "C1"
     style: str = "-."
     seconds_per_point: float = 0.9
 
-    def load_steps(self, load, options) -> int:
+    def load_steps(self, setup, options) -> int:
         from spsc.fem.wall import WallSettings
 
+        load = setup.load
         inflate = WallSettings().inflate_increments if load.pressure_kPa > 0 else 0
         return load.points - 1 + inflate
 
-    def check(self, geometry, load, options, *, verb: str, quiet: bool) -> None:
-        from spsc.core.contact import (check_body, check_combination, check_friction,
-                                       check_object_stiffness, coefficient)
+    def check(self, setup, options, *, verb: str, quiet: bool) -> None:
+        from spsc.core.contact import check_body
 
-        check_combination(coefficient(check_friction(options.friction)),
-                          check_object_stiffness(options.object_stiffness))
-        check_body(options.indenter, options.friction,
-                   axisymmetric=not geometry.l > 0, quarter=True)
+        geometry, load, c = setup.body, setup.load, setup.contact
+        check_body(c.indenter, c.friction, axisymmetric=not geometry.l > 0, quarter=True)
         wall_size_check(verb, geometry, options.mesh_size, options.layers,
                         load.points - 1 + (2 if load.pressure_kPa > 0 else 0),
                         force=bool(options.force), quiet=quiet, points=load.points)
 
-    def curve(self, geometry, material, load, options, *, progress=None, cache_dir=None):
-        total = self.load_steps(load, options)
+    def curve(self, setup, options, *, progress=None, cache_dir=None):
+        total = self.load_steps(setup, options)
         done = itertools.count(1)
         step = None if progress is None else (lambda: progress(next(done), total))
-        return Outcome(self.curves(geometry, material, load, [load.reservoir_mm3], options,
+        return Outcome(self.curves(setup, [setup.load.reservoir_mm3], options,
                                    progress=step)[0])
 
-    def curves(self, geometry, material, load, reservoirs, options, *, progress=None) -> list:
+    def curves(self, setup, reservoirs, options, *, progress=None) -> list:
         """One model and one inflation for every reservoir (:func:`~spsc.fem.wall.wall_curves`:
         the curves of separate solves, bit for bit); ``progress()`` once per point."""
         from spsc.fem.wall import WallSettings, wall_curves
 
         ws = WallSettings(mesh_size_mm=options.mesh_size, layers=options.layers)
-        return wall_curves(geometry, material, reservoirs, pressure_kPa=load.pressure_kPa,
-                           stroke_mm=load.stroke_mm, points=load.points,
-                           polytropic_n=load.polytropic_n, settings=ws, progress=progress,
-                           friction=options.friction, object_stiffness=options.object_stiffness,
-                           indenter=options.indenter)
+        load, c = setup.load, setup.contact
+        return wall_curves(setup.body, setup.material, reservoirs,
+                           pressure_kPa=load.pressure_kPa, stroke_mm=load.stroke_mm,
+                           points=load.points, polytropic_n=load.polytropic_n, settings=ws,
+                           progress=progress, friction=c.friction,
+                           object_stiffness=c.object_stiffness, indenter=c.indenter)

@@ -49,18 +49,25 @@ class BenchSpec:
 def bench_section(spec: BenchSpec, study, fig_dir: Path) -> dict:
     """Calibrate, predict the study's pressures × modes with both methods over the bench's
     stroke, draw the figure; the section's data (rows of mean slopes, residuals, the factor)."""
+    from spsc.core.setup import Setup
     from spsc.fem.wall.calibrate import calibrate
-    from spsc.fem.wall import wall_curve
+    from spsc.models import MODELS
 
     from spsc.studies.calibration import identification, mean_slope, plot_calibration
 
     geom, mat, bench = spec.check()
+    wall = MODELS["wall"]
+
+    def solve(m, stroke_mm, points, p=spec.pressure_kPa, v=spec.reservoir_mm3):
+        setup = Setup.of(geom, m, pressure_kPa=p, reservoir_mm3=v, stroke_mm=stroke_mm,
+                         points=points)
+        return wall.curve(setup, wall.Options()).curve
+
     cal = calibrate(bench, geom, mat, pressure_kPa=spec.pressure_kPa,
-                    reservoir_mm3=spec.reservoir_mm3)
+                    reservoir_mm3=spec.reservoir_mm3, solve=solve)
     y_end = float(bench.y_mm[-1])
     setups = [(p, v) for _, v in study.modes for p in study.pressures_kPa]
-    preds = [wall_curve(geom, cal.material, pressure_kPa=p, reservoir_mm3=v, stroke_mm=y_end,
-                        points=13) for p, v in setups]
+    preds = [solve(cal.material, y_end, 13, p, v) for p, v in setups]
     idents = identification(bench, geom, setups, pressure_kPa=spec.pressure_kPa,
                             reservoir_mm3=spec.reservoir_mm3, polytropic_n=1.0)
     rows = []

@@ -132,14 +132,17 @@ def jobs(specs, types=TYPES, pressures=PRESSURES) -> list[tuple]:
 def curve_of(spec: Spec, type_name: str, pressure_kPa: float, mode: str, material_name: str):
     """The wall model's curve of one job (a Dask task)."""
     from spsc.cad.geometry import preset
-    from spsc.fem.wall import wall_curve
+    from spsc.core.setup import Setup
     from spsc.materials import material
+    from spsc.models import MODELS
 
     geometry = preset(type_name, t0=spec.t0)
-    return wall_curve(geometry, material(spec.material or material_name), pressure_kPa=pressure_kPa,
-                      reservoir_mm3=MODES[mode], stroke_mm=spec.stroke,
-                      points=int(round(spec.stroke * POINTS_PER_MM)) + 1,
-                      friction=spec.friction)
+    setup = Setup.of(geometry, material(spec.material or material_name),
+                     pressure_kPa=pressure_kPa, reservoir_mm3=MODES[mode],
+                     stroke_mm=spec.stroke, points=int(round(spec.stroke * POINTS_PER_MM)) + 1,
+                     friction=spec.friction)
+    wall = MODELS["wall"]
+    return wall.curve(setup, wall.Options()).curve
 
 
 def _window(curve, y_end: float):

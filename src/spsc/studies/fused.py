@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from spsc.core.curve import Curve
 from spsc.core.loadcase import LoadCase
+from spsc.core.setup import Setup
 from spsc.models import get
 
 __all__ = ["fused_estimate", "compliance"]
@@ -31,7 +32,7 @@ def _curve(model: str, geometry, material, pressure_kPa, reservoir_mm3, stroke_m
     m = get(model)
     load = LoadCase(float(pressure_kPa), float(reservoir_mm3), float(stroke_mm), int(points),
                     float(polytropic_n))
-    return m.curve(geometry, material, load, m.Options()).curve
+    return m.curve(Setup(geometry, material, load), m.Options()).curve
 
 
 def compliance(model: str, geometry, material, pressure_kPa: float, dp_kPa: float = 2.0):

@@ -120,14 +120,15 @@ _FILES = {"membrane": _membrane_files, "fem": _fem_files}
 
 def _compute(run: Run, directory: Path, progress, mesh_dir) -> dict:
     from spsc.core.loadcase import LoadCase
+    from spsc.core.setup import Setup
     from spsc.materials import material
 
     m = model(run.model)
     options = m.Options(**({"mesh_size": run.mesh_mm, "layers": run.layers} if m.meshed
                            else {}))
     load = LoadCase(run.pressure_kPa, run.reservoir_mm3, run.stroke_mm, run.points, 1.0)
-    out = m.curve(run.geometry(), material(run.material), load, options, progress=progress,
-                  cache_dir=mesh_dir)
+    out = m.curve(Setup(run.geometry(), material(run.material), load), options,
+                  progress=progress, cache_dir=mesh_dir)
     files = _FILES.get(run.model)
     return {"curve": out.curve.to_dict(), **(files(run, out, directory) if files else {})}
 

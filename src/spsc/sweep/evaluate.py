@@ -21,11 +21,12 @@ import hashlib
 import json
 import math
 import time
-from dataclasses import asdict, fields, replace
+from dataclasses import asdict, fields
 from pathlib import Path
 
 from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import PRESSURE_MAX_KPA, check_load
+from spsc.core.setup import Setup
 
 from spsc.models import MODELS, get
 from spsc.study.metrics import DesignMetrics, design_metrics
@@ -97,13 +98,14 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
     if unknown:
         raise ParameterError("mode", unknown[0], "high or low")
     options = entry.Options()
-    entry.check(geometry, load, options, verb=_VERB, quiet=True)
+    setup = Setup(geometry, mat, load)
+    entry.check(setup, options, verb=_VERB, quiet=True)
     reservoirs = {"high": 0.0, "low": load.reservoir_mm3}
     volumes = list(dict.fromkeys(reservoirs[mode] for mode in modes))
     if hasattr(entry, "curves"):  # the modes share their inflation (the wall model)
-        solved = entry.curves(geometry, mat, load, volumes, options)
+        solved = entry.curves(setup, volumes, options)
     else:
-        solved = [entry.curve(geometry, mat, replace(load, reservoir_mm3=v), options).curve
+        solved = [entry.curve(setup.with_load(reservoir_mm3=v), options).curve
                   for v in volumes]
     by_reservoir = dict(zip(volumes, solved))
     return {mode: by_reservoir[reservoirs[mode]] for mode in modes}

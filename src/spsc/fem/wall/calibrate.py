@@ -103,11 +103,14 @@ def _check_bench(bench: BenchData, pressure_kPa: float) -> None:
 def calibrate(bench: BenchData, geometry: SPSCGeometry, material: Material, *,
               pressure_kPa: float, reservoir_mm3: float = 0.0, polytropic_n: float = 1.0,
               settings: WallSettings | None = None, points: int = 13,
-              progress=None) -> Calibration:
+              progress=None, solve=None) -> Calibration:
     """The stiffness factor s of ``material`` that reproduces ``bench`` (y mm, F N, P kPa) on
     ``geometry`` at setup ``pressure_kPa`` (kPa gauge; 0: the open chamber) with reservoir
     ``reservoir_mm3`` (mm³). The wall model runs over the bench's stroke in ``points``
-    positions and is interpolated onto the bench's y. ``progress()`` after each wall solve."""
+    positions and is interpolated onto the bench's y. ``progress()`` after each wall solve.
+    ``solve(material, stroke_mm, points)``: the curve of a scaled material on this setup, as
+    the caller's model computes it (the callers above this layer pass the model registry's;
+    default the wall model with ``settings``)."""
     _check_bench(bench, pressure_kPa)
     y = np.asarray(bench.y_mm, float)
     F_b = np.asarray(bench.force_N, float)
@@ -119,7 +122,8 @@ def calibrate(bench: BenchData, geometry: SPSCGeometry, material: Material, *,
         if s not in runs:  # the optimiser's last point is the answer: solve it once
             runs[s] = wall_curve(geometry, scaled(material, s), pressure_kPa=pressure_kPa,
                                  reservoir_mm3=reservoir_mm3, stroke_mm=stroke, points=points,
-                                 polytropic_n=polytropic_n, settings=settings)
+                                 polytropic_n=polytropic_n, settings=settings) \
+                if solve is None else solve(scaled(material, s), stroke, points)
             if progress is not None:
                 progress()
         return runs[s]
