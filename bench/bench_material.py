@@ -25,8 +25,8 @@ import numpy as np
 from spsc.cad.geometry import preset
 from spsc.fem.wall.calibrate import calibrate, scaled
 from spsc.fem.wall import wall_curve
-from spsc.materials.fit import fit_law, fit_laws
-from spsc.materials.fit_laws import TESTS, OgdenLaw, law
+from spsc.materials.fit.fitting import fit_law, fit_laws
+from spsc.materials.fit.laws import TESTS, OgdenLaw, law
 from spsc.core.bench import BenchData
 from spsc.materials.data import TestData, read_tests
 from spsc.materials.file import material_record

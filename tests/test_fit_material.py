@@ -1,4 +1,4 @@
-"""Material fitting (spsc.materials.fit_laws, .fit, .drucker): the closed-form stresses against
+"""Material fitting (spsc.materials.fit.laws, .fit, .drucker): the closed-form stresses against
 an independent route, recovery of known constants with and without noise (the 95 % intervals
 checked by their coverage over seeded repetitions), Treloar's classic data, Drucker stability.
 """
@@ -10,8 +10,8 @@ import pytest
 
 from spsc.core.errors import ParameterError
 from spsc.materials.drucker import drucker
-from spsc.materials.fit import choose, fit_law, fit_laws
-from spsc.materials.fit_laws import TESTS, WORK_DIRECTIONS, OgdenLaw, law, stretches
+from spsc.materials.fit.fitting import choose, fit_law, fit_laws
+from spsc.materials.fit.laws import TESTS, WORK_DIRECTIONS, OgdenLaw, law, stretches
 from spsc.materials.data import TestData, read_tests
 from spsc.materials import mooney_rivlin, neo_hookean, yeoh
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from spsc.core.errors import ParameterError
-from spsc.materials.fit_laws import law
+from spsc.materials.fit.laws import law
 from spsc.materials.data import read_tests
 from spsc.cli.main import main
 
@@ -305,7 +305,7 @@ def test_resolution_is_the_rounding_of_the_numbers_as_written(tmp_path):
     """P = λ - 1 MPa (slope 1) written to 0.01 MPa and 1e-4 in stretch: resolution
     sqrt((0.01² + 1e-4²)/12); trailing zeros count (1.5000 has 4 decimals); a kPa column's
     step is in kPa (1 kPa = 1e-3 MPa)."""
-    from spsc.materials.fit_resolution import resolution_MPa
+    from spsc.materials.fit.resolution import resolution_MPa
 
     mpa = _csv(tmp_path, "mpa.csv", "stretch,stress_MPa\n1.0000,0.00\n1.5000,0.50\n2.0000,"
                "1.00\n")

@@ -59,7 +59,7 @@ WORK = {
     "spsc.fem.wall": ["wall_curve"],
     "spsc.fem.wall.calibrate": ["calibrate"],
     "spsc.study.runner": ["run_all"],
-    "spsc.materials.fit": ["fit_law", "fit_laws"],
+    "spsc.materials.fit.fitting": ["fit_law", "fit_laws"],
     "spsc.sweep.run": ["run_sweep"],
     "spsc.design.loop": ["run_design"],
     "spsc.study.executor": ["dask_client"],

@@ -14,9 +14,9 @@ import pytest
 from numpy.testing import assert_allclose
 
 from spsc.cad.geometry import preset
-from spsc.cad.mold import build_mold
-from spsc.cad.moldgate import mold_gate
-from spsc.cad.moldspec import MoldSpec
+from spsc.cad.mold.build import build_mold
+from spsc.cad.mold.gate import mold_gate
+from spsc.cad.mold.spec import MoldSpec
 from spsc.cad.specs import BladderSpec
 from spsc.core.errors import ParameterError
 
@@ -178,7 +178,7 @@ def test_a_moved_mold_folder_reads_back_from_anywhere(tmp_path, monkeypatch):
 
     from spsc.cad.meshload import load_mesh
     from spsc.cad.meshtopo import signed_volume
-    from spsc.cad.moldexport import read_mold, write_mold
+    from spsc.cad.mold.export import read_mold, write_mold
 
     monkeypatch.chdir(tmp_path)
     write_mold(_mold("B"), None, tmp_path / "a")
@@ -218,7 +218,7 @@ def test_mold_of_a_bad_design_file_is_one_line(tmp_path, capsys, text, needle):
 
 
 def test_read_mold_refuses_what_is_not_a_mold(tmp_path):
-    from spsc.cad.moldexport import read_mold
+    from spsc.cad.mold.export import read_mold
 
     (tmp_path / "mold.json").write_text('{"pieces": 3}')
     with pytest.raises(ParameterError, match="^mold = .* a mold.json written by spsc mold"):

@@ -30,7 +30,7 @@ import numpy as np
 from spsc.core.errors import ParameterError, require
 
 from .bladder import widest_outer_radius
-from .moldkernel import BrepKernel, MeshKernel
+from .mold.kernel import BrepKernel, MeshKernel
 from .specs import BladderSpec
 
 __all__ = ["MotorSpec", "HapticSpec", "Haptic", "build_haptic", "motor_top", "FIT0774"]

@@ -38,7 +38,7 @@ beyond the limit sags and opens gaps between layers: a leak. So beyond the limit
 is not printable as designed, for the gate as for a sweep. The paper's printed Types stay
 within it: Types A–C have no downward outer wall, Type D (c_y = 0.6) leans 43.1° (under FDM's
 45°, SLA's 60°). Molding casts the part in a mould: it has no build direction and its limit is
-90°, so the check never fails (the mould's pieces have their own gate, spsc.cad.moldgate, with
+90°, so the check never fails (the mould's pieces have their own gate, spsc.cad.mold.gate, with
 pull directions and undercuts). The ceiling and the port's short horizontal cylinders (the
 nipple lying on its barbs, the bore's roof) are short bridges every bladder has and the paper
 printed: the gate reports their area (its ``overhang`` check) and gates none of them. So does

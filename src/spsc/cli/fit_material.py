@@ -149,7 +149,7 @@ def prepare(args):
         tests = kept
     laws = LAW_CHOICES[:-1] if args.law == "all" else (args.law,)
     n = sum(d.points for d in tests)
-    from spsc.materials.fit_laws import law as make_law
+    from spsc.materials.fit.laws import law as make_law
 
     need = {name: len(make_law(name, ogden_terms=terms).names) for name in laws}
     if all(n <= k for k in need.values()):
@@ -164,7 +164,7 @@ def run(args) -> int:
             raise ParameterError("--list-catalogue", " ".join(args.data), "given alone")
         print(catalogue_table())
         return 0
-    from spsc.materials.fit import choose, fit_laws
+    from spsc.materials.fit.fitting import choose, fit_laws
 
     tests, notes, laws, rng, terms = prepare(args)
     prony = _relaxation(args.relaxation)
@@ -175,7 +175,7 @@ def run(args) -> int:
         if f is None:
             warn(VERB, f"{name} left out: not more data points than its constants")
     if args.law == "all":
-        from spsc.materials.fit_resolution import resolution_MPa
+        from spsc.materials.fit.resolution import resolution_MPa
 
         chosen, why = choose(fits, resolution_MPa(tests))
     else:
@@ -184,7 +184,7 @@ def run(args) -> int:
         if f is not None:
             print(describe_fit(f))
     print(f"material file law: {why}")
-    from spsc.materials.fit_report import write_outputs
+    from spsc.materials.fit.report import write_outputs
 
     write_outputs(args, tests, fits, chosen, why, rng, notes, prony=prony)
     return _verdict(fits, chosen)

@@ -94,7 +94,7 @@ def _options(args) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from spsc.cad.moldspec import MoldSpec
+    from spsc.cad.mold.spec import MoldSpec
 
     bladder, name = _bladder(args)
     spec = MoldSpec(process=str(args.process).strip().lower(),
@@ -103,9 +103,9 @@ def run(args: argparse.Namespace) -> int:
                     parting=str(args.parting).strip().lower())
     outdir = check_output_dir("--out", args.out if args.out is not None else f"build/{name}")
 
-    from spsc.cad.mold import build_mold
-    from spsc.cad.moldexport import write_mold
-    from spsc.cad.moldgate import mold_gate
+    from spsc.cad.mold.build import build_mold
+    from spsc.cad.mold.export import write_mold
+    from spsc.cad.mold.gate import mold_gate
 
     t0 = time.perf_counter()
     mold = build_mold(bladder, spec)

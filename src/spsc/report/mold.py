@@ -18,9 +18,9 @@ def mold_section(out, types=("A", "B", "C", "D"), *, render: bool = True) -> dic
     """Build, gate and render the casting mold of each type's Table 1 bladder; figures under
     ``out/mold/``."""
     from spsc.cad.geometry import preset
-    from spsc.cad.mold import build_mold
-    from spsc.cad.moldgate import mold_gate
-    from spsc.cad.moldspec import MoldSpec
+    from spsc.cad.mold.build import build_mold
+    from spsc.cad.mold.gate import mold_gate
+    from spsc.cad.mold.spec import MoldSpec
     from spsc.cad.specs import BladderSpec
 
     dest = Path(out) / "mold"
@@ -57,9 +57,9 @@ def mold_section(out, types=("A", "B", "C", "D"), *, render: bool = True) -> dic
 def broken_molds() -> list[dict]:
     """The gate on three broken molds: what fails and its one-line reason."""
     from spsc.cad.geometry import preset
-    from spsc.cad.mold import build_mold
-    from spsc.cad.moldgate import mold_gate
-    from spsc.cad.moldspec import MoldSpec
+    from spsc.cad.mold.build import build_mold
+    from spsc.cad.mold.gate import mold_gate
+    from spsc.cad.mold.spec import MoldSpec
     from spsc.cad.specs import BladderSpec
 
     b = build_mold(BladderSpec(preset("B")), MoldSpec())

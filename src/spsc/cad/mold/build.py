@@ -20,7 +20,7 @@ high points where air is trapped); compression adds a flash groove around the pa
 half's parting face, one land width away. The cavity is the part scaled by 1 / (1 − s) for the
 silicone's linear shrinkage s.
 
-Every piece is built twice by the same recipe (:mod:`spsc.cad.moldkernel`): as a mesh (the mold
+Every piece is built twice by the same recipe (:mod:`spsc.cad.mold.kernel`): as a mesh (the mold
 gate, STL, 3MF) and as an exact B-rep (STEP). Part coordinates, mm.
 """
 
@@ -32,11 +32,11 @@ from dataclasses import dataclass, field, replace
 import manifold3d as m3
 import numpy as np
 
-from .bladder import flange_hole_centres, widest_outer_radius
-from .meshbuild import bladder_solids
-from .moldkernel import BrepKernel, MeshKernel, frame
-from .moldspec import MoldSpec
-from .specs import BladderSpec
+from ..bladder import flange_hole_centres, widest_outer_radius
+from ..meshbuild import bladder_solids
+from .kernel import BrepKernel, MeshKernel, frame
+from .spec import MoldSpec
+from ..specs import BladderSpec
 
 __all__ = ["Piece", "Mold", "build_mold", "pull_test", "pull_length", "bladder_bbox",
            "UNDERCUT_TOL_MM2"]

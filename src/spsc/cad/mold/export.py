@@ -16,9 +16,9 @@ import numpy as np
 
 from spsc.core.clocale import keeps_locale
 
-from .export import TriMesh, write_3mf, write_step, write_stl
-from .meshbuild import manifold_mesh
-from .mold import Mold
+from ..export import TriMesh, write_3mf, write_step, write_stl
+from ..meshbuild import manifold_mesh
+from .build import Mold
 
 __all__ = ["write_mold", "read_mold", "ROLES", "PATHS_NOTE"]
 

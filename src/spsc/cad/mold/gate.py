@@ -18,9 +18,9 @@ from pathlib import Path
 import manifold3d as m3
 import numpy as np
 
-from .check import Check, check_mesh
-from .meshbuild import manifold_mesh
-from .mold import UNDERCUT_TOL_MM2, Mold, bladder_bbox, pull_length, pull_test
+from ..check import Check, check_mesh
+from ..meshbuild import manifold_mesh
+from .build import UNDERCUT_TOL_MM2, Mold, bladder_bbox, pull_length, pull_test
 
 __all__ = ["MoldReport", "mold_gate", "VOLUME_RTOL", "OVERLAP_TOL_MM3"]
 

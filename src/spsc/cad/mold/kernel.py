@@ -1,4 +1,4 @@
-"""Two geometry kernels behind one small interface, so one mold recipe (:mod:`spsc.cad.mold`)
+"""Two geometry kernels behind one small interface, so one mold recipe (:mod:`spsc.cad.mold.build`)
 builds both the triangle meshes (manifold3d: the mold gate, STL and 3MF, exact control of every
 tolerance as in :mod:`spsc.cad.meshbuild`) and the exact B-rep (OCCT through cadquery: the STEP a
 CAD user edits). Lengths in mm; a ``frame`` is a 3x3 rotation whose columns are the parting
@@ -11,9 +11,9 @@ import cadquery as cq
 import manifold3d as m3
 import numpy as np
 
-from .bladder import bladder_breps
-from .meshbuild import _cylinder, bladder_solids
-from .specs import BladderSpec
+from ..bladder import bladder_breps
+from ..meshbuild import _cylinder, bladder_solids
+from ..specs import BladderSpec
 
 __all__ = ["MeshKernel", "BrepKernel", "frame"]
 
@@ -35,7 +35,7 @@ class MeshKernel:
         return _cylinder(radius, height, start, direction, r_top=r_top)
 
     def sphere(self, radius, centre):
-        from .meshbuild import _segments
+        from ..meshbuild import _segments
 
         return m3.Manifold.sphere(radius, _segments(radius)).translate(
             [float(c) for c in centre])

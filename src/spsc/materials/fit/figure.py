@@ -53,7 +53,7 @@ def plot_fits(fits: dict, tests, path, *, chosen: str | None = None, title: str 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from spsc.materials.fit_laws import TESTS
+    from spsc.materials.fit.laws import TESTS
 
     lam_max = max(float(d.stretch.max()) for d in tests)
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.8), constrained_layout=True)

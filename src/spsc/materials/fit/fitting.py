@@ -24,8 +24,8 @@ from scipy.optimize import least_squares
 from scipy.stats import t as student_t
 
 from spsc.core.errors import ParameterError
-from .drucker import DruckerResult, drucker
-from .fit_laws import OgdenLaw, law as make_law
+from ..drucker import DruckerResult, drucker
+from .laws import OgdenLaw, law as make_law
 
 __all__ = ["WEIGHTINGS", "LawFit", "fit_law", "fit_laws", "choose"]
 

@@ -21,9 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .file import LAW_CONSTANTS
-from .kinematics import TESTS, WORK_DIRECTIONS, stretches
-from .law import Material, log_hessian, nominal_stress, stretch_energy
+from ..file import LAW_CONSTANTS
+from ..kinematics import TESTS, WORK_DIRECTIONS, stretches
+from ..law import Material, log_hessian, nominal_stress, stretch_energy
 
 __all__ = ["TESTS", "WORK_DIRECTIONS", "LAW_NAMES", "stretches", "PolynomialLaw", "OgdenLaw",
            "law"]

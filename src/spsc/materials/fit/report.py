@@ -89,6 +89,6 @@ def write_outputs(args, tests, fits, chosen, why, rng, notes, prony=None) -> Non
                                          weighting=args.weighting, notes=notes,
                                          material_path=args.out))
     if args.png is not None:
-        from spsc.materials.fit_figure import plot_fits
+        from spsc.materials.fit.figure import plot_fits
 
         plot_fits(fits, tests, args.png, chosen=None if chosen is None else chosen.name)

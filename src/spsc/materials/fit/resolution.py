@@ -56,7 +56,7 @@ def _step(d, key: str, values) -> float:
 def resolution_MPa(tests) -> dict:
     """Test -> the RMS stress error (MPa) the rounding of its data makes (module docstring).
     Tests from data without their columns' units (made in code) are taken as stretch and MPa."""
-    from .data import STRESS_UNITS
+    from ..data import STRESS_UNITS
 
     out: dict = {}
     for t in dict.fromkeys(d.test for d in tests):
