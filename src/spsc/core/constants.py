@@ -2,10 +2,20 @@
 
 from __future__ import annotations
 
-__all__ = ["P_AMB", "KPA_PER_MPA"]
+__all__ = ["P_AMB", "KPA_PER_MPA", "to_MPa", "to_kPa"]
 
 #: Ambient (atmospheric) pressure, MPa absolute: the reference of every gauge pressure.
 P_AMB = 0.101325
 
 #: Unit conversion at the edges (CLI, files): kPa per MPa.
 KPA_PER_MPA = 1000.0
+
+
+def to_MPa(kPa):
+    """A pressure from the edges' kPa to the solvers' MPa (a float or an array)."""
+    return kPa / KPA_PER_MPA
+
+
+def to_kPa(MPa):
+    """A pressure from the solvers' MPa to the edges' kPa (a float or an array)."""
+    return MPa * KPA_PER_MPA

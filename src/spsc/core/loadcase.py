@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from .constants import to_MPa
 from .errors import ParameterError, require
 
 __all__ = ["LoadCase", "WithLoadCase", "check_load", "PRESSURE_MAX_KPA", "POLYTROPIC_RANGE", "POINTS_MAX"]
@@ -37,6 +38,11 @@ class LoadCase:
     stroke_mm: float
     points: int
     polytropic_n: float
+
+    @property
+    def pressure_MPa(self) -> float:
+        """The setup pressure in the solvers' unit (MPa gauge): the one conversion."""
+        return to_MPa(self.pressure_kPa)
 
     def as_dict(self) -> dict:
         """The fields by name (the keywords of :func:`check_load`)."""

@@ -76,10 +76,8 @@ class FEMCurveModel(ModelBase):
         from spsc.fem.engine.settings import SEMISMOOTH_CONTACT, Settings
 
         c = setup.contact
-        spec = ChamberRun(setup.body, setup.material, setup.load,
-                          mesh_size_mm=options.mesh_size, layers=options.layers,
-                          full=bool(options.full), friction=c.friction,
-                          object_stiffness=c.object_stiffness, indenter=c.indenter)
+        spec = ChamberRun.of(setup, mesh_size_mm=options.mesh_size, layers=options.layers,
+                             full=bool(options.full))
         # the wall's active-set choices (semi-smooth from the secant predictor): the report's
         # vented Type A curve 177 -> 102 Newton iterations, its pressurised Type B 70 -> 64
         # factorisations, the curves within 3e-10; each press load from the last one's

@@ -84,14 +84,11 @@ class WallCurveModel(ModelBase):
                                    progress=step)[0])
 
     def curves(self, setup, reservoirs, options, *, progress=None) -> list:
-        """One model and one inflation for every reservoir (:func:`~spsc.fem.wall.wall_curves`:
-        the curves of separate solves, bit for bit); ``progress()`` once per point."""
-        from spsc.fem.wall import WallSettings, wall_curves
+        """One model and one inflation for every reservoir (:func:`~spsc.fem.wall.curve.setup_curves`:
+        the curves of separate solves, bit for bit); ``progress()`` once per point. The setup
+        goes down whole."""
+        from spsc.fem.wall import WallSettings
+        from spsc.fem.wall.curve import setup_curves
 
         ws = WallSettings(mesh_size_mm=options.mesh_size, layers=options.layers)
-        load, c = setup.load, setup.contact
-        return wall_curves(setup.body, setup.material, reservoirs,
-                           pressure_kPa=load.pressure_kPa, stroke_mm=load.stroke_mm,
-                           points=load.points, polytropic_n=load.polytropic_n, settings=ws,
-                           progress=progress, friction=c.friction,
-                           object_stiffness=c.object_stiffness, indenter=c.indenter)
+        return setup_curves(setup, reservoirs, settings=ws, progress=progress)

@@ -74,6 +74,14 @@ class ChamberRun(WithLoadCase):
         body = check_body(self.indenter, self.friction, quarter=not self.full)
         object.__setattr__(self, "indenter", body.spec)
 
+    @classmethod
+    def of(cls, setup, **mesh) -> "ChamberRun":
+        """The run of a checked :class:`~spsc.core.setup.Setup` with the mesh's keywords
+        (``mesh_size_mm``, ``layers``, ``full``, ...)."""
+        c = setup.contact
+        return cls(setup.body, setup.material, setup.load, friction=c.friction,
+                   object_stiffness=c.object_stiffness, indenter=c.indenter.spec, **mesh)
+
     def steps(self) -> list:
         return load_steps(self.load, self.inflate_increments, stick=self.friction != "0",
                           spring=self.object_stiffness, mu=coefficient(self.friction),

@@ -48,12 +48,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from spsc.cad.geometry import SPSCGeometry
-from spsc.core.constants import KPA_PER_MPA
+from spsc.core.constants import to_kPa, to_MPa
 from spsc.core.curve import Curve, SolveInfo
 from spsc.core.gaslaw import GasLaw
-from spsc.core.contact import (check_body, check_combination, check_friction,
-                               check_object_stiffness, coefficient, sticks, with_indenter)
-from spsc.core.loadcase import check_load
+from spsc.core.contact import check_body, with_indenter
+from spsc.core.setup import Contact, Setup
 from spsc.materials import Material
 
 from ..engine import CloseValve, Inflate, Load, NewtonFailure, Press, Record, solve
@@ -122,7 +121,7 @@ def newton(model: WallModel, x0, *, pressure=0.0, gas: GasLaw | None = None, pla
 def inflate(model: WallModel, pressure_kPa: float, increments: int = 4) -> Record:
     """Inflate ``model`` to gauge ``pressure_kPa`` (kPa) in ``increments``; the last state.
     Raises :class:`WallFailure` with the reason if it does not converge."""
-    result = solve(model, [Inflate(pressure_kPa / KPA_PER_MPA, increments)],
+    result = solve(model, [Inflate(to_MPa(pressure_kPa), increments)],
                    settings=model.settings.newton_settings())
     if result.stop is not None:
         raise WallFailure(_walked(result, pressure_kPa).message)
@@ -150,39 +149,54 @@ def wall_curve(geometry: SPSCGeometry, material: Material, **kwargs) -> Curve:
     return wall_curves(geometry, material, [reservoir], **kwargs)[0]
 
 
-def wall_curves(geometry: SPSCGeometry, material: Material, reservoirs, **kwargs) -> list:
+def wall_curves(geometry: SPSCGeometry, material: Material, reservoirs, *,
+                pressure_kPa: float = 40.0, stroke_mm: float = 6.0, points: int = 25,
+                polytropic_n: float = 1.0, settings: WallSettings | None = None,
+                model: WallModel | None = None, progress=None, friction="0",
+                object_stiffness=None, indenter="plate") -> list:
     """:func:`wall_curve` for each reservoir volume of ``reservoirs`` (mm³; 0: the closed
     chamber, the high mode), the same in every other keyword: one model and one inflation
     serve all, each press goes on from the inflated state (the curves are those of separate
-    calls, bit for bit; each curve's seconds and iterations include the shared inflation)."""
+    calls, bit for bit; each curve's seconds and iterations include the shared inflation).
+    The keywords are checked here, once, into a :class:`~spsc.core.setup.Setup`
+    (:func:`setup_curves` takes one already checked)."""
+    setups = [Setup.of(geometry, material, pressure_kPa=pressure_kPa, reservoir_mm3=v,
+                       stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n,
+                       indenter=indenter, friction=friction,
+                       object_stiffness=object_stiffness) for v in reservoirs]
+    return setup_curves(setups[0], [s.load.reservoir_mm3 for s in setups], settings=settings,
+                        model=model, progress=progress)
+
+
+def setup_curves(setup: Setup, reservoirs, *, settings: WallSettings | None = None,
+                 model: WallModel | None = None, progress=None) -> list:
+    """The wall model's curves of the checked ``setup`` with each reservoir volume of
+    ``reservoirs`` (mm³, checked by the caller): one model (``model`` to reuse, else one of
+    ``settings``) and one inflation for all; ``progress()`` once per converged point."""
     from threadpoolctl import threadpool_limits
 
     # small dense blocks: one BLAS thread (threads spin on them, 100x slower when loaded)
     with threadpool_limits(limits=1, user_api="blas"):
-        return _wall_curves(geometry, material, list(reservoirs), **kwargs)
+        return _wall_curves(setup, list(reservoirs), settings, model, progress)
 
 
-def _wall_curves(geometry: SPSCGeometry, material: Material, reservoirs: list, *,
-                 pressure_kPa: float = 40.0, stroke_mm: float = 6.0, points: int = 25,
-                 polytropic_n: float = 1.0, settings: WallSettings | None = None,
-                 model: WallModel | None = None, progress=None, friction="0",
-                 object_stiffness=None, indenter="plate") -> list:
+def _wall_curves(setup: Setup, reservoirs: list, settings: WallSettings | None,
+                 model: WallModel | None, progress) -> list:
     t_start = time.perf_counter()
-    stick, mu = sticks(friction), coefficient(friction)
-    spring = check_object_stiffness(object_stiffness)
-    check_combination(mu, spring)
-    body = check_body(indenter, friction)
-    loads = [check_load(geometry, pressure_kPa=pressure_kPa, reservoir_mm3=v,
-                        stroke_mm=stroke_mm, points=points, polytropic_n=polytropic_n)
-             for v in reservoirs]
+    contact = setup.contact
+    loads = [setup.with_load(reservoir_mm3=float(v)).load for v in reservoirs]
     settings = settings or (model.settings if model is not None else WallSettings())
-    model = model or WallModel(geometry, material, settings)
-    check_body(body, friction, axisymmetric=not model.stadium, quarter=True)
+    model = model or WallModel(setup.body, setup.material, settings)
+    # the wall's own limit on the body: its dome is an axisymmetric section
+    check_body(contact.indenter, contact.friction, axisymmetric=not model.stadium,
+               quarter=True)
     load = loads[0]
-    p_i = load.pressure_kPa / KPA_PER_MPA
+    p_i = load.pressure_MPa
     y = np.linspace(0.0, load.stroke_mm, load.points)
     tick = (lambda done, total: progress()) if progress is not None else None
-    press = Press.through(y[1:], stick=stick, spring=spring, mu=mu, indenter=body)
+    press = Press.through(y[1:], stick=contact.friction != "0",
+                          spring=contact.object_stiffness, mu=contact.mu,
+                          indenter=contact.indenter)
     inflated = solve(model, [Inflate(p_i, settings.inflate_increments)],
                      settings=settings.newton_settings(), progress=tick) if p_i > 0 else None
     shared = time.perf_counter() - t_start
@@ -196,11 +210,11 @@ def _wall_curves(geometry: SPSCGeometry, material: Material, reservoirs: list, *
         else:
             result = inflated  # the inflation failed: every curve ends there
         curves.append(_finish(model, result, y, lc, shared + time.perf_counter() - t0,
-                              progress, stick, friction, body, spring))
+                              progress, contact))
     return curves
 
 
-def _finish(model, result, y, lc, seconds, progress, stick, friction, body, spring) -> Curve:
+def _finish(model, result, y, lc, seconds, progress, contact: Contact) -> Curve:
     """The :class:`Curve` of one walk (inflation, valve, press) of :func:`wall_curves`."""
     walked = _walked(result, lc.pressure_kPa)
     if progress is not None and result.stop is not None and result.stop.record is not None:
@@ -210,12 +224,12 @@ def _finish(model, result, y, lc, seconds, progress, stick, friction, body, spri
     curve = _to_curve(model, walked, inflates[-1] if inflates else None, pressed, y,
                       result.records[0].volume, lc.pressure_kPa, lc.reservoir_mm3,
                       lc.polytropic_n, seconds)
-    if stick:
-        curve.solver.details.update(friction=check_friction(friction),
+    if contact.friction != "0":
+        curve.solver.details.update(friction=contact.friction,
                                     shear_N=[0.0] + [st.shear for st in pressed])
-    if body.curved:
-        curve = curve.replace(setup={**curve.setup, "indenter": body.spec})
-    return with_indenter(curve, spring, [st.indenter for st in pressed])
+    if contact.indenter.curved:
+        curve = curve.replace(setup={**curve.setup, "indenter": contact.indenter.spec})
+    return with_indenter(curve, contact.object_stiffness, [st.indenter for st in pressed])
 
 
 def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reservoir,
@@ -230,7 +244,7 @@ def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reserv
     if ok_start:
         F[0], P[0], A[0], dV[0], conv[0] = 0.0, pressure_kPa, 0.0, 0.0, True
     for k, st in enumerate(pressed, start=1):
-        F[k], P[k], A[k] = st.force, st.pressure * KPA_PER_MPA, st.contact_area
+        F[k], P[k], A[k] = st.force, to_kPa(st.pressure), st.contact_area
         # an unstable equilibrium is kept but not converged: the wall leaves it (docs/design.md)
         dV[k], conv[k] = v_inf - st.volume, not st.unstable_modes
         if st.unstable_modes:
