@@ -2,6 +2,7 @@
 
     spsc sense LOG.csv|LOG.parquet --out DIR --type B [--material NAME|FILE.json]
                [--pressure KPA] [--reservoir MM3] [--noise auto|KPA] [--detector cusum|threshold]
+               [--detectors NAME[,NAME]]
     spsc sense --follow --type B ... < samples.csv        (events as JSON lines on stdout)
     spsc sense --haptic-calibrate SQUEEZE.csv --out DIR [--haptic-fraction 0.02]
     spsc sense LOG.csv --haptic DIR/haptic.json --out DIR ...
@@ -27,6 +28,8 @@ __all__ = ["register", "run"]
 
 VERB = "sense"
 _CHUNK = 5000  # samples between progress-bar updates
+#: the registry's detectors that run without --detectors, and when
+_BUILT_IN = {"slip": "always", "compliance": "with --stiff-mm-per-deg"}
 
 
 def register(subparsers) -> None:
@@ -86,6 +89,10 @@ def _sensing_options(p) -> None:
                    "static tests), 1.4,0.5 air relaxing in 0.5 s (the examples' scenarios)")
     s.add_argument("--detector", choices=("cusum", "threshold"), default="cusum",
                    help="contact detector: CUSUM (default) or the paper's thresholds")
+    s.add_argument("--detectors", default=None, metavar="NAME[,NAME]",
+                   help="more event detectors of the registry (spsc.sensing.detectors."
+                   "DETECTORS) with their default parameters, run after slip and compliance "
+                   "(default: none)")
     s.add_argument("--valve", choices=("open", "closed"), default="closed",
                    help="the valve at the start when the log has no valve_open column")
     s.add_argument("--stiff-mm-per-deg", type=number("stiff_mm_per_deg", "mm/deg"),
@@ -177,7 +184,7 @@ def _params(args, noise: float, rate_Hz: float):
     comp = (ComplianceParams(args.stiff_mm_per_deg) if args.stiff_mm_per_deg is not None
             else None)
     return SenseParams(est, ContactParams(method=args.detector), compliance=comp,
-                       rate_Hz=rate_Hz)
+                       rate_Hz=rate_Hz, extra_detectors=args.extra_detectors)
 
 
 def _noise(args, log=None) -> float:
@@ -208,6 +215,10 @@ def _haptic_calibrate(args) -> int:
 
 
 def run(args) -> int:
+    from spsc.sensing.detectors import parse_detectors
+
+    # the registry's names, checked before any work
+    args.extra_detectors = parse_detectors(args.detectors, "--detectors", _BUILT_IN)
     if args.haptic_calibrate:
         return _haptic_calibrate(args)
     if args.follow:
@@ -312,12 +323,13 @@ def _finish(args, stream, states, pressures, joints, commands) -> int:
     prm = stream.params
     meta = {"samples": len(table), "noise_kPa": prm.estimator.noise_kPa,
             "model_error": prm.estimator.model_error, "detector": prm.contact.method,
+            "detectors": [d.name for d in stream.detectors],
             "rate_Hz": prm.rate_Hz, "setup_kPa": prm.estimator.setup_kPa,
             "reservoir_mm3": prm.estimator.reservoir_mm3, "material": args.material,
             "gas": {"n": prm.estimator.gas.n,
                     "thermal_time_s": _finite_or_text(prm.estimator.gas.thermal_time_s)},
             "geometry": getattr(args, "chamber", None), "design": args.design}
-    files = write(out, table, stream.events, meta)
+    files = write(out, table, stream.events, meta, colours=stream.colours)
     if commands:
         files.append(out / "commands.json")
         files[-1].write_text(json.dumps(commands, indent=2, default=float) + "\n",

@@ -24,8 +24,11 @@ from dataclasses import dataclass
 
 from spsc.core.errors import ParameterError, require
 
-__all__ = ["ContactParams", "ThresholdContact", "CusumContact", "Slope", "contact_detector",
-           "release_reference"]
+__all__ = ["ContactParams", "ThresholdContact", "CusumContact", "Slope", "CONTACT_DETECTORS",
+           "CONTACT_KINDS", "contact_detector", "release_reference"]
+
+#: the events of a contact detector and their colours in ``sense.png``
+CONTACT_KINDS = {"contact": "C2", "release": "C3"}
 
 
 @dataclass(frozen=True)
@@ -49,8 +52,8 @@ class ContactParams:
     rate_window_s: float = 0.02
 
     def __post_init__(self):
-        if self.method not in ("cusum", "threshold"):
-            raise ParameterError("contact method", self.method, "cusum or threshold")
+        if self.method not in CONTACT_DETECTORS:
+            raise ParameterError("contact method", self.method, " or ".join(CONTACT_DETECTORS))
         require("contact k", self.k, gt=0, le=20, unit="σ")
         require("contact h", self.h, gt=0, le=1000, unit="σ")
         require("contact k_slow", self.k_slow, ge=0, lt=self.k, unit="σ, below k (0: none)")
@@ -92,6 +95,8 @@ class Slope:
 
 class ThresholdContact:
     """The paper's contact detector (sec. 4.1): levels and rate on the filtered pressure."""
+
+    name, kinds = "threshold", CONTACT_KINDS
 
     def __init__(self, params: ContactParams, noise_kPa: float, rate_Hz: float):
         self.prm, self.noise = params, noise_kPa
@@ -167,6 +172,8 @@ class CusumContact:
     release's drift is −k_r a sample or less (a contact of 0.4 σ at the floor; 0.6 σ: −2 k_r),
     a false release rarer than one in 10⁶ samples."""
 
+    name, kinds = "cusum", CONTACT_KINDS
+
     def __init__(self, params: ContactParams, noise_kPa: float, rate_Hz: float):
         self.prm, self.noise = params, noise_kPa
         self.scales = [_Page(params.k, params.h)]
@@ -233,9 +240,12 @@ def release_reference(mean: float, prm: ContactParams) -> tuple[float, float]:
     return k_r, h_r
 
 
+#: ``ContactParams.method`` -> the contact detector's class, built as ``cls(params,
+#: noise_kPa, rate_Hz)``
+CONTACT_DETECTORS = {"cusum": CusumContact, "threshold": ThresholdContact}
+
+
 def contact_detector(params: ContactParams, noise_kPa: float, rate_Hz: float):
-    """The contact detector ``params.method`` names."""
-    cls = CusumContact if params.method == "cusum" else ThresholdContact
-    return cls(params, noise_kPa, rate_Hz)
-
-
+    """The contact detector ``params.method`` names (a
+    :class:`~.protocol.ContactDetector`)."""
+    return CONTACT_DETECTORS[params.method](params, noise_kPa, rate_Hz)

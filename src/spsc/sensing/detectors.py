@@ -1,20 +1,26 @@
 """Events from the pressure (and the FSRs and the finger's closure): slip and the object's
-compliance (contact and release: :mod:`.contact`, re-exported here). Each detector takes one
-sample at a time in O(1) and returns an event (a dict) or None.
+compliance (contact and release: :mod:`.contact`, re-exported here), and :data:`DETECTORS`,
+the registry of the detectors :class:`~.stream.SenseStream` runs after the contact's. Each
+detector takes one sample at a time in O(1) and returns an event (a dict) or None: through
+its own ``push`` (the numbers it reads) or the :class:`~.protocol.Detector` protocol's
+``detect`` (a :class:`~.protocol.Sample`).
 """
 
 from __future__ import annotations
 
 import math
 from collections import deque
+from collections.abc import Mapping
 from dataclasses import dataclass
 
-from spsc.core.errors import require
+from spsc.core.errors import ParameterError, require
 
 from .contact import ContactParams, CusumContact, Slope, ThresholdContact, contact_detector
+from .protocol import Context, Detector, Sample
 
 __all__ = ["ContactParams", "ThresholdContact", "CusumContact", "Slope", "contact_detector",
-           "SlipParams", "SlipDetector", "ComplianceParams", "ComplianceDetector"]
+           "SlipParams", "SlipDetector", "ComplianceParams", "ComplianceDetector", "DETECTORS",
+           "detector_class", "build_detector", "parse_detectors"]
 
 
 @dataclass(frozen=True)
@@ -57,10 +63,19 @@ class SlipDetector:
     slip is armed when the pressure has stopped falling and the centroid has stopped moving
     (in the low mode the drop is within a few σ and flickers across its bound mid-slide)."""
 
-    def __init__(self, params: SlipParams):
+    name, kinds, Params = "slip", {"slip": "C4"}, SlipParams
+
+    def __init__(self, params: SlipParams, context: Context | None = None):
         self.prm = params
         self.hist = deque()
         self.armed = True
+
+    def detect(self, s: Sample) -> dict | None:
+        """:meth:`push` on the sample's filtered pressure, σ, rest and FSRs (none without
+        FSRs: the pressure alone cannot tell a slip from an unloading)."""
+        if s.fsr is None:
+            return None
+        return self.push(s.t_s, s.filtered_kPa, s.sigma_kPa, s.rest_kPa, s.fsr, s.in_contact)
 
     def push(self, t, p_f, sigma_f, rest, fsr, in_contact) -> dict | None:
         h, prm = self.hist, self.prm
@@ -118,11 +133,24 @@ class ComplianceDetector:
     chamber's depth at a pressure) dy/dα is the depth of the fitted pressure line's ends over
     the angle between them: near the contact a sample's depth is clipped at the rest's (the
     noise below it reads no depth, above it some), which biases the depths' own fit low, the
-    pressure's fit is not."""
+    pressure's fit is not. ``depth_of`` is the estimator's ``depth_at`` (of ``context``)."""
 
-    def __init__(self, params: ComplianceParams, depth_of=None):
-        self.prm, self.sums, self.depth_of = params, None, depth_of
+    name, Params = "compliance", ComplianceParams
+    kinds = {"stiff_object": "C5", "soft_object": "C6"}
+
+    def __init__(self, params: ComplianceParams, context: Context | None = None):
+        self.prm, self.sums = params, None
+        self.depth_of = context.estimator.depth_at if context is not None else None
         self.hist = deque(maxlen=2048)  # (t, α, depth, P): back to the onset
+
+    def detect(self, s: Sample) -> dict | None:
+        """:meth:`push` on the sample's closure, depth, filtered pressure and the contact
+        event this sample raised (none without a closure angle)."""
+        if s.angle_deg is None:
+            return None
+        started = next((e for e in s.events if e["kind"] == "contact"), None)
+        return self.push(s.t_s, s.angle_deg, s.depth_mm, s.filtered_kPa, started,
+                         s.in_contact)
 
     def push(self, t, angle, depth, p_f, contact_event: dict | None, in_contact: bool):
         if angle is None or math.isnan(angle):
@@ -197,3 +225,53 @@ class _Fit:
             return p_mid + dp * (a - self.sa / n)
 
         return (depth_of(p(a_end)) - depth_of(p(0.0))) / a_end
+
+
+#: The detectors :class:`~.stream.SenseStream` can run after the contact's: name -> class
+#: (a :class:`~.protocol.Detector` with its ``Params``, built as ``cls(params, context)``).
+#: A new detector is its class and one line here.
+DETECTORS: dict[str, type] = {"slip": SlipDetector, "compliance": ComplianceDetector}
+
+
+def detector_class(params) -> type:
+    """The registered detector whose ``Params`` ``params`` is."""
+    for cls in DETECTORS.values():
+        if type(params) is cls.Params:
+            return cls
+    raise ParameterError("detector parameters", type(params).__name__, "the Params of a "
+                         "registered detector (" + ", ".join(DETECTORS) + ")")
+
+
+def build_detector(params, context: Context) -> Detector:
+    """The detector of ``params`` (:func:`detector_class`), built with ``context``."""
+    return detector_class(params)(params, context)
+
+
+def parse_detectors(text: str | None, option: str = "detectors",
+                    built_in: Mapping[str, str] | None = None) -> tuple:
+    """The parameters (each its ``Params``'s defaults) of the registered detectors the comma
+    list ``text`` names (None: none); ``built_in`` the names that run without being named,
+    each with when it runs, refused. Any mistake is one :class:`ParameterError` naming
+    ``option``."""
+    if text is None:
+        return ()
+    built_in = built_in or {}
+    extra = [n for n in DETECTORS if n not in built_in]
+    beyond = ", ".join(f"{k} (runs {v})" for k, v in built_in.items())
+    allowed = (f"a comma list of the registered detectors{' beyond ' if beyond else ''}"
+               f"{beyond}: {', '.join(extra) or 'none is registered'}")
+    names, out = [n.strip() for n in str(text).split(",")], []
+    for i, name in enumerate(names):
+        if name in built_in:
+            raise ParameterError(option, name, f"a detector not already on ({name} runs "
+                                 f"{built_in[name]})")
+        if name not in extra:
+            raise ParameterError(option, name or text, allowed)
+        if name in names[:i]:
+            raise ParameterError(option, text, f"each name once ({name} twice)")
+        try:
+            out.append(DETECTORS[name].Params())
+        except TypeError:
+            raise ParameterError(option, name, "a detector whose parameters all have "
+                                 "defaults (set them in Python)") from None
+    return tuple(out)

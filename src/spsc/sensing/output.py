@@ -4,18 +4,19 @@ of the trace with its events."""
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-__all__ = ["COLUMNS", "frame", "write", "figure"]
+__all__ = ["COLUMNS", "DEFAULT_COLOUR", "frame", "write", "figure"]
 
 #: estimate.parquet's columns, in order
 COLUMNS = ("t_s", "force_N", "force_lo_N", "force_hi_N", "depth_mm", "mode", "in_contact",
            "pressure_kPa", "pressure_filtered_kPa", "in_map")
-_COLOURS = {"contact": "C2", "release": "C3", "slip": "C4", "switch": "C1",
-            "stiff_object": "C5", "soft_object": "C6"}
+#: the colour of an event whose kind no detector declares
+DEFAULT_COLOUR = "k"
 
 
 def frame(states, pressure_kPa) -> pd.DataFrame:
@@ -29,8 +30,9 @@ def frame(states, pressure_kPa) -> pd.DataFrame:
 
 
 def write(out: Path, table: pd.DataFrame, events: list, meta: dict, *,
-          png: bool = True) -> list[Path]:
-    """estimate.parquet, events.json (the events and what ran) and sense.png in ``out``."""
+          png: bool = True, colours: Mapping[str, str] | None = None) -> list[Path]:
+    """estimate.parquet, events.json (the events and what ran) and sense.png in ``out``
+    (``colours``: each event kind's, as :attr:`~.stream.SenseStream.colours` gives them)."""
     out.mkdir(parents=True, exist_ok=True)
     files = [out / "estimate.parquet", out / "events.json"]
     table.to_parquet(files[0], index=False)
@@ -38,13 +40,15 @@ def write(out: Path, table: pd.DataFrame, events: list, meta: dict, *,
                         + "\n", encoding="utf-8")
     if png and len(table):
         files.append(out / "sense.png")
-        figure(table, events, files[-1])
+        figure(table, events, files[-1], colours)
     return files
 
 
-def figure(table: pd.DataFrame, events: list, path) -> None:
+def figure(table: pd.DataFrame, events: list, path,
+           colours: Mapping[str, str] | None = None) -> None:
     """Pressure (raw and filtered) and force with its 95 % band against time; the low mode
-    shaded, each event a line coloured by its kind."""
+    shaded, each event a line coloured by its kind (``colours``: kind -> a Matplotlib colour,
+    the detectors' own; a kind not in it :data:`DEFAULT_COLOUR`)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -70,7 +74,7 @@ def figure(table: pd.DataFrame, events: list, path) -> None:
     ax.set_xlabel("time (s); low mode (valve open) shaded")
     seen = set()
     for e in events:
-        c = _COLOURS.get(e["kind"], "k")
+        c = (colours or {}).get(e["kind"], DEFAULT_COLOUR)
         for a in axes:
             a.axvline(e["t_s"], color=c, lw=0.9, ls="--",
                       label=e["kind"] if a is ax and e["kind"] not in seen else None)

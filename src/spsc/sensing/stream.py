@@ -25,9 +25,10 @@ from typing import NamedTuple
 
 from spsc.core.errors import ParameterError, require
 
-from .detectors import (ComplianceDetector, ComplianceParams, ContactParams, SlipDetector,
-                        SlipParams, contact_detector)
+from .detectors import (ComplianceParams, ContactParams, SlipParams, build_detector,
+                        contact_detector, detector_class)
 from .estimator import Estimator, EstimatorParams
+from .protocol import Context, Sample
 
 __all__ = ["SenseParams", "SenseStream", "State"]
 
@@ -36,19 +37,32 @@ __all__ = ["SenseParams", "SenseStream", "State"]
 class SenseParams:
     """The estimator's, the detectors' parameters; ``rate_Hz`` the nominal sampling rate (the
     detectors' windows in samples); ``infer_switch`` an opening from the pressure when no
-    ``valve_open`` is given, within ``switch_window_s``."""
+    ``valve_open`` is given, within ``switch_window_s``. The detectors after the contact's are
+    :attr:`detectors`: ``slip`` (None: off), ``compliance`` (None, the default: off), then
+    ``extra_detectors``, the parameters of any other detector of
+    :data:`~.detectors.DETECTORS`, in the order they run."""
 
     estimator: EstimatorParams
     contact: ContactParams = field(default_factory=ContactParams)
-    slip: SlipParams = field(default_factory=SlipParams)
+    slip: SlipParams | None = field(default_factory=SlipParams)
     compliance: ComplianceParams | None = None
     rate_Hz: float = 1000.0
     infer_switch: bool = True
     switch_window_s: float = 0.02
+    extra_detectors: tuple = ()
 
     def __post_init__(self):
         require("rate_Hz", self.rate_Hz, gt=0, le=1e6, unit="Hz")
         require("switch_window_s", self.switch_window_s, gt=0, le=10, unit="s")
+        object.__setattr__(self, "extra_detectors", tuple(self.extra_detectors))
+        for prm in self.detectors:
+            detector_class(prm)  # a registered detector's, or one line naming it
+
+    @property
+    def detectors(self) -> tuple:
+        """The parameters of the detectors that run after the contact's, in their order."""
+        return tuple(p for p in (self.slip, self.compliance, *self.extra_detectors)
+                     if p is not None)
 
 
 class State(NamedTuple):
@@ -68,28 +82,88 @@ class State(NamedTuple):
 
 
 class SenseStream:
-    """``push`` samples in time order; ``events`` all events so far."""
+    """``push`` samples in time order; ``events`` all events so far. ``contact`` is the
+    contact detector (:class:`~.protocol.ContactDetector`), ``detectors`` the others
+    (:class:`~.protocol.Detector`), in the order they run on each sample."""
+
+    #: the stream's own events (a valve switch) and their colours in ``sense.png``
+    kinds = {"switch": "C1"}
 
     def __init__(self, dense, params: SenseParams):
         self.params = params
         self.est = Estimator(dense, params.estimator)
-        noise = params.estimator.noise_kPa
-        self.contact = contact_detector(params.contact, noise, params.rate_Hz)
-        self.slip = SlipDetector(params.slip)
-        self.compliance = (ComplianceDetector(params.compliance, self.est.depth_at)
-                           if params.compliance is not None else None)
+        context = Context(params.estimator.noise_kPa, params.rate_Hz, self.est)
+        self.contact = contact_detector(params.contact, context.noise_kPa, context.rate_Hz)
+        self.detectors = [build_detector(prm, context) for prm in params.detectors]
         self.t = -math.inf
         self.recent = deque()  # (t, filtered P, depth) over switch_window_s
         self.events: list[dict] = []
 
+    def detector(self, name: str):
+        """The first detector called ``name``, or None."""
+        return next((d for d in self.detectors if d.name == name), None)
+
+    @property
+    def slip(self):
+        """The slip detector, or None."""
+        return self.detector("slip")
+
+    @property
+    def compliance(self):
+        """The object-compliance detector, or None."""
+        return self.detector("compliance")
+
+    @property
+    def colours(self) -> dict[str, str]:
+        """Each event kind the stream and its detectors raise -> its colour in the figure."""
+        out = {**self.kinds, **self.contact.kinds}
+        for d in self.detectors:
+            out.update(d.kinds)
+        return out
+
     def push(self, t_s, pressure_kPa, valve_open=None, fsr=None, angle_deg=None):
-        """One sample: (:class:`State`, the events it raised)."""
+        """One sample: (:class:`State`, the events it raised). The contact detector runs
+        first (the rest tracked while out of contact), then the others on the
+        :class:`~.protocol.Sample`."""
         t, p = float(t_s), float(pressure_kPa)
         if not t > self.t:
             raise ParameterError("t_s", t_s, f"strictly increasing (the last was {self.t:g} s)")
         if not math.isfinite(p):
             raise ParameterError("pressure_kPa", pressure_kPa, f"a finite number (at t = {t:g} s)")
         self.t = t
+        est, events = self.est, self._switch(t, p, valve_open)
+        e = est.update(t, p)
+        # the detectors read the gas at the ambient temperature (the estimator's P_iso): a
+        # release's cooling is no contact, a hold's no plate backing off
+        q, sigma = est.iso(p), est.sigma_kPa
+        base, settled = est.baseline_kPa, est.rest.settled
+        ev = self.contact.push(t, q, e.iso_kPa, sigma, base, settled)
+        in_contact = self.contact.contact
+        if ev is not None:
+            events.append(ev)
+            if in_contact:
+                est.leave_rest()
+        if not in_contact:
+            est.track_rest(q)
+        self.recent.append((t, e.iso_kPa, e.depth_mm))
+        while t - self.recent[0][0] > self.params.switch_window_s:
+            self.recent.popleft()
+        if self.detectors:
+            sample = Sample(t, q, e.iso_kPa, sigma, base, settled, est.rest_kPa, e.depth_mm,
+                            fsr, None if angle_deg is None else float(angle_deg), in_contact,
+                            events)
+            for d in self.detectors:
+                ev = d.detect(sample)
+                if ev is not None:
+                    events.append(ev)
+        self.events.extend(events)
+        return State(t, e.force_N, e.force_lo_N, e.force_hi_N, e.depth_mm,
+                     "low" if est.open else "high", in_contact, e.pressure_kPa,
+                     e.in_map), events
+
+    def _switch(self, t: float, p: float, valve_open) -> list[dict]:
+        """The valve switch this sample shows (the ``valve_open`` column, else an opening
+        inferred from the pressure), the contact detector rebased to the level it leads to."""
         est, events = self.est, []
         if valve_open is not None:
             opened = bool(valve_open)
@@ -104,36 +178,7 @@ class SenseStream:
         if events:  # a switch in contact: the release measured against the new level
             to = events[-1].get("pooled_kPa", p if est.p_s is None else est.iso(est.p_s))
             self.contact.rebase((to - est.baseline_kPa) / est.params.noise_kPa)
-        e = est.update(t, p)
-        # the detectors read the gas at the ambient temperature (the estimator's P_iso): a
-        # release's cooling is no contact, a hold's no plate backing off
-        q = est.iso(p)
-        ev = self.contact.push(t, q, e.iso_kPa, est.sigma_kPa, est.baseline_kPa,
-                               est.rest.settled)
-        in_contact = self.contact.contact
-        if ev is not None:
-            events.append(ev)
-            if in_contact:
-                est.leave_rest()
-        if not in_contact:
-            est.track_rest(q)
-        self.recent.append((t, e.iso_kPa, e.depth_mm))
-        while t - self.recent[0][0] > self.params.switch_window_s:
-            self.recent.popleft()
-        if fsr is not None:
-            ev = self.slip.push(t, e.iso_kPa, est.sigma_kPa, est.rest_kPa, fsr, in_contact)
-            if ev is not None:
-                events.append(ev)
-        if self.compliance is not None and angle_deg is not None:
-            started = next((x for x in events if x["kind"] == "contact"), None)
-            ev = self.compliance.push(t, float(angle_deg), e.depth_mm, e.iso_kPa, started,
-                                      in_contact)
-            if ev is not None:
-                events.append(ev)
-        self.events.extend(events)
-        return State(t, e.force_N, e.force_lo_N, e.force_hi_N, e.depth_mm,
-                     "low" if est.open else "high", in_contact, e.pressure_kPa,
-                     e.in_map), events
+        return events
 
     def _infer_opening(self, t: float) -> dict | None:
         """An opening under load, from the fall to the predicted pooled pressure."""

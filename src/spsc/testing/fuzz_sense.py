@@ -66,6 +66,10 @@ def sense_cases(f: dict, tmp: Path) -> list[Case]:
               Case(("sense", str(logs["good"]), "--follow", "--type", "B"),
                    "a log with --follow", "LOG", "combination"),
               Case(base + ("--detector", "psychic"), "unknown detector", "detector", "choice"),
+              *[Case(base + ("--detectors", v), f"--detectors {why}", "detectors", "choice")
+                for v, why in (("psychic", "unknown"), ("slip", "a built-in one"),
+                               ("compliance", "a built-in one"), ("", "empty"),
+                               (",", "empty items"), ("slip,psychic", "a list"))],
               Case(base + ("--valve", "ajar"), "unknown valve", "valve", "choice"),
               Case(("sense", str(logs["good"]), "--out", out, "--type", "E"), "unknown type",
                    "type", "choice"),
