@@ -194,3 +194,26 @@ def test_simulate_a_force_press_carries_the_force(tmp_path):
     # cools and leaves for the reservoir; the travel is solved to ~1e-10 mm
     hold = d[(d.t_s >= 0.1) & (d.t_s <= 0.6)]
     assert hold.y_mm.iloc[-1] > hold.y_mm.iloc[0] + 0.01
+
+
+@pytest.mark.parametrize("press, key", [
+    ({"profile": [[0, 0], [0.3, 40], [1, 40]]}, "press.profile"),
+    ({"force": [[0, 0], [1, 5]], "max_travel_mm": 13}, "press.max_travel_mm"),
+    ({"profile": [[0, 0], [1, 14]], "object_N_per_mm": 0.5}, "press.profile"),
+])
+def test_a_press_beyond_the_chamber_is_refused_before_any_work(press, key):
+    """Issue 53: a 40 mm press on a 13 mm chamber ran for over 12 minutes with no output
+    (the map was being built for it); ``spsc curve`` refuses the same stroke in one line."""
+    from spsc.core.errors import ParameterError
+    from spsc.dynamics.scenario import parse_scenario
+
+    doc = {"chamber": {"type": "B"}, "circuit": {"setup_kPa": 40}, "press": press}
+    with pytest.raises(ParameterError, match=key.replace(".", r"\.") + ".*chamber height h "
+                       "= 13 mm"):
+        parse_scenario(doc)
+    ok = dict(press)
+    if "max_travel_mm" in ok:
+        ok["max_travel_mm"] = 12.9
+    else:
+        ok["profile"] = [[t, min(y, 12.9)] for t, y in ok["profile"]]
+    parse_scenario({**doc, "press": ok})  # just below the height: accepted

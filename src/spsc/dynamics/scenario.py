@@ -262,6 +262,19 @@ def _stiffness(doc: dict, press, reservoir: float, timed, triggers):
     return ctl
 
 
+def _check_reach(spec: ChamberSpec, profile) -> None:
+    """The press stays above the chamber's base plane, as ``spsc curve --stroke`` does: the
+    map is built over every travel the profile names (the far end's, on a spring), so a
+    press beyond the chamber's height would build it for minutes and never be right."""
+    h = spec.geometry().h
+    hi = profile.extent[1]
+    if hi >= h:
+        key = "press.max_travel_mm" if isinstance(profile, ForceProfile) else "press.profile"
+        raise ParameterError(key, f"{hi:g} mm", f"travels below the chamber height h = {h:g} "
+                             "mm (the plate would reach the base plane; the map covers every "
+                             "travel the press names, the far end's on a spring)")
+
+
 def parse_scenario(doc: dict) -> Scenario:
     """The :class:`Scenario` of a parsed TOML document."""
     _unknown("scenario", doc, _TABLES)
@@ -288,6 +301,7 @@ def parse_scenario(doc: dict) -> Scenario:
     _unknown("circuit.gas", g, _GAS)
     valve, opened = _valve(c)
     profile = _press(press)
+    _check_reach(spec, profile)
     dt = require("output.dt", out.get("dt", 1e-3), gt=0, le=profile.duration, unit="s")
     if profile.duration / dt > 5e6:
         raise ParameterError("output.dt", dt, f">= {profile.duration / 5e6:.3g} s (at most "

@@ -55,6 +55,8 @@ _WRONG = (
     ("press", "profile = [[0.1, 0], [1, 2]]\n", "press profile t_s", "not starting at 0"),
     ("press", 'profile = "fast"\n', "press profile", "profile as text"),
     ("press", "", "press", "no profile"),
+    ("press", "profile = [[0, 0], [1, 40], [2, 40]]\n", "press.profile",
+     "a press deeper than the chamber (13 mm)"),
     ("events", '[[events]]\nt = 5\nvalve = "open"\n', "events[0].t", "event after the press"),
     ("events", '[[events]]\nt = 0.5\nvalve = "shut"\n', "events[0].valve", "unknown event"),
     ("events", '[[events]]\nt = 0.5\nvalve = "open"\nwho = 1\n', "events[0].who",
