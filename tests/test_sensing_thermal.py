@@ -1,8 +1,9 @@
 """Sensing a press of air (issue 53, item 1): the gas's heat in the estimator.
 
-* the energy update (eqs. T1–T2 of :mod:`spsc.sensing.thermal`) against closed forms: a closed
-  volume compressed adiabatically keeps P Vⁿ, a gas cooling at constant pressure relaxes with
-  the time constant n τ, both converging at second order in the step;
+* the energy update (eqs. T1–T2 of :mod:`spsc.sensing.thermal`) against closed forms (a closed
+  volume compressed adiabatically keeps P Vⁿ exactly, a gas cooling at constant pressure
+  relaxes with n τ exactly), against the energy balance integrated by scipy (second order),
+  and the sensor's noise neither heats nor cools it;
 * the inverse of V(·, P) against the map's own V;
 * on adiabatic traces with thermal relaxation (n = 1.4, τ = 0.5 s, the examples' air): the
   events and the force through a press, a hold and a release, in both modes and across a
@@ -26,7 +27,7 @@ from spsc.sensing import DenseMap, EstimatorParams, SenseParams, SenseStream
 from spsc.sensing.chamber import chamber_map
 from spsc.sensing.log import start_of
 from spsc.sensing.table import PA_KPA
-from spsc.sensing.thermal import compress, iso_pressure
+from spsc.sensing.thermal import energy, invariant, iso_pressure, relax_invariant
 from spsc.testing import sense_traces as st
 
 AIR = Gas(1.4, 0.5)
@@ -41,45 +42,75 @@ def dome(tmp_path_factory):
     return m, DenseMap(m)
 
 
-def _adiabatic_error(steps: int) -> float:
-    """A closed volume (τ = ∞) pressed from 140 to 190 kPa absolute along a smooth path in
-    ``steps`` steps: the relative error of P Vⁿ at the end."""
-    n, c = 1.4, 140.0 * 5000.0
-    p = 140.0 + 50.0 * np.sin(np.linspace(0.0, 0.5 * np.pi, steps + 1)) ** 2
-    w = c
+def _path(t):
+    """A smooth press and release of the absolute pressure (kPa) over 1 s."""
+    return 140.0 + 30.0 * np.sin(np.pi * t) ** 2
+
+
+def _walk(steps: int, tau: float, n: float = 1.4, c: float = 6.0e5) -> float:
+    t = np.linspace(0.0, 1.0, steps + 1)
+    p = _path(t)
+    s = invariant(c, p[0], n)
     for p0, p1 in zip(p[:-1], p[1:]):
-        w = compress(w, c, 1e-3, p0, p1, n, math.inf)
-    v0, v1 = c / p[0], w / p[-1]
-    return abs(p[-1] * v1 ** n / (p[0] * v0 ** n) - 1.0)
+        s = relax_invariant(s, c, 1.0 / steps, p0, p1, n, tau)
+    return energy(s, p[-1], n)
 
 
-def test_closed_volume_keeps_p_v_to_the_n_at_second_order():
-    errs = [_adiabatic_error(k) for k in (10, 20, 40, 80)]
-    order = np.polyfit(np.log([10, 20, 40, 80]), np.log(errs), 1)[0]
-    # the trapezoidal work term: second order (measured 2.00)
-    assert -2.2 < order < -1.8
-    assert errs[-1] < 1e-6
+def test_closed_volume_keeps_p_v_to_the_n_exactly():
+    # τ = ∞: the invariant is kept, P Vⁿ is constant to round-off along any path, noisy too
+    n, c = 1.4, 140.0 * 5000.0
+    rng = np.random.default_rng(0)
+    p = 140.0 + np.cumsum(rng.normal(0.0, 0.5, 2000))
+    s = invariant(c, p[0], n)
+    for p0, p1 in zip(p[:-1], p[1:]):
+        s = relax_invariant(s, c, 1e-3, p0, p1, n, math.inf)
+    v0, v1 = c / p[0], energy(s, p[-1], n) / p[-1]
+    assert_allclose(p[-1] * v1 ** n, p[0] * v0 ** n, rtol=1e-12)
 
 
-def test_isobaric_cooling_relaxes_with_n_tau():
-    # at constant P, W = P V and dW = −(n − 1) P dV + (c − W) dt/τ give dW (1 + (n − 1)) =
-    # (c − W) dt/τ: W − c decays with n τ exactly
+def test_energy_against_the_balance_integrated_at_second_order():
+    """Eq. T1 with the pressure prescribed, V_s = W/P: n dW/dt = (n − 1) (W/P) dP/dt +
+    (c − W)/τ, integrated by scipy's DOP853 at 1e-12, against the Strang steps of T2."""
+    from scipy.integrate import solve_ivp
+
+    n, tau, c = 1.4, 0.3, 6.0e5
+    dp = lambda t: 30.0 * np.pi * np.sin(2.0 * np.pi * t)  # noqa: E731
+    ref = solve_ivp(lambda t, w: [((n - 1) * w[0] / _path(t) * dp(t) + (c - w[0]) / tau) / n],
+                    (0.0, 1.0), [c], method="DOP853", rtol=1e-12, atol=1e-6).y[0, -1]
+    steps = (10, 20, 40, 80)
+    errs = [abs(_walk(k, tau) / ref - 1.0) for k in steps]
+    order = np.polyfit(np.log(steps), np.log(errs), 1)[0]
+    # Strang's splitting: second order (measured 2.00); 1 kHz on a τ of 0.3 s is Δt/τ = 1/300
+    assert -2.2 < order < -1.8 and errs[-1] < 1e-5
+
+
+def test_isobaric_cooling_relaxes_with_n_tau_exactly():
+    # at constant P, W = P V and T1 give n dW/dt = (c − W)/τ: W − c decays with n τ
     n, tau, c, p = 1.4, 0.5, 6.0e5, 140.0
     w0 = 1.02 * c
-    exact = math.exp(-1.0 / (n * tau))
-    errs = []
-    for steps in (10, 20, 40, 80):
-        w = w0
-        for _ in range(steps):
-            w = compress(w, c, 1.0 / steps, p, p, n, tau)
-        errs.append(abs((w - c) / (w0 - c) / exact - 1.0))
-    # the work at the step's middle: second order (measured 2.00; with the work at the
-    # step's start, first order and 4 % off at Δt = τ/5)
-    order = np.polyfit(np.log([10, 20, 40, 80]), np.log(errs), 1)[0]
-    assert -2.2 < order < -1.8 and errs[0] < 1e-3
-    # the isothermal gas is its content at once, and reads its own pressure
-    assert compress(w0, c, 1e-3, p, p + 1.0, 1.0, tau) == c
+    s = invariant(w0, p, n)
+    for _ in range(10):
+        s = relax_invariant(s, c, 0.1, p, p, n, tau)
+    assert_allclose((energy(s, p, n) - c) / (w0 - c), math.exp(-1.0 / (n * tau)), rtol=1e-10)
+    # the isothermal gas reads its own pressure
     assert iso_pressure(41.0, c, c, PA_KPA) == pytest.approx(41.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("seed", [2, 3])
+def test_sensor_noise_does_not_heat_or_cool_the_gas(seed):
+    """The sensor's noise around a constant pressure (σ 0.086 kPa at 1 kHz, 30 s): the volume
+    W/P the gas's energy gives stays the true one on average (measured within 4.7e-6; the
+    mean of 25,000 samples of a 4.3e-4 scatter is known to 2.7e-6; the bound, 2e-5 of the
+    pooled 44 cm³, is 0.01 mm of the low mode's travel): noise is not a compression."""
+    n, tau, c = 1.4, 0.5, 6.0e5
+    rng = np.random.default_rng(seed)
+    p = 141.325 + 0.086 * rng.standard_normal(30000)
+    s = invariant(c, p[0], n)
+    v = []
+    for p0, p1 in zip(p[:-1], p[1:]):
+        s = relax_invariant(s, c, 1e-3, p0, p1, n, tau)
+        v.append(energy(s, p1, n) / p1)
+    assert abs(np.mean(v[5000:]) / (c / 141.325) - 1.0) < 2e-5
 
 
 def test_travel_inverts_the_maps_volume(dome):

@@ -49,7 +49,7 @@ from spsc.dynamics.gas import Gas
 
 from .rest import RestTracker
 from .table import PA_KPA, DenseMap
-from .thermal import compress, compress_by, iso_pressure, relax
+from .thermal import compress_by, energy, invariant, iso_pressure, relax, relax_invariant
 
 __all__ = ["EstimatorParams", "Estimator", "Estimate", "Z95"]
 
@@ -129,6 +129,7 @@ class Estimator:
         self.c_ch = dense.rest_content(params.setup_kPa)
         self.gas = params.gas
         self.c = self.w = None  # the shared gas's content at T_a and its W (kPa·mm³)
+        self.s = None  # W's adiabatic invariant (eq. T2; None: to be taken from W and P)
         self.theta_r = 1.0  # the closed-off reservoir's T/T_a
         self._rebuild()
         self.p_s = self.t = self._raw = None
@@ -153,7 +154,7 @@ class Estimator:
             (self.dense.table(self.c_ch), pooled)
         c = c_pool if self.open else self.c_ch
         self.w = w if w is not None else c if self.c is None else self.w * c / self.c
-        self.c = c
+        self.c, self.s = c, None
 
     @property
     def isothermal(self) -> bool:
@@ -168,19 +169,23 @@ class Estimator:
         return iso_pressure(p_kPa, self.w, self.c, PA_KPA, self.dense.compliance(self.y, p_kPa))
 
     def _heat(self, dt: float, p0: float, p1: float) -> None:
-        """The shared gas's W over a sample (eq. T2; while the valve equalises, the
-        chamber's pressure not the pooled gas's, with the chamber's own volume change at the
-        held travel), the closed-off reservoir's temperature relaxed."""
+        """The shared gas's W over a sample: through its adiabatic invariant (eq. T2), or,
+        while the valve equalises (the chamber's pressure not the pooled gas's), by eq. T1
+        with the chamber's own volume change at the held travel; the closed-off reservoir's
+        temperature relaxed."""
         if self.isothermal or dt <= 0.0:
             return
-        tau = self.gas.thermal_time_s
+        n, tau = self.gas.n, self.gas.thermal_time_s
         if self.settle is not None:  # the chamber's wall moves with its own pressure
             y, vol = self.settle[1], self.dense.volume
             dv = self.dense.at(vol, y, p1) - self.dense.at(vol, y, p0)
-            self.w = compress_by(self.w, self.c, dt, 0.5 * (p0 + p1) + PA_KPA, dv,
-                                 self.gas.n, tau)
+            self.w = compress_by(self.w, self.c, dt, 0.5 * (p0 + p1) + PA_KPA, dv, n, tau)
+            self.s = None
         else:
-            self.w = compress(self.w, self.c, dt, p0 + PA_KPA, p1 + PA_KPA, self.gas.n, tau)
+            if self.s is None:
+                self.s = invariant(self.w, p0 + PA_KPA, n)
+            self.s = relax_invariant(self.s, self.c, dt, p0 + PA_KPA, p1 + PA_KPA, n, tau)
+            self.w = energy(self.s, p1 + PA_KPA, n)
         if not self.open:
             self.theta_r = relax(self.theta_r, 1.0, dt, tau)
 
@@ -295,7 +300,7 @@ class Estimator:
 
     def update(self, t_s: float, p_kPa: float) -> Estimate:
         """The estimate at the sample (``t_s`` s, ``p_kPa`` gauge)."""
-        p0, w0, raw0 = self.p_s, self.w, self._raw
+        p0, raw0 = self.p_s, self._raw
         self._raw = p_kPa
         dt = 0.0
         if self.p_s is None:
@@ -338,11 +343,10 @@ class Estimator:
             noise = self.noise_half = Z95 * sigma * slope
         else:
             y, f, inside = self._read(p, self.w)
-            # dF/dP along this sample's own compression (a step of the pressure moves W too)
+            # dF/dP along an adiabatic step of the pressure (it moves W too)
             dp = 0.05
             pd = p + dp
-            wd = self.w if p0 is None or dt <= 0.0 else compress(
-                w0, self.c, dt, p0 + PA_KPA, pd + PA_KPA, self.gas.n, self.gas.thermal_time_s)
+            wd = self.w if self.s is None else energy(self.s, pd + PA_KPA, self.gas.n)
             slope = (self._read(pd, wd)[1] - f) / dp
             noise = self.noise_half = Z95 * sigma * abs(slope)
         self.y = y

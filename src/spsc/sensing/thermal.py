@@ -17,13 +17,17 @@ W/(n − 1) = U), the energy balance of :mod:`spsc.dynamics.gas` summed over the
 
     dW/dt = −(n − 1) P_abs dV_s/dt + (c − W)/τ.                                      (T1)
 
-Over a sample (Δt, the measured P_abs from P₀ to P₁, the mean P̄), by the variation of
-constants with the work done at the step's middle, E = exp(−Δt/τ), and V_s = W/P_abs at both
-ends, W₁ is the root of a linear equation:
+Written in the adiabatic invariant S = ln W + (n − 1) ln V_s = n ln W − (n − 1) ln P_abs, the
+compression drops out and only the wall's heat is left,
 
-    W₁ = c + (W₀ − c) E − (n − 1) P̄ (V₁ − V₀) E^½,   V₁ = W₁/P₁,                      (T2)
+    dS/dt = (c/W − 1)/τ,   W = P_abs^(1 − 1/n) exp(S/n),                            (T2)
 
-second order in Δt (tests/test_sensing_thermal.py).
+so W follows the measured pressure through a function of state, and the sensor's noise moves
+it and takes it back (over 30 s of noise at a constant pressure the volume W/P it gives stays
+within 5e-6 of the true one: tests/test_sensing_thermal.py). At a constant pressure T2 is
+linear in W: W − c decays with n τ exactly. Over a sample (P₀ → P₁) the step is Strang's:
+half the relaxation at P₀, the adiabatic change (S kept), half at P₁; second order in Δt,
+exact for τ = ∞ (P Vⁿ kept to round-off) and at a constant pressure.
 
 The estimator reads the chamber's travel where the map's cavity holds V_s = W/P_abs at the
 measured P, and its force there, F(y, P). Its detectors read the pressure the same gas would
@@ -42,7 +46,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["compress", "compress_by", "relax", "iso_pressure"]
+__all__ = ["invariant", "energy", "relax_invariant", "compress_by", "relax", "iso_pressure"]
 
 
 def relax(value: float, target: float, dt: float, tau: float) -> float:
@@ -55,25 +59,37 @@ def relax(value: float, target: float, dt: float, tau: float) -> float:
     return target + (value - target) * math.exp(-dt / tau)
 
 
-def compress(w: float, c: float, dt: float, p0_abs: float, p1_abs: float, n: float,
-             tau: float) -> float:
-    """W₁ (kPa·mm³) of eq. T2 after ``dt`` s in which the absolute pressure went from
-    ``p0_abs`` to ``p1_abs`` (kPa), from W₀ = ``w`` and the ambient content ``c``; ``n`` the
-    gas's ratio of heat capacities, ``tau`` its thermal time (s)."""
-    if n == 1.0 or tau == 0.0:
-        return c
-    e = 1.0 if tau == math.inf else math.exp(-dt / tau)
-    k = (n - 1.0) * 0.5 * (p0_abs + p1_abs) * math.sqrt(e)
-    v0 = w / p0_abs
-    v1 = (c + (w - c) * e + k * v0) / (p1_abs + k)
-    return p1_abs * v1
+def invariant(w: float, p_abs: float, n: float) -> float:
+    """S = n ln W − (n − 1) ln P_abs of the gas's energy ``w`` (kPa·mm³) at the absolute
+    pressure ``p_abs`` (kPa): constant under an adiabatic change."""
+    return n * math.log(w) - (n - 1.0) * math.log(p_abs)
+
+
+def energy(s: float, p_abs: float, n: float) -> float:
+    """W (kPa·mm³) of the invariant ``s`` at the absolute pressure ``p_abs`` (kPa), eq. T2."""
+    return math.exp((s + (n - 1.0) * math.log(p_abs)) / n)
+
+
+def relax_invariant(s: float, c: float, dt: float, p0_abs: float, p1_abs: float, n: float,
+                    tau: float) -> float:
+    """S after ``dt`` s in which the absolute pressure went from ``p0_abs`` to ``p1_abs``
+    (kPa): half the wall's heat at P₀, the adiabatic change, half at P₁ (each half exact at
+    its constant pressure: W − c decays with n τ)."""
+    if tau == math.inf:
+        return s
+    for p in (p0_abs, p1_abs):
+        w = energy(s, p, n)
+        w = relax(w, c, 0.5 * dt, n * tau)
+        s = invariant(w, p, n)
+    return s
 
 
 def compress_by(w: float, c: float, dt: float, p_abs: float, dv: float, n: float,
                 tau: float) -> float:
-    """W₁ (kPa·mm³) of eq. T2 with the volume change ``dv`` (mm³) known (the chamber at a
-    held travel while the valve equalises, its pressure not the pooled gas's) at the mean
-    absolute pressure ``p_abs`` (kPa)."""
+    """W₁ (kPa·mm³) of eq. T1 over ``dt`` s with the volume change ``dv`` (mm³) known (the
+    chamber at a held travel while the valve equalises, its pressure not the pooled gas's,
+    so no invariant of one gas holds) at the mean absolute pressure ``p_abs`` (kPa): the work
+    at the step's middle, the heat exact over the step."""
     if n == 1.0 or tau == 0.0:
         return c
     e = 1.0 if tau == math.inf else math.exp(-dt / tau)

@@ -21,6 +21,7 @@ import pandas as pd
 from spsc.dynamics import Gas, Sensor, Valve, sonic_conductance
 from spsc.dynamics.circuit import Circuit, integrate
 from spsc.dynamics.profile import PressProfile, SpringProfile
+from spsc.sensing.table import RINGING_N
 
 __all__ = ["Trial", "run", "press", "slip_press", "grasp", "fsr_columns", "APPROACH_MM"]
 
@@ -67,14 +68,15 @@ def run(chamber_map, pairs, *, setup_kPa=40.0, reservoir_mm3=40000.0, valve_open
                   "valve_open": valve_open, "reservoir_mm3": reservoir_mm3})
 
 
-def contact_events(truth, floor_N: float = 1e-3) -> list[dict]:
+def contact_events(truth, floor_N: float = RINGING_N) -> list[dict]:
     """Contact where the true force first exceeds ``floor_N``, release where it falls back.
-    The floor (1 mN, under 0.1 % of these presses' peak) is above the map's interpolation
-    residue: between its pressure levels the map's spline in P leaves forces where the plate
-    is off the chamber — a few µN at the setup pressure, which made 3 ms "contacts" after a
-    fast release, and up to 0.4 mN below it, where a release of air leaves the gas cooled
-    (0.2 mm above the chamber as the plate backs off: 117 such "contacts" in 200 traces of
-    air with a floor of 0.1 mN)."""
+    The floor (5 mN, the estimator's own bound on the map's residue, :data:`RINGING_N`;
+    under 0.1 % of these presses' peak) is above the map's interpolation residue: between
+    its pressure levels the map's spline in P leaves forces where the plate is off the
+    chamber — a few µN at the setup pressure, which made 3 ms "contacts" after a fast
+    release, and up to 1.7 mN below it, where a release of air leaves the gas cooled (0.2–0.3
+    mm above the chamber as the plate backs off: 117 such "contacts" in 200 traces of air
+    with a floor of 0.1 mN, 14 with 1 mN)."""
     on = (truth.force_N.to_numpy() > floor_N).astype(int)
     edges = np.flatnonzero(np.diff(on)) + 1
     t = truth.t_s.to_numpy()
