@@ -19,7 +19,9 @@ def test_membrane_writes_json_csv_png(tmp_path, capsys):
     for key in ("model", "geometry", "material", "setup", "nominal_volume_mm3",
                 "inflated_volume_mm3", "inflated_height_mm", "curve"):
         assert key in d
-    assert d["setup"] == {"p_i_kPa": 40.0, "reservoir_mm3": 40000.0, "polytropic_n": 1.0}
+    # the setup complete: the load case and the contact (schema v3)
+    assert d["setup"] == {"p_i_kPa": 40.0, "reservoir_mm3": 40000.0, "polytropic_n": 1.0,
+                          "indenter": "plate", "friction": "0"}
     assert d["geometry"] == {"w": 11.0, "h": 13.0, "l": 3.0, "t0": 1.0, "n1": 2.0, "n2": 2.2, "cy": 0.6}
     assert set(CURVE_COLUMNS) <= set(d["curve"]) and len(d["curve"]["y_mm"]) == 11
     assert d["inflated_height_mm"] > 13.0 and d["inflated_volume_mm3"] > d["nominal_volume_mm3"]

@@ -253,10 +253,8 @@ def summary(curve) -> None:
     d = info.details
     size = (f" ({d.get('model_part')}, {d['dofs']} unknowns, {d.get('tetrahedra')} tetrahedra)"
             if "dofs" in d else "")
-    named = s.get("indenter") or (s.get("part") or {}).get("indenter", "plate")
-    body = f", pressed by {named}" if named != "plate" else ""
     print(f"{curve.model} model{size}, material {curve.material}, p_i = {s['p_i_kPa']:g} kPa, "
-          f"V_r = {s['reservoir_mm3']:g} mm³{body}")
+          f"V_r = {s['reservoir_mm3']:g} mm³" + "".join(f", {c}" for c in contact_words(s)))
     apex = (f", apex at {curve.inflated_height_mm:.3f} mm"
             if np.isfinite(curve.inflated_height_mm) else "")
     print(f"cavity volume {curve.nominal_volume_mm3:.1f} -> {curve.inflated_volume_mm3:.1f} mm³ "
@@ -285,15 +283,21 @@ def plot(curve, result, path) -> None:
 
     fig, ax = plt.subplots(2, 3, figsize=(12, 6.5), constrained_layout=True)
     y = curve.y_mm
+    xlabel = travel_label(curve.setup)
     for a, (val, lab) in zip(ax.flat, ((curve.force_N, "force (N)"),
                                        (curve.pressure_kPa, "gauge pressure (kPa)"),
                                        (curve.contact_area_mm2, "contact area (mm²)"),
                                        (curve.volume_change_mm3, "volume change (mm³)"),
                                        (curve.stiffness(), "stiffness dF/dy (N/mm)"))):
         a.plot(y, val, "o-", ms=2.5)
-        a.set_xlabel("plate travel y (mm)")
+        a.set_xlabel(xlabel)
         a.set_ylabel(lab)
         a.grid(alpha=0.3)
+    own = curve.series.get("indenter_travel_mm")
+    if own is not None:  # on a spring the indenter's own travel is not the far end's
+        ax.flat[0].plot(own, curve.force_N, "s--", ms=2.5, color="C1",
+                        label="against the indenter's own travel")
+        ax.flat[0].legend(fontsize=8, loc="upper left")
     _mark_jumps(curve, ax.flat[0], ax.flat[1])
     a = ax.flat[5]
     if result is not None and getattr(result, "inflated", None) is not None:
@@ -336,18 +340,49 @@ def _mark_jumps(curve, force_ax, pressure_ax) -> None:
 
 
 def title(curve) -> str:
-    """The figure's title: the model, the chamber (its seven parameters, mm, or the part file),
-    the material and the load case (p_i kPa gauge, V_r mm³, polytropic n)."""
+    """The figure's title: the model, the chamber (its seven parameters, lengths in mm, or the
+    part file), the material, the load case (p_i kPa gauge, V_r mm³, polytropic n) and what
+    pressed it when it is not the paper's frictionless rigid plate."""
     g, s = curve.geometry, curve.setup
     part = s.get("part")
-    dims = ", ".join(f"{k}={g[k]:g}" for k in ("w", "h", "l", "t0", "n1", "n2", "cy")
-                     if _is_number(g.get(k)))
+    lengths = ", ".join(f"{k}={g[k]:g}" for k in ("w", "h", "l", "t0") if _is_number(g.get(k)))
+    shape = ", ".join(f"{k}={g[k]:g}" for k in ("n1", "n2", "cy") if _is_number(g.get(k)))
+    dims = "; ".join(x for x in ((f"{lengths} mm" if lengths else ""), shape) if x)
     what = (f"{part['file']} (fix {part['fix']})" if isinstance(part, dict) else
-            f"{dims} mm" if dims else "no geometry")
+            dims if dims else "no geometry")
     load = [f"{label}={s[key]:g}{unit}" for key, label, unit in
             (("p_i_kPa", "p_i", " kPa"), ("reservoir_mm3", "V_r", " mm³"),
              ("polytropic_n", "n", "")) if _is_number(s.get(key))]
-    return f"{curve.model}: {what}; {curve.material}, " + ", ".join(load)
+    return f"{curve.model}: {what}; {curve.material}, " + ", ".join(load + contact_words(s))
+
+
+def contact_words(setup) -> list[str]:
+    """What pressed the chamber, in words, where it is not the paper's frictionless rigid
+    plate: the body, the friction, the object's spring."""
+    from spsc.core.setup import SetupRecord
+
+    r = SetupRecord.of(setup)
+    out = [] if r.indenter == "plate" else [f"pressed by {r.indenter}"]
+    if r.friction == "stick":
+        out.append("sticking")
+    elif r.friction != "0":
+        out.append(f"μ = {r.friction}")
+    if r.object_stiffness_N_per_mm is not None:
+        out.append(f"object on a {r.object_stiffness_N_per_mm:g} N/mm spring")
+    return out
+
+
+def travel_label(setup) -> str:
+    """The x axis: whose travel y is (the plate's, a curved body's tip, or the far end of
+    the object's spring)."""
+    from spsc.core.setup import SetupRecord
+
+    r = SetupRecord.of(setup)
+    if r.object_stiffness_N_per_mm is not None:
+        return "travel of the spring's far end y (mm)"
+    if r.indenter == "plate":
+        return "plate travel y (mm)"
+    return f"{r.indenter.split(':')[0]} tip travel y (mm)"
 
 
 def _is_number(v) -> bool:

@@ -26,12 +26,14 @@ import numpy as np
 
 from .errors import ParameterError
 from .jsonio import read_json, to_jsonable, write_json
+from .provenance import code_provenance
+from .setup import SetupRecord
 
 __all__ = ["Curve", "CURVE_COLUMNS", "SolveInfo", "SCHEMA", "SCHEMA_VERSION"]
 
 #: Name and version of the JSON layout written by :meth:`Curve.to_dict`.
 SCHEMA = "spsc.curve"
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
 
 #: Column names of the curve arrays, in JSON (``"curve"`` object) and CSV header order.
 CURVE_COLUMNS = ("y_mm", "force_N", "pressure_kPa", "contact_area_mm2", "volume_change_mm3")
@@ -112,8 +114,10 @@ class Curve:
         The seven parameters (w, h, l, t0, n1, n2, cy), mm.
     material : str
         Material catalogue name (or ``""``).
-    setup : dict
-        ``p_i_kPa`` (gauge), ``reservoir_mm3``, ``polytropic_n``.
+    setup : SetupRecord or mapping
+        The setup it was computed with (:class:`~spsc.core.setup.SetupRecord`: ``p_i_kPa``
+        gauge, ``reservoir_mm3``, ``polytropic_n``, the contact, a part, how the model ran);
+        a mapping of its flat keys becomes one.
     nominal_volume_mm3, inflated_volume_mm3 : float
         Cavity volume (bladder only) before and after inflation, mm³.
     inflated_height_mm : float
@@ -137,7 +141,7 @@ class Curve:
     model: str = "membrane"
     geometry: dict = field(default_factory=dict)
     material: str = ""
-    setup: dict = field(default_factory=dict)
+    setup: SetupRecord = field(default_factory=SetupRecord)
     nominal_volume_mm3: float = float("nan")
     inflated_volume_mm3: float = float("nan")
     inflated_height_mm: float = float("nan")
@@ -186,7 +190,7 @@ class Curve:
             series[str(name)] = a
         object.__setattr__(self, "series", series)
         object.__setattr__(self, "geometry", dict(self.geometry))
-        object.__setattr__(self, "setup", dict(self.setup))
+        object.__setattr__(self, "setup", SetupRecord.of(self.setup))
         for name in ("nominal_volume_mm3", "inflated_volume_mm3", "inflated_height_mm"):
             v = getattr(self, name)
             object.__setattr__(self, name, float("nan") if v is None else float(v))
@@ -239,12 +243,13 @@ class Curve:
 
     # -- JSON --------------------------------------------------------------------------------
     def to_dict(self, extra: dict | None = None) -> dict:
-        """The docs/design.md JSON object, schema ``spsc.curve`` v2 (NaN written as null).
+        """The docs/design.md JSON object, schema ``spsc.curve`` v3 (NaN written as null).
 
         ``extra``: model-specific additions (meridians, VTU files ...) under the key ``extra``.
         """
         out = {"schema": SCHEMA, "schema_version": SCHEMA_VERSION}
         out |= {k: getattr(self, k) for k in _META}
+        out["setup"] = self.setup.as_dict()
         curve = {k: getattr(self, k) for k in CURVE_COLUMNS}
         curve |= self.series
         curve["converged"] = self.converged
@@ -253,7 +258,9 @@ class Curve:
         out["solver"] = self.solver.to_dict()
         out["metrics"] = {"mean_stiffness_N_per_mm": self.mean_stiffness(),
                           "mean_sensitivity_kPa_per_mm": self.mean_sensitivity()}
-        out["provenance"] = {"spsc_version": _version()}
+        code = code_provenance()
+        out["provenance"] = {"spsc_version": _version(), "commit": code.commit,
+                             "clean_tree": code.clean}
         if extra:
             out["extra"] = extra
         return to_jsonable(out)
@@ -267,13 +274,15 @@ class Curve:
 
     @classmethod
     def from_dict(cls, data: dict) -> "Curve":
-        """From a ``spsc.curve`` JSON object of version 1 (no ``schema_version``) or 2."""
+        """From a ``spsc.curve`` JSON object of version 1 (no ``schema_version``) to 3 (v3:
+        the setup carries the contact, ``indenter`` and ``friction``; an older file's is the
+        paper's plate unless it says otherwise)."""
         if not isinstance(data, dict) or "curve" not in data:
             raise ParameterError("JSON key", "curve", "an object with " + ", ".join(CURVE_COLUMNS))
         version = data.get("schema_version", 1)
-        if data.get("schema", SCHEMA) != SCHEMA or version not in (1, SCHEMA_VERSION):
+        if data.get("schema", SCHEMA) != SCHEMA or version not in (1, 2, SCHEMA_VERSION):
             raise ParameterError("schema", f"{data.get('schema', SCHEMA)} v{version}",
-                                 f"{SCHEMA} v1 or v{SCHEMA_VERSION} (a newer spsc wrote this "
+                                 f"{SCHEMA} v1 to v{SCHEMA_VERSION} (a newer spsc wrote this "
                                  "file: upgrade spsc)")
         c = data["curve"]
         missing = [k for k in CURVE_COLUMNS if k not in c]
@@ -301,7 +310,8 @@ class Curve:
         """CSV with the five columns (plus ``converged``); metadata in ``# key: json`` lines."""
         buf = io.StringIO()
         for k in _META:
-            buf.write(f"# {k}: {json.dumps(to_jsonable(getattr(self, k)))}\n")
+            v = self.setup.as_dict() if k == "setup" else getattr(self, k)
+            buf.write(f"# {k}: {json.dumps(to_jsonable(v))}\n")
         extra = tuple(self.series)
         buf.write(",".join(CURVE_COLUMNS + extra + ("converged",)) + "\n")
         for i in range(len(self)):

@@ -9,7 +9,10 @@ unpack it into keywords for their callers nor check it again.
 * :class:`Setup` — the body (an :class:`~spsc.cad.geometry.SPSCGeometry`), the material (a
   :class:`~spsc.materials.Material`), the :class:`~spsc.core.loadcase.LoadCase` (setup
   pressure kPa gauge, reservoir mm³, stroke mm, plate positions, polytropic index) and the
-  :class:`Contact`.
+  :class:`Contact`;
+* :class:`SetupRecord` — what a :class:`~spsc.core.curve.Curve` records of its setup, typed
+  (the load case, the contact complete, a part's record, how the model ran it), written as
+  the flat ``setup`` object of the curve's JSON and CSV header.
 
 The core holds these values without importing the layers that build them (``cad``,
 ``materials``): a setup is made from a built geometry and material.
@@ -17,6 +20,8 @@ The core holds these values without importing the layers that build them (``cad`
 
 from __future__ import annotations
 
+import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -25,7 +30,7 @@ from .contact import (check_body, check_combination, check_friction, check_objec
 from .indenter import Indenter
 from .loadcase import LoadCase, check_load
 
-__all__ = ["Contact", "Setup", "PLATE"]
+__all__ = ["Contact", "Setup", "SetupRecord", "PLATE"]
 
 #: the flat, level plate of the paper's models
 PLATE = Indenter()
@@ -97,3 +102,75 @@ class Setup:
         """This setup with the load case's fields ``changes`` (e.g. ``reservoir_mm3``), not
         checked again: use it to vary a checked setup within what was checked."""
         return replace(self, load=replace(self.load, **changes))
+
+    def record(self, **run) -> "SetupRecord":
+        """What a curve of this setup records; ``run``: how the model ran it (mesh size,
+        layers, unknowns, ...)."""
+        c, load = self.contact, self.load
+        return SetupRecord(load.pressure_kPa, load.reservoir_mm3, load.polytropic_n,
+                           c.indenter.spec, c.friction, c.object_stiffness, run=dict(run))
+
+
+_FIELDS = ("p_i_kPa", "reservoir_mm3", "polytropic_n", "indenter", "friction",
+           "object_stiffness_N_per_mm", "part")
+
+
+@dataclass(frozen=True, eq=False)
+class SetupRecord(Mapping):
+    """The setup a :class:`~spsc.core.curve.Curve` records: ``p_i_kPa`` the setup pressure
+    (kPa gauge), ``reservoir_mm3``, ``polytropic_n``, the contact complete (``indenter`` the
+    body's spelling, ``friction`` ``"0"``, μ or ``"stick"``, ``object_stiffness_N_per_mm``,
+    None: rigid), ``part`` a part's record (the part FEM: its file, fixing, pockets, ...;
+    None for the parametric chamber) and ``run`` how the model ran it (mesh size, layers,
+    unknowns, the part it modelled, an instability).
+
+    It reads as the flat mapping the curve's JSON holds (``setup["p_i_kPa"]``,
+    :meth:`as_dict`); a mapping of those keys (a JSON file of any version) becomes one with
+    :meth:`of`: a part's indenter is the record's, a missing contact the paper's plate."""
+
+    p_i_kPa: Any = math.nan
+    reservoir_mm3: Any = math.nan
+    polytropic_n: Any = math.nan
+    indenter: str = "plate"
+    friction: str = "0"
+    object_stiffness_N_per_mm: float | None = None
+    part: dict | None = None
+    run: dict = field(default_factory=dict)
+
+    @classmethod
+    def of(cls, value) -> "SetupRecord":
+        """The record of ``value``: a record, or a mapping of the JSON's flat keys."""
+        if isinstance(value, SetupRecord):
+            return value
+        d = dict(value or {})
+        known = {k: d.pop(k) for k in _FIELDS if k in d}
+        part = known.get("part")
+        if "indenter" not in known and isinstance(part, dict) and "indenter" in part:
+            known["indenter"] = part["indenter"]
+        return cls(**known, run=d)
+
+    def as_dict(self) -> dict:
+        """The flat JSON object: the load case, the contact, the part, then ``run``'s keys."""
+        out = {"p_i_kPa": self.p_i_kPa, "reservoir_mm3": self.reservoir_mm3,
+               "polytropic_n": self.polytropic_n, "indenter": self.indenter,
+               "friction": self.friction}
+        if self.object_stiffness_N_per_mm is not None:
+            out["object_stiffness_N_per_mm"] = self.object_stiffness_N_per_mm
+        if self.part is not None:
+            out["part"] = self.part
+        return out | self.run
+
+    def __getitem__(self, key):
+        return self.as_dict()[key]
+
+    def __iter__(self):
+        return iter(self.as_dict())
+
+    def __len__(self) -> int:
+        return len(self.as_dict())
+
+    @property
+    def default_contact(self) -> bool:
+        """The paper's contact: the frictionless, rigid, level plate."""
+        return (self.indenter == "plate" and self.friction == "0"
+                and self.object_stiffness_N_per_mm is None)

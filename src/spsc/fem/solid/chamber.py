@@ -178,8 +178,7 @@ def to_curve(run: ChamberRun, model: FEMModel, result: Result, *,
              "layers": run.layers, "dofs": model.disc.n, "model_part": part}
     if result.instability:
         setup["instability"] = result.instability
-    if run.indenter != "plate":
-        setup["indenter"] = run.indenter
+    setup |= {"indenter": run.indenter, "friction": run.friction}
     details = {"mesh_size_mm": run.mesh_size_mm, "layers": run.layers, "model_part": part,
                "bulk_ratio": run.bulk_ratio}
     if run.friction != "0":

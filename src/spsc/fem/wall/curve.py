@@ -43,7 +43,7 @@ found the solve stops there as before.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -227,8 +227,8 @@ def _finish(model, result, y, lc, seconds, progress, contact: Contact) -> Curve:
     if contact.friction != "0":
         curve.solver.details.update(friction=contact.friction,
                                     shear_N=[0.0] + [st.shear for st in pressed])
-    if contact.indenter.curved:
-        curve = curve.replace(setup={**curve.setup, "indenter": contact.indenter.spec})
+    curve = curve.replace(setup=replace(curve.setup, indenter=contact.indenter.spec,
+                                        friction=contact.friction))
     return with_indenter(curve, contact.object_stiffness, [st.indenter for st in pressed])
 
 
