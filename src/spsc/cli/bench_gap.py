@@ -44,7 +44,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from tqdm import tqdm
+    from spsc.core.progress import progress_bar
 
     from spsc.cad.geometry import TYPES
     from spsc.cli.options import check_output_dir
@@ -71,7 +71,8 @@ def run(args) -> int:
                      [n.strip() for n in str(args.factors).split(",") if n.strip()])
     workers, scheduler = check_cluster(args.workers, args.scheduler)
     out = check_output_dir("--out", args.out)
-    bar = tqdm(desc="spsc bench-gap", unit="curve", disable=bool(args.quiet), file=sys.stderr)
+    bar = progress_bar(desc="spsc bench-gap", unit="curve", disable=bool(args.quiet),
+                       file=sys.stderr)
 
     def progress(done, total):
         bar.total = total

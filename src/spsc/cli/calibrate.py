@@ -70,7 +70,7 @@ def _predictions(args) -> list[tuple[float, float]]:
 
 
 def run(args) -> int:
-    from tqdm import tqdm
+    from spsc.core.progress import progress_bar
 
     from spsc.core.loadcase import check_load
     from spsc.core.setup import Setup
@@ -101,7 +101,7 @@ def run(args) -> int:
                              "0 for an open-chamber test (--pressure 0), or give --pressure")
     wall_size_check("calibrate", geom, args.mesh_size, args.layers, 16, force=args.force,
                     quiet=args.quiet, points=17)
-    bar = tqdm(desc="spsc calibrate", unit="solve", disable=args.quiet, file=sys.stderr)
+    bar = progress_bar(desc="spsc calibrate", unit="solve", disable=args.quiet, file=sys.stderr)
     try:
         def solve(m, stroke_mm, points, p=args.pressure, r=args.reservoir):
             setup = Setup.of(geom, m, pressure_kPa=p, reservoir_mm3=r, stroke_mm=stroke_mm,

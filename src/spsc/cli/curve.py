@@ -195,11 +195,11 @@ def solve(job: Job, *, verb: str, quiet: bool, cache_dir=None):
     """The job's model solved, with a progress bar on stderr (unless ``quiet``) for a model
     that reports load steps; a meshed model keeps its meshes in ``cache_dir`` (None: its
     default)."""
-    from tqdm import tqdm
+    from spsc.core.progress import progress_bar
 
     total = job.model.load_steps(job.setup, job.options)
-    bar = tqdm(total=total, desc=f"spsc {verb}", unit="step", disable=quiet or not total,
-               file=sys.stderr)
+    bar = progress_bar(total=total, desc=f"spsc {verb}", unit="step",
+                       disable=quiet or not total, file=sys.stderr)
 
     def progress(done, total):
         bar.total = total

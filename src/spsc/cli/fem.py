@@ -210,7 +210,7 @@ def _estimate(run, surface) -> dict:
 
 
 def run_part_cli(args) -> int:
-    from tqdm import tqdm
+    from spsc.core.progress import progress_bar
 
     from spsc.fem.part import load_part
     from spsc.fem.part.run import check_part_run, part_curve, part_model, write_part_vtu
@@ -237,8 +237,8 @@ def run_part_cli(args) -> int:
     t0 = time.perf_counter()
     model, R, surface = part_model(run, surface=surface, cache_dir=output_cache_dir(args))
     mesh_seconds = time.perf_counter() - t0
-    bar = tqdm(total=steps, desc=f"spsc {verb}", unit="step", disable=bool(args.quiet),
-               file=sys.stderr)
+    bar = progress_bar(total=steps, desc=f"spsc {verb}", unit="step",
+                       disable=bool(args.quiet), file=sys.stderr)
 
     def progress(done, total):
         bar.total = total

@@ -149,15 +149,15 @@ def _geometry(args):
 
 def _chamber(args, geometry):
     """The dense map of the chamber, built or from the cache, with a progress bar."""
-    from tqdm import tqdm
+    from spsc.core.progress import progress_bar
 
     from spsc.sensing import DenseMap
     from spsc.sensing.chamber import chamber_map
 
     out = Path(args.out) if args.out else Path.cwd() / "spsc-sense"
     cache = Path(args.cache) if args.cache else out.absolute().parent / "spsc-cache"
-    bar = tqdm(desc="chamber map", unit="level", disable=bool(args.quiet), file=sys.stderr,
-               leave=False)
+    bar = progress_bar(desc="chamber map", unit="level", disable=bool(args.quiet),
+                       file=sys.stderr, leave=False)
 
     def progress(done, total):
         bar.total = total
@@ -245,7 +245,7 @@ def _haptic_loop(args):
 
 
 def _batch(args) -> int:
-    from tqdm import tqdm
+    from spsc.core.progress import progress_bar
 
     from spsc.sensing import SenseStream
     from spsc.sensing.log import read_log
@@ -259,8 +259,8 @@ def _batch(args) -> int:
     n = len(log)
     v, fsr, ang = log.valve_open, log.fsr, log.angle_deg
     states, joints, commands = [], [], []
-    bar = tqdm(total=n, desc="spsc sense", unit="sample", disable=bool(args.quiet) or n < 10**5,
-               file=sys.stderr, leave=False)
+    bar = progress_bar(total=n, desc="spsc sense", unit="sample",
+                       disable=bool(args.quiet) or n < 10**5, file=sys.stderr, leave=False)
     for i, (t, p) in enumerate(zip(log.t_s.tolist(), log.pressure_kPa.tolist())):
         st, _ = stream.push(t, p, None if v is None else v[i], None if fsr is None else fsr[i],
                             None if ang is None else ang[i])

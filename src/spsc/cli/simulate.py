@@ -54,7 +54,7 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from tqdm import tqdm
+    from spsc.core.progress import progress_bar
 
     from spsc.dynamics.output import write
     from spsc.dynamics.scenario import read_scenario
@@ -76,15 +76,15 @@ def run(args) -> int:
     def map_progress(done, total):
         if not quiet:
             if "map" not in bars:
-                bars["map"] = tqdm(total=total, desc="chamber map", unit="level",
-                                   file=sys.stderr, leave=False)
+                bars["map"] = progress_bar(total=total, desc="chamber map", unit="level",
+                                           file=sys.stderr, leave=False)
             bars["map"].update(done - bars["map"].n)
 
     def progress(t, t_end):
         if not quiet:
             if "run" not in bars:
-                bars["run"] = tqdm(total=round(t_end, 6), desc="spsc simulate", unit="s",
-                                   file=sys.stderr, leave=False,
+                bars["run"] = progress_bar(total=round(t_end, 6), desc="spsc simulate",
+                                           unit="s", file=sys.stderr, leave=False,
                                    bar_format="{l_bar}{bar}| {n:.3g}/{total:.3g} s")
             bars["run"].update(round(t, 6) - bars["run"].n)
 
@@ -132,7 +132,7 @@ def _bode(scenario, out, cache, map_progress, bars, quiet, where) -> int:
 
 
 def _study(scenario, out, cache, types, quiet, where) -> int:
-    from tqdm import tqdm
+    from spsc.core.progress import progress_bar
 
     from spsc.studies.time import run_time_study
 
@@ -146,8 +146,8 @@ def _study(scenario, out, cache, types, quiet, where) -> int:
         if quiet:
             return
         if bar is None:
-            bar = tqdm(total=total, desc="hysteresis cycles", unit="type", file=sys.stderr,
-                       leave=False)
+            bar = progress_bar(total=total, desc="hysteresis cycles", unit="type",
+                               file=sys.stderr, leave=False)
         bar.update(done - bar.n)
 
     if not quiet:

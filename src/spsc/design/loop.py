@@ -105,15 +105,18 @@ def _goal_met_already(study, goal: Goal) -> bool:
 
 def _loop(study, problem: Problem, client, evaluate, trials: int, inflight: int,
           progress) -> int:
-    from tqdm import tqdm
+    from spsc.core.progress import progress_bar
 
     optuna = optuna_module()
     polish = Polish(problem)
     done = _counted(study)
     stop = _goal_met_already(study, problem.goal)
     pending: deque = deque()
-    bar = tqdm(total=trials, initial=min(done, trials), desc="spsc design", unit="trial",
-               file=sys.stderr, disable=not progress, dynamic_ncols=True)
+    # the trials are a budget the search stops short of when the goal is met: no total, no
+    # time left that would be wrong (issue 53: 100 trials and 2 h promised, 10 run)
+    bar = progress_bar(total=None, initial=min(done, trials), unit="trial",
+                       desc=f"spsc design (at most {trials} trials)", file=sys.stderr,
+                       disable=not progress, dynamic_ncols=True)
     evaluated = 0
     try:
         while True:

@@ -166,13 +166,13 @@ def run_all(runs, cache: Cache, *, compute=compute, progress: bool = True, strea
     wall, then the membrane models, so the workers stay busy to the end), each worker stores
     its run in the cache (which must be at the same path on every worker) and the outcomes
     are collected as they complete."""
-    from tqdm import tqdm
+    from spsc.core.progress import progress_bar
 
     stream = stream or sys.stderr
     runs = list(dict.fromkeys(runs))
     out: dict[Run, Outcome] = {}
-    bar = tqdm(total=len(runs), desc="spsc report", unit="run", disable=not progress,
-               file=stream, dynamic_ncols=True)
+    bar = progress_bar(total=len(runs), desc="spsc report", unit="run", disable=not progress,
+                       file=stream, dynamic_ncols=True)
 
     def record(oc: Outcome) -> None:
         out[oc.run] = oc

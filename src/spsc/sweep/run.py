@@ -136,16 +136,16 @@ def _run(pending, total, store, settings, stats, *, workers, scheduler, progress
          checkpoint):
     import dask
     import distributed  # noqa: F401  (its config defaults first: a set() on a missing section
-    from tqdm import tqdm  # would delete the whole section on exit)
+    from spsc.core.progress import progress_bar  # would delete the whole section on exit)
 
     keys, every = checkpoint
     t_start = time.perf_counter()
     with ExitStack() as stack:
         stack.enter_context(dask.config.set(LOCAL_CLUSTER_CONFIG))
         client = stack.enter_context(dask_client(workers=workers, scheduler=scheduler))
-        bar = stack.enter_context(tqdm(total=total, desc="spsc sweep", unit="design",
-                                       disable=not progress, file=sys.stderr,
-                                       dynamic_ncols=True))
+        bar = stack.enter_context(progress_bar(total=total, desc="spsc sweep", unit="design",
+                                               disable=not progress, file=sys.stderr,
+                                               dynamic_ncols=True))
         threads = sum(client.nthreads().values())
         stats.update(workers=len(client.nthreads()), start_s=time.perf_counter() - t_start)
         flight = _Flight(client, task, settings, IN_FLIGHT_PER_THREAD * max(1, threads))
