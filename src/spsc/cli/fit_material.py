@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import sys
 
-from spsc.core.errors import ParameterError, require
+from spsc.core.errors import ParameterError, require_integer
 
 from spsc.cli.options import PLOT_SUFFIXES, check_output_file, integer, warn
 
@@ -136,7 +136,7 @@ def prepare(args):
     if not args.data:
         raise ParameterError("DATA.csv", "none", "one or more test data files (or "
                              "--list-catalogue)")
-    terms = int(require("ogden_terms", args.ogden_terms, ge=1, le=3))
+    terms = require_integer("ogden_terms", args.ogden_terms, ge=1, le=3)
     if args.name is not None and not str(args.name).strip():
         raise ParameterError("--name", args.name, "a non-empty name")
     lo, hi = parse_range(args.stretch_range)

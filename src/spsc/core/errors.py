@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["ParameterError", "require"]
+__all__ = ["ParameterError", "require", "require_integer"]
 
 
 class ParameterError(ValueError):
@@ -15,12 +15,28 @@ class ParameterError(ValueError):
 
     def __init__(self, name: str, value: object, allowed: str):
         self.name, self.value, self.allowed = name, value, allowed
-        super().__init__(f"{name} = {value!r} is invalid: allowed {allowed}")
+        super().__init__(f"{name} = {_shown(value)!r} is invalid: allowed {allowed}")
+
+
+def _shown(value: object) -> object:
+    """A value as the user wrote it: a numpy scalar as its Python number (not
+    ``np.float64(0.4)``), a long text or binary cut to its first 80 characters."""
+    item = getattr(value, "item", None)
+    if callable(item) and getattr(value, "ndim", None) == 0:
+        value = item()
+    if isinstance(value, (bytes, bytearray)):
+        value = bytes(value[:80]) + (b"..." if len(value) > 80 else b"")
+    elif isinstance(value, str) and len(value) > 80:
+        value = value[:80] + "..."
+    return value
 
 
 def require(name: str, value: float, *, gt: float | None = None, ge: float | None = None,
             le: float | None = None, lt: float | None = None, unit: str = "") -> float:
-    """Return ``float(value)`` or raise :class:`ParameterError` naming the bound it breaks."""
+    """Return ``float(value)`` or raise :class:`ParameterError` naming the bound it breaks.
+    A boolean is refused, not taken for 0 or 1 (a scenario's ``setup_kPa = true`` ran at
+    1 kPa); text is converted (the command line's), so a typed input (TOML, JSON) refuses
+    its quoted numbers where it is read (:func:`spsc.dynamics.scenario.parse_scenario`)."""
     bounds = []
     if gt is not None:
         bounds.append(f"> {gt:g}")
@@ -33,6 +49,8 @@ def require(name: str, value: float, *, gt: float | None = None, ge: float | Non
     allowed = " and ".join(bounds) if bounds else "a finite number"
     if unit:
         allowed += f" ({unit})"
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        raise ParameterError(name, value, "a number: " + allowed)
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -43,3 +61,16 @@ def require(name: str, value: float, *, gt: float | None = None, ge: float | Non
     if not ok:
         raise ParameterError(name, value, allowed)
     return v
+
+
+def require_integer(name: str, value, *, ge: int | None = None, le: int | None = None,
+                    unit: str = "") -> int:
+    """Return ``int(value)`` for a whole number within the bounds, or raise
+    :class:`ParameterError`: ``2.5`` is not rounded to 2, ``true`` is not 1."""
+    v = require(name, value, ge=ge, le=le, unit=unit)
+    if v != int(v):
+        bounds = " and ".join(b for b in ((f">= {ge}" if ge is not None else ""),
+                                          (f"<= {le}" if le is not None else "")) if b)
+        raise ParameterError(name, value, "a whole number" + (f" {bounds}" if bounds else "")
+                             + (f" ({unit})" if unit else ""))
+    return int(v)

@@ -44,7 +44,8 @@ def _clock(seconds: float) -> str:
 
 class PlainProgress:
     """tqdm's bar API as a plain line now and then: ``n``, ``total`` (settable), ``update``,
-    ``set_postfix_str``, ``set_description``, ``refresh``, ``close``, a context manager."""
+    ``set_postfix_str``, ``set_description``, ``write``, ``refresh``, ``close``, a context
+    manager."""
 
     def __init__(self, desc: str, total, unit: str, file, initial: float = 0,
                  every_s: float = 10.0):
@@ -75,6 +76,10 @@ class PlainProgress:
 
     def set_postfix_str(self, s: str = "", refresh: bool = True) -> None:
         self.postfix = str(s)
+
+    def write(self, s: str, file=None) -> None:
+        """A line of its own (tqdm's ``write``: a message between the bar's lines)."""
+        print(s, file=self.file if file is None else file, flush=True)
 
     def set_description(self, desc: str, refresh: bool = True) -> None:
         self.desc = str(desc)

@@ -55,7 +55,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from spsc.core.errors import ParameterError, require
+from spsc.core.errors import ParameterError, require, require_integer
 
 from .gas import Gas
 from .profile import ForceProfile, PressProfile, SpringProfile
@@ -202,7 +202,7 @@ def _bode(doc: dict, profile: PressProfile, opened: bool) -> dict:
         raise ParameterError("bode.valve", b.get("valve"), "\"open\" or \"closed\"")
     f_min = require("bode.f_min_Hz", b.get("f_min_Hz", 0.01), gt=0, unit="Hz")
     f_max = require("bode.f_max_Hz", b.get("f_max_Hz", 1000.0), gt=f_min, le=1e6, unit="Hz")
-    points = int(require("bode.points", b.get("points", 61), ge=2, le=10000))
+    points = require_integer("bode.points", b.get("points", 61), ge=2, le=10000)
     return {"y_mm": y, "valve_open": b.get("valve", "open" if opened else "closed") == "open",
             "f_min_Hz": f_min, "f_max_Hz": f_max, "points": points}
 
@@ -275,9 +275,30 @@ def _check_reach(spec: ChamberSpec, profile) -> None:
                              "travel the press names, the far end's on a spring)")
 
 
+#: the scenario's keys that hold text; every other value is a number or a list of numbers
+_TEXT_KEYS = {"type", "footprint", "material", "model", "state", "preset", "valve"}
+
+
+def _no_quoted_numbers(value, where: str) -> None:
+    """A number written as text (``n = "1.4"``) or a boolean where a number belongs is
+    refused where it is read: the range checks convert text, and the objects built from the
+    document would keep the string and fail later (issue 53: 16 internal errors)."""
+    if isinstance(value, dict):
+        for k, v in value.items():
+            if not (k in _TEXT_KEYS and isinstance(v, str)):
+                _no_quoted_numbers(v, f"{where}.{k}" if where else str(k))
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            _no_quoted_numbers(v, f"{where}[{i}]")
+    elif isinstance(value, (str, bool)):
+        raise ParameterError(where, value, "a number (without quotes)" if isinstance(value, str)
+                             else "a number, not true or false")
+
+
 def parse_scenario(doc: dict) -> Scenario:
     """The :class:`Scenario` of a parsed TOML document."""
     _unknown("scenario", doc, _TABLES)
+    _no_quoted_numbers(doc, "")
     ch, c, press = _table(doc, "chamber"), _table(doc, "circuit"), _table(doc, "press")
     out = _table(doc, "output", required=False)
     _unknown("chamber", ch, _CHAMBER)
@@ -294,7 +315,7 @@ def parse_scenario(doc: dict) -> Scenario:
                        str(ch.get("material", "tpu60a")), model,
                        None if mesh is None else require("chamber.mesh_size", mesh, gt=0, le=5,
                                                          unit="mm"),
-                       int(require("chamber.layers", ch.get("layers", 2), ge=1, le=16)))
+                       require_integer("chamber.layers", ch.get("layers", 2), ge=1, le=16))
     g = c.get("gas", {})
     if not isinstance(g, dict):
         raise ParameterError("circuit.gas", g, "an inline table {n = ..., thermal_time_s = ...}")

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from spsc.core.errors import ParameterError, require
+from spsc.core.errors import ParameterError, require, require_integer
 
 __all__ = ["Sensor", "PRESETS"]
 
@@ -42,6 +42,8 @@ class Sensor:
         require("sensor noise_kPa", self.noise_kPa, ge=0, unit="kPa")
         require("sensor resolution_kPa", self.resolution_kPa, ge=0, unit="kPa")
         require("sensor full_scale_kPa", self.full_scale_kPa, ge=0, unit="kPa")
+        object.__setattr__(self, "seed", require_integer("sensor seed", self.seed, ge=0,
+                                                         le=2**63 - 1))
 
     @classmethod
     def preset(cls, name: str, **overrides) -> "Sensor":

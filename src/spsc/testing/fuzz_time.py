@@ -50,6 +50,12 @@ _WRONG = (
     ("circuit", 'sensor = { preset = "xyz" }\n', "sensor preset", "unknown sensor preset"),
     ("circuit", "sensor = { rate_Hz = 0 }\n", "sensor rate_Hz", "zero sampling rate"),
     ("circuit", "sensor = { noise_kPa = -1 }\n", "sensor noise_kPa", "negative noise"),
+    # a quoted number is text, not a number the object keeps as text (issue 53, item 8)
+    ("circuit", 'gas = { n = "1.4" }\n', "gas n", "a quoted polytropic index"),
+    ("circuit", 'valve = { C = "0.06" }\n', "valve C", "a quoted conductance"),
+    ("circuit", 'sensor = { rate_Hz = "1000" }\n', "sensor rate_Hz", "a quoted rate"),
+    ("circuit", "sensor = { seed = -1 }\n", "sensor seed", "a negative seed"),
+    ("circuit", "sensor = { seed = 1.5 }\n", "sensor seed", "a fractional seed"),
     ("press", "profile = [[0, 0]]\n", "press profile", "one knot"),
     ("press", "profile = [[0, 0], [1, 2], [0.5, 3]]\n", "press profile t_s", "time going back"),
     ("press", "profile = [[0.1, 0], [1, 2]]\n", "press profile t_s", "not starting at 0"),

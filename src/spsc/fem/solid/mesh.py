@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.core.errors import ParameterError, require
+from spsc.core.errors import ParameterError, require, require_integer
 from spsc.cad.geometry import SPSCGeometry
 
 from .element import TET_EDGES, TET_FACES
@@ -279,7 +279,7 @@ def spsc_wall(g: SPSCGeometry, size: float = 1.0, *, layers: int | None = None,
     size = require("size", size, gt=0, unit="mm")
     if layers is None:
         layers = max(1, round(g.t0 / size))
-    layers = int(require("layers", layers, ge=1))
+    layers = require_integer("layers", layers, ge=1)
     n_profile, n_phi, n_y = _wall_cells(g, size)
     nodes, tets, layer = _swept(wall_section(g, n_profile, layers), g.l / 2, n_y, n_phi)
     tol = 1e-7 * max(g.w, g.h)

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from spsc.cad.geometry import SPSCGeometry
-from spsc.core.errors import require
+from spsc.core.errors import require, require_integer
 
 from ..solid.mesh import wall_section
 
@@ -169,7 +169,7 @@ def section_mesh(g: SPSCGeometry, *, size: float = 0.5,
     from skfem import CellBasis, ElementQuad2, MeshQuad1, MeshQuad2
 
     size = require("mesh_size", size, gt=0, unit="mm")
-    layers = int(require("layers", layers, ge=1))
+    layers = require_integer("layers", layers, ge=1)
     if base not in ("clamped", "sliding"):
         raise ValueError(f"base = {base!r}: 'clamped' or 'sliding'")
     outer = g.outer_profile_points(2001)
