@@ -29,6 +29,8 @@ def test_plain_lines_where_stderr_is_not_a_terminal(monkeypatch):
     bar.update(1)  # within the interval: no line
     clock.t += 12.0
     bar.update(1)
+    bar.set_postfix(failed=1)
+    assert bar.postfix == "failed=1"
     bar.set_postfix_str("best 0.8")
     clock.t += 75.0
     bar.close()

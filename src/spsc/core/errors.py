@@ -20,14 +20,15 @@ class ParameterError(ValueError):
 
 def _shown(value: object) -> object:
     """A value as the user wrote it: a numpy scalar as its Python number (not
-    ``np.float64(0.4)``), a long text or binary cut to its first 80 characters."""
+    ``np.float64(0.4)``), binary cut to its first 80 bytes, a text to its first 240
+    characters (a file's header echoed back was 4–25 KB)."""
     item = getattr(value, "item", None)
     if callable(item) and getattr(value, "ndim", None) == 0:
         value = item()
     if isinstance(value, (bytes, bytearray)):
         value = bytes(value[:80]) + (b"..." if len(value) > 80 else b"")
-    elif isinstance(value, str) and len(value) > 80:
-        value = value[:80] + "..."
+    elif isinstance(value, str) and len(value) > 240:  # a path stays whole
+        value = value[:240] + "..."
     return value
 
 

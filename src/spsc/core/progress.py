@@ -44,8 +44,8 @@ def _clock(seconds: float) -> str:
 
 class PlainProgress:
     """tqdm's bar API as a plain line now and then: ``n``, ``total`` (settable), ``update``,
-    ``set_postfix_str``, ``set_description``, ``write``, ``refresh``, ``close``, a context
-    manager."""
+    ``set_postfix``, ``set_postfix_str``, ``set_description``, ``write``, ``refresh``,
+    ``close``, a context manager."""
 
     def __init__(self, desc: str, total, unit: str, file, initial: float = 0,
                  every_s: float = 10.0):
@@ -76,6 +76,11 @@ class PlainProgress:
 
     def set_postfix_str(self, s: str = "", refresh: bool = True) -> None:
         self.postfix = str(s)
+
+    def set_postfix(self, ordered_dict=None, refresh: bool = True, **kwargs) -> None:
+        """tqdm's ``k=v, ...`` postfix."""
+        items = {**(ordered_dict or {}), **kwargs}
+        self.postfix = ", ".join(f"{k}={v}" for k, v in items.items())
 
     def write(self, s: str, file=None) -> None:
         """A line of its own (tqdm's ``write``: a message between the bar's lines)."""

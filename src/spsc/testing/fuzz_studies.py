@@ -33,7 +33,8 @@ def sweep_cases(f, b, tmp) -> list[Case]:
                               "range" if v in bad else "number list"))
     for opt, values in (("samples", ("0", "-1", "2.5", "abc", "")), ("seed", ("-1", "abc", "2.5")),
                         ("points", ("0", "1", "-3", "2.5", "1e9", "abc", "")),
-                        ("stroke", ("abc", "", "nan", "inf", "-inf", "-1", "0")),
+                        # 13 and beyond: no chamber of the space (h = 13 mm) takes it
+                        ("stroke", ("abc", "", "nan", "inf", "-inf", "-1", "0", "13", "1e9")),
                         ("workers", ("0", "-1", "2.5", "two", "10000", "")),
                         ("process", ("cnc", "")), ("footprint", ("huge",)),
                         ("type", ("E", "", "A:B", "A,,B", "A:B:3")),
