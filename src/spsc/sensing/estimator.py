@@ -153,8 +153,17 @@ class Estimator:
         self.table, self.pooled = (pooled, None) if self.open else \
             (self.dense.table(self.c_ch), pooled)
         c = c_pool if self.open else self.c_ch
-        self.w = w if w is not None else c if self.c is None else self.w * c / self.c
-        self.c, self.s = c, None
+        if w is not None:  # a switch: the invariant is taken again at the next sample
+            self.w, self.s = w, None
+        elif self.c is None:  # at rest at the setup pressure, at the ambient temperature
+            self.w = c
+            self.s = None if self.isothermal else invariant(
+                c, self.params.setup_kPa + PA_KPA, self.gas.n)
+        else:  # re-based: the same temperature, W and its invariant scaled with the content
+            if self.s is not None:
+                self.s += self.gas.n * math.log(c / self.c)
+            self.w *= c / self.c
+        self.c = c
 
     @property
     def isothermal(self) -> bool:
