@@ -192,8 +192,11 @@ def _noise(args, log=None) -> float:
     from spsc.sensing.log import noise_of
 
     if str(args.noise).strip().lower() != "auto":
-        return require("noise", number("noise", "kPa")(str(args.noise)), gt=0, le=100,
-                       unit="kPa, or auto")
+        try:
+            value = float(str(args.noise).strip())
+        except ValueError:
+            raise ParameterError("noise", args.noise, "auto or a number (kPa)") from None
+        return require("noise", value, gt=0, le=100, unit="kPa, or auto")
     return noise_of(log.pressure_kPa) if log is not None else PRESETS["elvh"]["noise_kPa"]
 
 

@@ -221,6 +221,9 @@ def parse_indenter(value) -> Indenter:
         key, eq, val = item.partition("=")
         if not eq:
             raise ParameterError("indenter", value, _ALLOWED)
+        if key.strip().lower() in keys:  # sphere:R=10,R=20 was the last one silently
+            raise ParameterError("indenter", value, f"each key once ({key.strip()} is given "
+                                 "twice): " + _ALLOWED)
         keys[key.strip().lower()] = val.strip()
     wanted = {"plate": {"tilt", "axis"}, "sphere": {"r"}, "cylinder": {"r", "axis"},
               "wedge": {"angle", "axis", "r"}}[kind]

@@ -9,7 +9,8 @@ from .fuzz_base import Case, numbers
 __all__ = ["contact_cases"]
 
 #: indenter spellings that are not one (:mod:`spsc.core.indenter`)
-BAD_INDENTERS = ("ball:R=3", "sphere", "sphere:R=0", "sphere:R=-2", "sphere:R=inf",
+BAD_INDENTERS = ("ball:R=3", "sphere", "sphere:R=10,R=20", "sphere:R=0", "sphere:R=-2",
+                 "sphere:R=inf",
                  "cylinder:R=5,axis=z", "wedge:angle=0", "wedge:angle=60,r=-1",
                  "sphere:R=3,axis=x", "plate:R=2", "sphere:R=", "", "plate:tilt=45",
                  "plate:tilt=x")

@@ -91,7 +91,7 @@ def sense_cases(f: dict, tmp: Path) -> list[Case]:
               Case(base + ("--design", str(logs["good"])), "--design with --type", "type",
                    "combination")]
     for opt, bad in (("model-error", ("-0.1", "1")), ("smoothing", ("-1", "11")),
-                     ("noise", ("0", "-1")), ("stiff-mm-per-deg", ("0", "-1")),
+                     ("noise", ("0", "-1", "abc", "")), ("stiff-mm-per-deg", ("0", "-1")),
                      ("gas", ("0.9", "1.7", "abc", "1.4,-1", "1.4,0.5,1", "nan", "1.4,nan",
                               ""))):
         cases += [Case(base + (f"--{opt}", v), f"--{opt} {v}", opt, "range") for v in bad]
