@@ -189,7 +189,13 @@ def _events(doc: dict, duration: float) -> tuple[tuple, tuple]:
             after = require(f"events[{i}].after_s", e.get("after_s", 0.0), ge=0, le=duration,
                             unit="s, within the press")
             triggers.append(Trigger(level, when[0] == "pressure_above_kPa", opened, after))
-    return tuple(sorted(timed)), tuple(triggers)
+    seen = {}
+    for i, (t, _) in enumerate(timed):
+        if t in seen:  # sorted, the valve's close came before its open whatever the file said
+            raise ParameterError(f"events[{i}].t", t, f"an instant of its own (events[{seen[t]}] "
+                                 "is at the same time: the valve does one thing at a time)")
+        seen[t] = i
+    return tuple(sorted(timed, key=lambda e: e[0])), tuple(triggers)
 
 
 def _bode(doc: dict, profile: PressProfile, opened: bool) -> dict:

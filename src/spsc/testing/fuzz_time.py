@@ -70,6 +70,8 @@ _WRONG = (
     ("events", '[[events]]\nt = 0.5\npressure_above_kPa = 45\nvalve = "open"\n', "events[0]",
      "a time and a threshold"),
     ("events", '[[events]]\nvalve = "open"\n', "events[0]", "no time or threshold"),
+    ("events", '[[events]]\nt = 0.5\nvalve = "open"\n[[events]]\nt = 0.5\nvalve = "close"\n',
+     "events[1].t", "two events at the same instant"),
     ("events", '[[events]]\nt = 0.5\nafter_s = 0.2\nvalve = "open"\n', "events[0].after_s",
      "arming a timed event"),
     ("events", '[[events]]\npressure_below_kPa = "low"\nvalve = "open"\n',
