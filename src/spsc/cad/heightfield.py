@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.core.errors import ParameterError
-from spsc.core.indenter import Indenter
+from spsc.core.indenter import FileBody
 
 __all__ = ["HeightField", "height_field", "resolve"]
 
@@ -162,7 +162,7 @@ def _read(path: str, mtime: float) -> HeightField:
 def resolve(body):
     """The body a model presses with: a file's :class:`HeightField` (read once per file
     version), else ``body`` itself (an :class:`~spsc.core.indenter.Indenter` or None)."""
-    if isinstance(body, Indenter) and body.kind == "file":
+    if isinstance(body, FileBody):
         path = Path(body.path)
         field = _read(str(path.resolve()), path.stat().st_mtime)
         field = replace(field, path=body.path)

@@ -14,6 +14,12 @@ by it (the offset of a sphere is a sphere), so the node stays below
 S_gap, its gradient and its Hessian at the nodes' current lateral positions; the engine
 eliminates the node's height with them (:mod:`spsc.fem.engine.leaning`).
 
+Each body is a class (:class:`Plate`, :class:`Sphere`, :class:`Cylinder`, :class:`Wedge`,
+:class:`FileBody`) deriving from :class:`Indenter`: its ``kind`` (the name before the colon),
+its ``keys`` and how they build it (:meth:`Indenter.of`), its surface, its spelling
+(:attr:`Indenter.spec`) and its symmetries. :data:`INDENTERS` maps a kind to its class:
+adding a body is one class and one line there.
+
 Spelling: ``plate``; ``plate:tilt=5,axis=y`` (the plate turned 5° about y, still lowered
 along −z: a quarter model cannot carry it); ``FILE.stl|.3mf|.step`` (any rigid body, its lower
 surface read as a height field, :mod:`spsc.cad.heightfield`); ``sphere:R=10``; ``cylinder:R=10,axis=x`` (the cylinder's axis along x:
@@ -25,15 +31,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import ClassVar
 
 import numpy as np
 
 from .errors import ParameterError
 
-__all__ = ["Indenter", "parse_indenter", "check_indenter", "INDENTER_KINDS"]
-
-#: the bodies ``--indenter`` names
-INDENTER_KINDS = ("plate", "sphere", "cylinder", "wedge")
+__all__ = ["Indenter", "Plate", "Sphere", "Cylinder", "Wedge", "FileBody", "INDENTERS",
+           "INDENTER_KINDS", "parse_indenter", "check_indenter"]
 
 _ALLOWED = ("plate[:tilt=DEG,axis=x|y], sphere:R=MM, cylinder:R=MM,axis=x|y, "
             "wedge:angle=DEG,axis=x|y[,r=MM] (|tilt| < 45, 0 < R <= 1e7, 0 < angle < 180, "
@@ -52,21 +57,20 @@ WEDGE_EDGE_MM = 0.5
 
 @dataclass(frozen=True)
 class Indenter:
-    """A rigid body, its tip on the chamber's axis (or over ``at``). ``radius`` (mm): the
-    sphere's or the cylinder's, the wedge's edge rounding; ``axis``: the cylinder's axis or
-    the wedge's edge, or the tilted plate's turning axis (``"x"`` or ``"y"``); ``angle``
-    (degrees): the wedge's included angle, or the plate's tilt (0: level)."""
+    """A rigid body lowered along −z, its tip on the chamber's axis (or over ``at``, mm: x, y
+    of the press frame, where ``--plate-at`` puts it on a part). A subclass gives ``kind``,
+    ``keys`` (the spelling's keys, lower case), :meth:`of` (from those keys), :meth:`_surface`
+    and :attr:`spec`; the base answers for the level plate's symmetries."""
 
-    kind: str = "plate"
-    radius: float = math.inf
-    axis: str = "x"
-    angle: float = 0.0
-    #: the tip's lateral position (mm; x, y of the press frame): the chamber's axis, or where
-    #: ``--plate-at`` puts it on a part
     at: tuple = (0.0, 0.0)
-    #: a body from a file (kind ``"file"``: its lower surface is read by
-    #: :func:`spsc.cad.heightfield.resolve`)
-    path: str = ""
+    kind: ClassVar[str] = ""
+    keys: ClassVar[frozenset] = frozenset()
+
+    @classmethod
+    def of(cls, keys: dict, text: str) -> "Indenter":
+        """The body of the spelling's ``keys`` (text values); ParameterError naming
+        ``indenter`` and the whole ``text`` when they do not make one."""
+        raise NotImplementedError
 
     def placed(self, at) -> "Indenter":
         """This body with its tip over the lateral point ``at`` (x, y in mm)."""
@@ -76,34 +80,24 @@ class Indenter:
     def curved(self) -> bool:
         """Whether the body is not the level plate (a curved body or a tilted plate: its
         contact follows the surface, :mod:`spsc.fem.engine.leaning`)."""
-        return self.kind != "plate" or self.angle != 0.0
+        return True
 
     @property
     def axisymmetric(self) -> bool:
         """Whether the body is symmetric about the chamber's axis (the level plate, the
-        sphere)."""
-        return self.kind == "sphere" or not self.curved
+        sphere): an axisymmetric section (the wall model's dome) can carry it."""
+        return not self.curved
 
     @property
     def mirrored(self) -> bool:
         """Whether the body is symmetric about the planes x = 0 and y = 0 (a quarter model
-        can carry it): all but a tilted plate, with their tip on the axis."""
-        return (self.kind != "plate" or self.angle == 0.0) and self.at == (0.0, 0.0) \
-            and self.kind != "file"
+        can carry it), with its tip on the axis."""
+        return self.at == (0.0, 0.0)
 
     @property
     def spec(self) -> str:
         """The canonical spelling (as ``--indenter`` takes it)."""
-        if self.kind == "file":
-            return self.path
-        if self.kind == "plate":
-            return "plate" if self.angle == 0.0 else \
-                f"plate:tilt={_text(self.angle)},axis={self.axis}"
-        if self.kind == "sphere":
-            return f"sphere:R={_text(self.radius)}"
-        if self.kind == "cylinder":
-            return f"cylinder:R={_text(self.radius)},axis={self.axis}"
-        return f"wedge:angle={_text(self.angle)},axis={self.axis},r={_text(self.radius)}"
+        raise NotImplementedError
 
     def surface(self, lateral, gap=0.0):
         """(S, ∇S, ∇²S) of the body offset by ``gap`` (mm, per node) at the lateral positions
@@ -118,26 +112,181 @@ class Indenter:
                 raise ParameterError("indenter", self.spec, "on the axis of an axisymmetric "
                                      "section")
             lateral = lateral - np.asarray(self.at, float)[:, None]
-        gap = np.broadcast_to(np.asarray(gap, float), (n,))
-        if not self.curved:
-            return np.zeros(n), np.zeros((k, n)), np.zeros((k, k, n))
-        if self.kind == "file":
-            raise ValueError(f"the body {self.path} is read first (spsc.cad.heightfield.resolve)")
-        if self.kind == "sphere":
-            return _round(lateral, self.radius + gap)
-        if k != 2:
+        if k != 2 and not self.axisymmetric:
             raise ParameterError("indenter", self.spec, "plate or sphere:R=MM on an "
                                  "axisymmetric section")
-        if self.kind == "plate":
-            return _tilted(lateral, math.radians(self.angle), self.axis, gap)
-        across = 1 if self.axis == "x" else 0  # the coordinate across the axis
-        d = lateral[across:across + 1]
-        S, dS, d2S = _round(d, self.radius + gap) if self.kind == "cylinder" \
-            else _wedge(d[0], self.radius + gap, math.radians(self.angle) / 2)
-        grad, hess = np.zeros((2, n)), np.zeros((2, 2, n))
-        grad[across] = dS.reshape(n)
-        hess[across, across] = d2S.reshape(n)
-        return S, grad, hess
+        return self._surface(lateral, np.broadcast_to(np.asarray(gap, float), (n,)))
+
+    def _surface(self, lateral, gap):
+        raise NotImplementedError
+
+
+@dataclass(frozen=True)
+class Plate(Indenter):
+    """The flat plate of the paper's models; ``angle`` (degrees) turns it about the x or y
+    ``axis`` (still lowered along −z: a quarter model cannot carry a tilt)."""
+
+    angle: float = 0.0
+    axis: str = "x"
+    kind: ClassVar[str] = "plate"
+    keys: ClassVar[frozenset] = frozenset({"tilt", "axis"})
+
+    @classmethod
+    def of(cls, keys, text):
+        tilt = _number("tilt", keys.get("tilt", 0.0), text)
+        if not -45.0 < tilt < 45.0:
+            raise ParameterError("indenter", text, _ALLOWED)
+        return cls(angle=tilt, axis=_axis(keys, text)) if tilt else cls()
+
+    @property
+    def curved(self) -> bool:
+        return self.angle != 0.0
+
+    @property
+    def mirrored(self) -> bool:
+        return self.angle == 0.0 and self.at == (0.0, 0.0)
+
+    @property
+    def spec(self) -> str:
+        return "plate" if self.angle == 0.0 else \
+            f"plate:tilt={_text(self.angle)},axis={self.axis}"
+
+    def _surface(self, lateral, gap):
+        k, n = lateral.shape
+        if not self.curved:
+            return np.zeros(n), np.zeros((k, n)), np.zeros((k, k, n))
+        return _tilted(lateral, math.radians(self.angle), self.axis, gap)
+
+
+@dataclass(frozen=True)
+class Sphere(Indenter):
+    """A sphere of ``radius`` (mm) on the chamber's axis."""
+
+    radius: float = 10.0
+    kind: ClassVar[str] = "sphere"
+    keys: ClassVar[frozenset] = frozenset({"r"})
+
+    @classmethod
+    def of(cls, keys, text):
+        return cls(radius=_radius(keys, text))
+
+    @property
+    def axisymmetric(self) -> bool:
+        return True
+
+    @property
+    def spec(self) -> str:
+        return f"sphere:R={_text(self.radius)}"
+
+    def _surface(self, lateral, gap):
+        return _round(lateral, self.radius + gap)
+
+
+@dataclass(frozen=True)
+class Cylinder(Indenter):
+    """A cylinder of ``radius`` (mm) whose axis runs along x or y (``axis``): it presses a
+    line across the other."""
+
+    radius: float = 10.0
+    axis: str = "x"
+    kind: ClassVar[str] = "cylinder"
+    keys: ClassVar[frozenset] = frozenset({"r", "axis"})
+
+    @classmethod
+    def of(cls, keys, text):
+        return cls(radius=_radius(keys, text), axis=_axis(keys, text))
+
+    @property
+    def spec(self) -> str:
+        return f"cylinder:R={_text(self.radius)},axis={self.axis}"
+
+    def _surface(self, lateral, gap):
+        return _across(lateral, self.axis, lambda d: _round(d, self.radius + gap))
+
+
+@dataclass(frozen=True)
+class Wedge(Indenter):
+    """A wedge of included ``angle`` (degrees) whose edge runs along x or y (``axis``),
+    rounded with ``radius`` r (mm)."""
+
+    angle: float = 60.0
+    radius: float = WEDGE_EDGE_MM
+    axis: str = "x"
+    kind: ClassVar[str] = "wedge"
+    keys: ClassVar[frozenset] = frozenset({"angle", "axis", "r"})
+
+    @classmethod
+    def of(cls, keys, text):
+        if "angle" not in keys:
+            raise ParameterError("indenter", text, _ALLOWED)
+        angle = _number("angle", keys["angle"], text)
+        r = _number("r", keys.get("r", WEDGE_EDGE_MM), text)
+        if not 0 < angle < 180 or r < 0:
+            raise ParameterError("indenter", text, _ALLOWED)
+        return cls(angle=angle, radius=r, axis=_axis(keys, text))
+
+    @property
+    def spec(self) -> str:
+        return f"wedge:angle={_text(self.angle)},axis={self.axis},r={_text(self.radius)}"
+
+    def _surface(self, lateral, gap):
+        half = math.radians(self.angle) / 2
+        return _across(lateral, self.axis,
+                       lambda d: _wedge(d[0], self.radius + gap, half))
+
+
+@dataclass(frozen=True)
+class FileBody(Indenter):
+    """Any rigid body of a file (``path``: STL, 3MF, STEP), its lower surface read as a
+    height field by :func:`spsc.cad.heightfield.resolve` before a model uses it."""
+
+    path: str = ""
+    kind: ClassVar[str] = "file"
+
+    @property
+    def mirrored(self) -> bool:
+        return False
+
+    @property
+    def spec(self) -> str:
+        return self.path
+
+    def _surface(self, lateral, gap):
+        raise ValueError(f"the body {self.path} is read first (spsc.cad.heightfield.resolve)")
+
+
+#: the bodies ``--indenter`` names, by the name before the colon: one line adds a body
+INDENTERS: dict[str, type[Indenter]] = {c.kind: c for c in (Plate, Sphere, Cylinder, Wedge)}
+#: the names of :data:`INDENTERS` when this module was loaded
+INDENTER_KINDS = tuple(INDENTERS)
+
+
+def _axis(keys: dict, text: str) -> str:
+    axis = keys.get("axis", "x").lower()
+    if axis not in ("x", "y"):
+        raise ParameterError("indenter", text, _ALLOWED)
+    return axis
+
+
+def _radius(keys: dict, text: str) -> float:
+    if "r" not in keys:
+        raise ParameterError("indenter", text, _ALLOWED)
+    R = _number("r", keys["r"], text)
+    if not 0 < R <= MAX_RADIUS_MM:
+        raise ParameterError("indenter", text, _ALLOWED)
+    return R
+
+
+def _across(lateral, axis: str, profile):
+    """A body constant along the x or y ``axis``: its ``profile`` of the coordinate across
+    it, as (S, ∇S, ∇²S) in the plane (k = 2)."""
+    n = lateral.shape[1]
+    across = 1 if axis == "x" else 0  # the coordinate across the axis
+    S, dS, d2S = profile(lateral[across:across + 1])
+    grad, hess = np.zeros((2, n)), np.zeros((2, 2, n))
+    grad[across] = dS.reshape(n)
+    hess[across, across] = d2S.reshape(n)
+    return S, grad, hess
 
 
 def _text(v: float) -> str:
@@ -197,11 +346,11 @@ def _number(key, value, text) -> float:
 
 
 def parse_indenter(value) -> Indenter:
-    """The :class:`Indenter` of a spelling such as ``sphere:R=10`` (see the module);
-    ParameterError naming ``indenter`` otherwise. An :class:`Indenter` or None (the plate)
-    passes through."""
+    """The :class:`Indenter` of a spelling such as ``sphere:R=10`` (see the module; the kinds
+    of :data:`INDENTERS`); ParameterError naming ``indenter`` otherwise. An
+    :class:`Indenter` or None (the plate) passes through."""
     if value is None:
-        return Indenter()
+        return Plate()
     if isinstance(value, Indenter):
         return value
     text = str(value).strip()
@@ -211,10 +360,10 @@ def parse_indenter(value) -> Indenter:
         if not Path(text).is_file():
             raise ParameterError("indenter", value, "an existing .stl, .3mf or .step file, "
                                  "or " + _ALLOWED)
-        return Indenter("file", path=text)
+        return FileBody(path=text)
     kind, _, rest = text.partition(":")
-    kind = kind.strip().lower()
-    if kind not in INDENTER_KINDS:
+    cls = INDENTERS.get(kind.strip().lower())
+    if cls is None:
         raise ParameterError("indenter", value, _ALLOWED)
     keys = {}
     for item in filter(None, (s.strip() for s in rest.split(","))):
@@ -225,32 +374,9 @@ def parse_indenter(value) -> Indenter:
             raise ParameterError("indenter", value, f"each key once ({key.strip()} is given "
                                  "twice): " + _ALLOWED)
         keys[key.strip().lower()] = val.strip()
-    wanted = {"plate": {"tilt", "axis"}, "sphere": {"r"}, "cylinder": {"r", "axis"},
-              "wedge": {"angle", "axis", "r"}}[kind]
-    if set(keys) - wanted:
+    if set(keys) - cls.keys:
         raise ParameterError("indenter", value, _ALLOWED)
-    axis = keys.get("axis", "x").lower()
-    if axis not in ("x", "y"):
-        raise ParameterError("indenter", value, _ALLOWED)
-    if kind == "plate":
-        tilt = _number("tilt", keys.get("tilt", 0.0), value)
-        if not -45.0 < tilt < 45.0:
-            raise ParameterError("indenter", value, _ALLOWED)
-        return Indenter(axis=axis, angle=tilt) if tilt else Indenter()
-    if kind == "wedge":
-        if "angle" not in keys:
-            raise ParameterError("indenter", value, _ALLOWED)
-        angle = _number("angle", keys["angle"], value)
-        r = _number("r", keys.get("r", WEDGE_EDGE_MM), value)
-        if not 0 < angle < 180 or r < 0:
-            raise ParameterError("indenter", value, _ALLOWED)
-        return Indenter("wedge", r, axis, angle)
-    if "r" not in keys:
-        raise ParameterError("indenter", value, _ALLOWED)
-    R = _number("r", keys["r"], value)
-    if not 0 < R <= MAX_RADIUS_MM:
-        raise ParameterError("indenter", value, _ALLOWED)
-    return Indenter(kind, R, axis)
+    return cls.of(keys, value)
 
 
 def check_indenter(value) -> str:

@@ -27,13 +27,13 @@ from typing import Any
 
 from .contact import (check_body, check_combination, check_friction, check_object_stiffness,
                       coefficient)
-from .indenter import Indenter
+from .indenter import Indenter, Plate
 from .loadcase import LoadCase, check_load
 
 __all__ = ["Contact", "Setup", "SetupRecord", "PLATE"]
 
 #: the flat, level plate of the paper's models
-PLATE = Indenter()
+PLATE = Plate()
 
 
 @dataclass(frozen=True)
