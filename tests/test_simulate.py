@@ -11,6 +11,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -217,3 +218,19 @@ def test_a_press_beyond_the_chamber_is_refused_before_any_work(press, key):
     else:
         ok["profile"] = [[t, min(y, 12.9)] for t, y in ok["profile"]]
     parse_scenario({**doc, "press": ok})  # just below the height: accepted
+
+
+def test_a_bom_is_read_and_a_deep_toml_is_one_line(tmp_path, capsys):
+    """Issue 53: a scenario saved with a UTF-8 BOM was refused though valid; one nested 5,000
+    deep ended in a RecursionError."""
+    from spsc.dynamics.scenario import read_scenario
+
+    text = (Path(__file__).parents[1] / "examples" / "press-hold-switch.toml").read_text()
+    bom = tmp_path / "bom.toml"
+    bom.write_bytes(b"\xef\xbb\xbf" + text.encode("utf-8"))
+    assert read_scenario(bom).setup_kPa == 40.0
+    deep = tmp_path / "deep.toml"
+    deep.write_text("x = " + "[" * 5000 + "]" * 5000 + "\n")
+    assert main(["simulate", str(deep), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "nested too deep" in err

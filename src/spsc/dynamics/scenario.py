@@ -347,7 +347,7 @@ def read_scenario(path) -> Scenario:
     """The scenario in the TOML file ``path``."""
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        text = p.read_text(encoding="utf-8-sig")  # a BOM (Windows editors) is no error
     except OSError as exc:
         raise ParameterError("scenario", str(path), f"a readable TOML file ({exc.strerror})") \
             from None
@@ -358,4 +358,8 @@ def read_scenario(path) -> Scenario:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ParameterError("scenario", p.name, f"valid TOML ({exc})") from None
+    except RecursionError:
+        raise ParameterError("scenario", p.name, "a TOML document of tables and arrays "
+                             "nested a few levels deep (this one is nested too deep to read)") \
+            from None
     return parse_scenario(doc)
