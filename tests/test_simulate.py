@@ -234,3 +234,11 @@ def test_a_bom_is_read_and_a_deep_toml_is_one_line(tmp_path, capsys):
     assert main(["simulate", str(deep), "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "nested too deep" in err
+
+
+def test_bode_and_study_together_are_refused(tmp_path, capsys):
+    """Issue 53: ``--bode --study`` ran the Bode plot and dropped the study without a word."""
+    f = Path(__file__).parents[1] / "examples" / "press-hold-switch.toml"
+    assert main(["simulate", str(f), "--bode", "--study", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "--study" in err and not (tmp_path / "o").exists()

@@ -62,6 +62,9 @@ def run(args) -> int:
 
     from spsc.study.executor import check_cluster
 
+    if args.bode and args.study:  # the study runs its own Bode plot; one of them was dropped
+        raise ParameterError("--study", True, "without --bode (the study draws the Bode plot "
+                             "of its scenario itself)")
     out = check_output_dir("--out", args.out)
     where = dict(zip(("workers", "scheduler"), check_cluster(args.workers, args.scheduler)))
     scenario = read_scenario(args.scenario)
