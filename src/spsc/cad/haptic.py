@@ -103,7 +103,16 @@ def motor_top(bladder: BladderSpec, spec: "HapticSpec | None" = None) -> float:
                              f"a cavity at least {2 * radius:.3g} mm wide for the "
                              f"{spec.motor.name} ({spec.motor.diameter:g} mm and "
                              f"{spec.clearance:g} mm clearance): a larger w")
-    return float(z[ok[-1]])
+    top = float(z[ok[-1]])
+    # the motor hangs below its rim's contact with the dome, its film 45° under it: both must
+    # stay above the cavity's base plane (an h of 3 mm built a part the gate failed)
+    need = spec.motor.height + spec.film * math.sqrt(2.0)
+    if top < need:
+        raise ParameterError("haptic", f"h = {g.h:g} mm (the motor's rim meets the dome "
+                             f"{top:.3g} mm up)", f"a dome that meets the {spec.motor.name}'s "
+                             f"rim at least {need:.3g} mm above the base (its {spec.motor.height:g}"
+                             f" mm and the film under it): a larger h or a smaller w")
+    return top
 
 
 def _wire_exit(K, bladder: BladderSpec, spec: HapticSpec):

@@ -227,7 +227,9 @@ def _mold_fingertip_cases(f, b, tmp) -> list[Case]:
               Case(("mold", str(tmp / "none.stl"), "--no-render"), "a missing part", "part"),
               Case(("mold", str(f["part.stl"]), "--type", "B"), "a part and a type", "part"),
               Case(b["bladder"] + ("--haptic", "--w", "5", "--h", "5", "--t0", "0.5"),
-                   "a chamber too narrow for the motor", "haptic")]
+                   "a chamber too narrow for the motor", "haptic"),
+              Case(b["bladder"] + ("--haptic", "--type", "D", "--h", "3"),
+                   "a dome lower than the motor and its film", "haptic")]
     # fingertip
     cases += numbers(b["fingertip"], ("angle", "pocket-diameter", "pocket-depth"))
     cases += [Case(b["fingertip"] + ("--mesh-size", "1"), "--mesh-size without --fem",
