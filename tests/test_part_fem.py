@@ -63,6 +63,16 @@ def test_an_open_bore_needs_its_port_plugged():
     assert_allclose(s.cavity_volume, part_surface(*dome()).cavity_volume, rtol=1e-9)
 
 
+def test_a_file_of_two_bodies_is_refused():
+    """Issue 53: the part FEM of an STL holding two separate bodies ran (the gate's
+    one_part would have failed it)."""
+    v, f = dome()
+    two_v = np.vstack([v, v + [40.0, 0.0, 0.0]])
+    two_f = np.vstack([f, f + len(v)])
+    with pytest.raises(ParameterError, match=r"one solid body \(this file holds 2 separate"):
+        part_surface(two_v, two_f)
+
+
 def test_surface_defects_are_one_line_errors():
     v, f = dome()
     with pytest.raises(ParameterError, match=r"^part = .* closed, oriented 2-manifold .* open edges"):

@@ -85,7 +85,8 @@ def part_surface(vertices, faces, *, port: dict | None = None, source: str = "pa
                  name: str = "part") -> PartSurface:
     """Check a part's surface and find its cavity; ``port`` (a design file's ``port``) is
     plugged first. One-line ParameterError naming ``name`` if the surface is open,
-    non-manifold or self-intersecting, or has no enclosed cavity or more than one."""
+    non-manifold or self-intersecting, holds more than one body, or has no enclosed cavity
+    or more than one."""
     import manifold3d as mf
 
     from spsc.cad import meshtopo as mt
@@ -118,6 +119,10 @@ def part_surface(vertices, faces, *, port: dict | None = None, source: str = "pa
         capped = True
     parts = mt.shells(v, f)
     depth = mt.nesting_depth(v, f, parts)
+    solids = int(np.sum(np.asarray(depth) % 2 == 0))  # outer shells: the gate's one_part
+    if solids != 1:
+        raise ParameterError(name, source, f"one solid body (this file holds {solids} "
+                             "separate bodies: give each its own file)")
     cavities = [p for p, d in zip(parts, depth) if d % 2 == 1]
     if len(cavities) != 1:
         hint = (" (with the port plugged)" if capped else
