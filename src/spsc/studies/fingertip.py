@@ -115,13 +115,17 @@ def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | 
 
 
 def _single_case(study, geometry, mode, pressure, path: Path) -> Curve:
-    from spsc.fem.solid.chamber import chamber_run, run_chamber
+    """The single chamber's 3D FEM curve, through the model registry (its settings those of
+    ``spsc curve --model fem``)."""
+    from spsc.core.setup import Setup
     from spsc.materials import material
+    from spsc.models import MODELS
 
-    run = chamber_run(geometry, material(study.material), pressure_kPa=pressure,
+    fem = MODELS["fem"]
+    setup = Setup.of(geometry, material(study.material), pressure_kPa=pressure,
                      reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
-                     stroke_mm=study.stroke_mm, points=study.points, mesh_size_mm=1.0, layers=2)
-    curve, _, _ = run_chamber(run)
+                     stroke_mm=study.stroke_mm, points=study.points)
+    curve = fem.curve(setup, fem.Options(mesh_size=1.0, layers=2)).curve
     curve.to_json(path)
     return curve
 
@@ -174,7 +178,7 @@ def run_study(study: FingertipStudy, out, *, stl=None, design=None, spec=None,
         if study.single:
             spath = out / "curves" / f"single-{name}.json"
             single, keyed = _kept(spath, {**case, "chamber": chambers[site].as_dict()},
-                                  ("spsc.fem.solid.chamber",))
+                                  ("spsc.models.fem",))
             if single is None:
                 single = _single_case(study, chambers[site], mode, p, spath)
                 keyed.mark()
