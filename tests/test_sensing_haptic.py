@@ -101,3 +101,25 @@ def test_spsc_sense_haptic_calibrate_writes_the_threshold(tmp_path, capsys):
     assert main(["sense", "--haptic-calibrate", str(squeeze), "--out", str(out),
                  "--haptic-fraction", "1.5"]) == 2
     assert "haptic fraction" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("change, needle", [
+    ({"threshold_kPa": float("nan")}, "threshold_kPa"),
+    ({"threshold_kPa": "abc"}, "threshold_kPa"),
+    ({"max_kPa": 9.0}, "max_kPa"),
+    ({"threshold_kPa": 12.0}, "threshold_kPa"),
+])
+def test_an_edited_calibration_is_refused_naming_its_field(tmp_path, change, needle):
+    """Issue 53: a calibration with a NaN threshold, a maximum below the rest or a threshold
+    of "abc" was accepted (or failed later)."""
+    import json
+
+    from spsc.core.errors import ParameterError
+    from spsc.sensing.haptic import HapticCalibration
+
+    good = {"rest_kPa": 10.0, "max_kPa": 11.3, "fraction": 0.02, "threshold_kPa": 10.22,
+            "noise_kPa": 0.08, "hysteresis_kPa": 0.24, "joint_max_deg": 90.0}
+    f = tmp_path / "haptic.json"
+    f.write_text(json.dumps({"haptic_calibration": {**good, **change}}))
+    with pytest.raises(ParameterError, match=f"haptic calibration {needle}"):
+        HapticCalibration.from_json(f)

@@ -54,6 +54,26 @@ class HapticCalibration:
     hysteresis_kPa: float
     joint_max_deg: float = 90.0
 
+    def __post_init__(self):
+        """A calibration file edited by hand is checked as its fields are read: numbers,
+        finite, the squeeze's maximum above its rest and the threshold between them."""
+        for name in ("rest_kPa", "max_kPa", "threshold_kPa"):
+            require(f"haptic calibration {name}", getattr(self, name), ge=-100, le=1000,
+                    unit="kPa gauge")
+        require("haptic calibration fraction", self.fraction, gt=0, lt=1)
+        require("haptic calibration noise_kPa", self.noise_kPa, ge=0, le=100, unit="kPa")
+        require("haptic calibration hysteresis_kPa", self.hysteresis_kPa, ge=0, le=100,
+                unit="kPa")
+        require("haptic calibration joint_max_deg", self.joint_max_deg, gt=0, le=360,
+                unit="deg")
+        if not self.max_kPa > self.rest_kPa:
+            raise ParameterError("haptic calibration max_kPa", self.max_kPa,
+                                 f"above the rest {self.rest_kPa:g} kPa (a squeeze)")
+        if not self.rest_kPa < self.threshold_kPa < self.max_kPa:
+            raise ParameterError("haptic calibration threshold_kPa", self.threshold_kPa,
+                                 f"between the rest {self.rest_kPa:g} and the maximum "
+                                 f"{self.max_kPa:g} kPa")
+
     def to_json(self, path) -> None:
         Path(path).write_text(json.dumps({"haptic_calibration": asdict(self),
                                           "source": "spsc sense --haptic-calibrate (paper "
@@ -64,7 +84,14 @@ class HapticCalibration:
     def from_json(cls, path) -> "HapticCalibration":
         try:
             d = json.loads(Path(path).read_text(encoding="utf-8"))["haptic_calibration"]
+            if not isinstance(d, dict):
+                raise TypeError("not an object")
+            bad = next((k for k, v in d.items() if isinstance(v, (str, bool))), None)
+            if bad is not None:  # a number written as text (or true) names its field
+                raise ParameterError(f"haptic calibration {bad}", d[bad], "a number")
             return cls(**d)
+        except ParameterError:
+            raise
         except (OSError, ValueError, KeyError, TypeError) as exc:
             raise ParameterError("haptic calibration", str(path), "a file written by spsc "
                                  f"sense --haptic-calibrate ({type(exc).__name__})") from None
