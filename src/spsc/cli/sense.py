@@ -112,6 +112,8 @@ def _check_chamber(args):
     from spsc.materials import material
     from spsc.models.wall import wall_size_check
 
+    if args.cache is not None:  # where the map goes, checked before it is built (minutes)
+        check_output_dir("--cache", args.cache)
     geometry = _geometry(args)
     args.chamber = geometry.as_dict()  # recorded in events.json
     material(args.material)

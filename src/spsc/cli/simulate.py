@@ -66,6 +66,8 @@ def run(args) -> int:
         raise ParameterError("--study", True, "without --bode (the study draws the Bode plot "
                              "of its scenario itself)")
     out = check_output_dir("--out", args.out)
+    if args.cache is not None:  # where the map goes, checked before it is built (minutes)
+        check_output_dir("--cache", args.cache)
     where = dict(zip(("workers", "scheduler"), check_cluster(args.workers, args.scheduler)))
     scenario = read_scenario(args.scenario)
     scenario.chamber.geometry()  # the chamber checked before any work

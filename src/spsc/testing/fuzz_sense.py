@@ -97,4 +97,5 @@ def sense_cases(f: dict, tmp: Path) -> list[Case]:
         cases += [Case(base + (f"--{opt}", v), f"--{opt} {v}", opt, "range") for v in bad]
     cases += numbers(base, ("pressure", "reservoir", "stroke", "mesh-size"))
     cases += out_dirs(base[:2] + ("--type", "B", "--quiet"), "--out", f)
+    cases += out_dirs(base, "--cache", f)  # checked before the map is built (minutes)
     return cases

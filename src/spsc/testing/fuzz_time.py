@@ -143,4 +143,5 @@ def simulate_cases(f: dict, tmp: Path) -> list[Case]:
               Case(base + ("--workers", "2", "--scheduler", "tcp://127.0.0.1:1"),
                    "workers and a scheduler", "workers", "combination")]
     cases += out_dirs(base[:2] + ("--quiet",), "--out", f)
+    cases += out_dirs(base + ("--bode",), "--cache", f)  # checked before the map is built
     return cases
