@@ -209,6 +209,15 @@ def _estimate(run, surface) -> dict:
     return {"tetrahedra": int(tets), "nodes": int(nodes), "unknowns": int(3 * nodes + tets / 5)}
 
 
+def _read_body(indenter) -> None:
+    """A body from a file is read (its lower surface) before the part is meshed: a file that
+    is no body was refused only after meshing, leaving the mesh in the cache."""
+    from spsc.cad.heightfield import resolve
+    from spsc.core.indenter import parse_indenter
+
+    resolve(parse_indenter(indenter))
+
+
 def run_part_cli(args) -> int:
     from spsc.core.progress import progress_bar
 
@@ -223,6 +232,7 @@ def run_part_cli(args) -> int:
     run = part_run_from_args(args)
     surface = load_part(run.part, run.design)
     check_part_run(run, surface)
+    _read_body(run.indenter)
     counts = _estimate(run, surface)
     steps = run.points - 1 + (run.inflate_increments if run.pressure_kPa > 0 else 0)
     check_size(verb, counts, steps, limit=FEM_MAX_UNKNOWNS,

@@ -62,6 +62,9 @@ class FEMCurveModel(ModelBase):
 
         geometry, load, c = setup.body, setup.load, setup.contact
         check_body(c.indenter, c.friction, quarter=not options.full)
+        from spsc.cad.heightfield import resolve
+
+        resolve(c.indenter)  # a body's file read before the chamber is meshed
         from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 
         size, layers = check_mesh_size(geometry, options.mesh_size, options.layers)
