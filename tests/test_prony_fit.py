@@ -49,3 +49,26 @@ def test_noisy_data_give_the_curve_to_the_noise():
 def test_bad_relaxation_data_are_one_error(t, y, name):
     with pytest.raises(ParameterError, match=name):
         fit_relaxation(t, y)
+
+
+def test_a_test_from_t0_a_creep_test_and_a_logger_s_million_rows():
+    """Issue 53: a relaxation test starting at t = 0 (the step's instant) was refused though
+    valid; creep data (a rising value) was fitted as "beta 0" with an RMS of 19.5 %; a
+    million-row log made the least squares diverge and blamed the data."""
+    import numpy as np
+    import pytest
+    from numpy.testing import assert_allclose
+
+    from spsc.core.errors import ParameterError
+    from spsc.materials.prony import fit_relaxation
+
+    t = np.linspace(0.0, 100.0, 1001)
+    y = 1.0 + 0.6 * np.exp(-t / 1.0) + 0.3 * np.exp(-t / 10.0)
+    fit = fit_relaxation(t, y)
+    # the two terms on the grid's own times: exact to round-off
+    assert_allclose([b for b, _ in fit.prony.terms], [0.6, 0.3], rtol=1e-9)
+    with pytest.raises(ParameterError, match="falls with time"):
+        fit_relaxation(t, 2.0 - np.exp(-t))
+    big = np.linspace(1e-3, 100.0, 200_000)
+    fit = fit_relaxation(big, 1.0 + 0.6 * np.exp(-big) + 0.3 * np.exp(-big / 10.0))
+    assert fit.rms_relative < 1e-4 and abs(fit.relaxed - 1.0) < 1e-3

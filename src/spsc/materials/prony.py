@@ -68,21 +68,36 @@ class PronyFit:
     taus_tried: tuple
 
 
+#: the most points a relaxation test is fitted on (more: a log-spaced sample of them)
+_MAX_POINTS = 2000
+
+
 def fit_relaxation(t_s, value, *, per_decade: int = 2) -> PronyFit:
-    """Fit ``value``(t) = relaxed · g(t) to a relaxation test (``t_s`` in s, > 0, increasing;
-    ``value`` stress or modulus, any unit, positive)."""
+    """Fit ``value``(t) = relaxed · g(t) to a relaxation test (``t_s`` in s, ≥ 0,
+    increasing; ``value`` stress or modulus, any unit, positive, falling overall). A test of
+    more than 2,000 points is fitted on a log-spaced sample of them (a logger's million rows
+    made the least squares diverge)."""
     t = np.asarray(t_s, float)
     y = np.asarray(value, float)
     if t.ndim != 1 or t.size != y.size or t.size < 4:
         raise ParameterError("relaxation data", f"{t.size} points", "at least 4 (t, value) "
                              "pairs")
-    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(y))) or np.any(t <= 0) \
-            or np.any(np.diff(t) <= 0):
-        raise ParameterError("relaxation time", "not increasing or not > 0",
-                             "times > 0 s, increasing")
+    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(y))) or np.any(t < 0) \
+            or np.any(np.diff(t) <= 0) or t[-1] <= 0:
+        raise ParameterError("relaxation time", "not increasing or below 0",
+                             "times >= 0 s (0: the step's instant), increasing")
     if np.any(y <= 0):
         raise ParameterError("relaxation value", float(y.min()), "> 0 (stress or modulus)")
-    lo, hi = math.floor(math.log10(t[0])) - 1, math.ceil(math.log10(t[-1]))
+    if y[-1] > y[0]:
+        raise ParameterError("relaxation value", f"rising from {y[0]:.4g} to {y[-1]:.4g}",
+                             "a value that falls with time (a relaxation test at a held "
+                             "strain; this rises, as a creep test's strain does)")
+    if t.size > _MAX_POINTS:  # a logger's millions of rows: their log-spaced sample
+        keep = np.unique(np.searchsorted(t, np.geomspace(max(t[t > 0][0], 1e-12), t[-1],
+                                                         _MAX_POINTS)).clip(0, t.size - 1))
+        t, y = t[np.r_[0, keep]] if t[0] == 0 else t[keep], \
+            y[np.r_[0, keep]] if t[0] == 0 else y[keep]
+    lo, hi = math.floor(math.log10(t[t > 0][0])) - 1, math.ceil(math.log10(t[-1]))
     taus = 10.0 ** np.arange(lo, hi + 1e-9, 1.0 / per_decade)
     taus = taus[taus <= t[-1] * (1 + 1e-12)]  # longer ones would trade with the relaxed level
     # y = c0 + Σ c_i e^{−t/τ_i}, every c ≥ 0: c0 the relaxed level, β_i = c_i/c0
@@ -113,8 +128,11 @@ def _polish(t, y, c0, c, taus):
     n = len(c)
 
     def residual(z):
-        a, tau = np.exp(z[1:n + 1]), np.exp(z[n + 1:])
-        return np.exp(z[0]) + np.exp(-t[:, None] / tau) @ a - y
+        # a trial step may overflow: its residual is then infinite and the step refused
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            a, tau = np.exp(z[1:n + 1]), np.exp(z[n + 1:])
+            r = np.exp(z[0]) + np.exp(-t[:, None] / tau) @ a - y
+        return np.where(np.isfinite(r), r, 1e30)
 
     z0 = np.log(np.concatenate([[c0], np.maximum(c, 1e-300), taus]))
     sol = least_squares(residual, z0, method="trf", x_scale="jac", max_nfev=200 * (2 * n + 1))
