@@ -242,3 +242,14 @@ def test_bode_and_study_together_are_refused(tmp_path, capsys):
     assert main(["simulate", str(f), "--bode", "--study", "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "--study" in err and not (tmp_path / "o").exists()
+
+
+def test_events_that_are_not_tables_are_one_line():
+    """Issue 53: ``events = [1, 2]`` ended in an internal error (TypeError)."""
+    from spsc.core.errors import ParameterError
+    from spsc.dynamics.scenario import parse_scenario
+
+    doc = {"chamber": {"type": "B"}, "circuit": {"setup_kPa": 40},
+           "press": {"profile": [[0, 0], [1, 2]]}, "events": [1, 2]}
+    with pytest.raises(ParameterError, match=r"events\[0\] = 1 is invalid: allowed a table"):
+        parse_scenario(doc)

@@ -168,6 +168,9 @@ def _events(doc: dict, duration: float) -> tuple[tuple, tuple]:
         raise ParameterError("[[events]]", events, "an array of tables [[events]]")
     timed, triggers = [], []
     for i, e in enumerate(events):
+        if not isinstance(e, dict):
+            raise ParameterError(f"events[{i}]", e, "a table [[events]] with t (or a pressure "
+                                 "threshold) and valve")
         _unknown(f"events[{i}]", e, {"t", "valve", "pressure_above_kPa", "pressure_below_kPa",
                                      "after_s"})
         if e.get("valve") not in ("open", "close"):
