@@ -14,7 +14,7 @@ from spsc.core.loadcase import PRESSURE_MAX_KPA
 
 from spsc.cli.options import (Once, add_gas_options, add_geometry_options, add_output_options,
                       check_output_file, geometry_from_args, geometry_given, number,
-                      number_list)
+                      number_list, warn)
 
 
 def _floats(name: str, text: str, *, le: float | None = None, unit: str = "") -> list[float]:
@@ -68,6 +68,10 @@ def run(args) -> int:
     require("pressure", args.pressure, gt=0, le=PRESSURE_MAX_KPA, unit="kPa gauge")
     Setup(args.pressure, vb, args.reservoir, args.polytropic_n)  # the gas, validated
     bench = read_bench(args.bench)
+    if len(bench.y_mm) > 100_000:  # a logger's stream, not a bench table: say what it costs
+        warn("identify", f"the bench file holds {len(bench.y_mm):,} rows; the identification "
+             "uses every one (a bench table of a few hundred to a few thousand rows is usual: "
+             "decimate a logger's stream first)")
     ident = identify(bench, pressure_kPa=args.pressure, bladder_volume_mm3=vb,
                      reservoir_mm3=args.reservoir, polytropic_n=args.polytropic_n,
                      geometry=geometry, material=name)
