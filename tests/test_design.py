@@ -392,3 +392,18 @@ def test_verify_fem_on_a_coarse_mesh(tmp_path, capsys):
         assert abs(v["difference_pct"][k]) < 10.0, (k, v["difference_pct"][k])
     assert abs(v["difference_pct"]["cavity_mm3"]) < 0.01  # the same cavity, meshed by the FEM
     assert "3D FEM" in (out / "index.html").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("text", ['garbage{{{\n{"op_code": 99}\n', '{"op_code": 99}\n', "x\ny\n"])
+def test_a_journal_that_cannot_be_read_is_one_line_naming_it(tmp_path, text):
+    """Issue 53: a garbage or cut design journal on a re-run ended in an internal error."""
+    from spsc.design.journal import JOURNAL, check_resumable
+
+    (tmp_path / JOURNAL).write_text(text)
+
+    class Problem:
+        def to_dict(self):
+            return {}
+
+    with pytest.raises(ParameterError, match=f"{JOURNAL} is a study spsc design wrote"):
+        check_resumable(tmp_path, Problem())

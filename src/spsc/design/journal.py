@@ -56,6 +56,12 @@ def check_resumable(out: Path, problem: Problem) -> int:
         study = optuna.load_study(study_name=STUDY_NAME, storage=_storage(out))
     except KeyError:
         return 0
+    except (ValueError, TypeError, IndexError, AttributeError, AssertionError) as exc:
+        # a journal cut short or written over: optuna's reader fails on it (a JSON error,
+        # a missing field); say which file, not an internal error
+        raise ParameterError("out", str(out), f"a new folder, or one whose {JOURNAL} is a "
+                             f"study spsc design wrote (this one cannot be read: "
+                             f"{type(exc).__name__}); move it away to start again") from None
     stored = study.user_attrs.get("problem")
     if stored is not None and stored != _json_safe(problem.to_dict()):
         diff = [k for k in stored if stored.get(k) != _json_safe(problem.to_dict()).get(k)]
