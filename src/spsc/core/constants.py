@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["P_AMB", "KPA_PER_MPA", "to_MPa", "to_kPa"]
+__all__ = ["P_AMB", "P_AMB_KPA", "KPA_PER_MPA", "to_MPa", "to_kPa"]
 
 #: Ambient (atmospheric) pressure, MPa absolute: the reference of every gauge pressure.
 P_AMB = 0.101325
@@ -19,3 +19,7 @@ def to_MPa(kPa):
 def to_kPa(MPa):
     """A pressure from the solvers' MPa to the edges' kPa (a float or an array)."""
     return MPa * KPA_PER_MPA
+
+
+#: The ambient pressure in the edges' unit, kPa absolute.
+P_AMB_KPA = to_kPa(P_AMB)

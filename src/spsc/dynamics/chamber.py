@@ -17,11 +17,11 @@ stiffness k whose far end is at x the travel is the root of g(y) = F(y, P(y)) �
 
 from __future__ import annotations
 
-from spsc.core.constants import P_AMB
+from spsc.core.constants import P_AMB, P_AMB_KPA
 
 __all__ = ["Chamber", "FORCE_FLOOR_N"]
 
-_PA_KPA = P_AMB * 1e3  # ambient pressure (kPa)
+_PA_KPA = P_AMB_KPA  # ambient pressure (kPa)
 _PA = P_AMB * 1e6  # (Pa)
 _MM3 = 1e-9  # m³ per mm³
 _KPA = 1e3  # Pa per kPa

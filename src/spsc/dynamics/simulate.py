@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from spsc.core.constants import P_AMB
+from spsc.core.constants import P_AMB_KPA
 
 from .chamber_map import ChamberMap, build_map
 from .circuit import Circuit, CircuitFailure, integrate
@@ -26,7 +26,7 @@ __all__ = ["Simulation", "simulate", "chamber_map_for", "COLUMNS"]
 COLUMNS = ("t_s", "y_mm", "force_N", "pressure_kPa", "reservoir_kPa", "valve_open",
            "contact_mm2", "volume_mm3", "chamber_K", "reservoir_K", "chamber_mg",
            "reservoir_mg")
-_PA_KPA = P_AMB * 1e3  # kPa
+_PA_KPA = P_AMB_KPA  # kPa
 
 
 @dataclass

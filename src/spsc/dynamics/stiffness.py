@@ -33,7 +33,7 @@ import pandas as pd
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from spsc.core.constants import P_AMB
+from spsc.core.constants import P_AMB_KPA
 from spsc.core.errors import ParameterError, require
 
 from .chamber import Chamber
@@ -42,7 +42,7 @@ from .circuit import _MG, _rates, initial_state
 __all__ = ["StiffnessControl", "stiffness", "reservoir_for", "pooled_pressure", "set_point",
            "integrate_controlled", "step_metrics"]
 
-_PA_KPA = P_AMB * 1e3
+_PA_KPA = P_AMB_KPA
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from spsc.core.bench import OPTIONAL, REQUIRED, BenchData, read_bench
-from spsc.core.constants import KPA_PER_MPA
+from spsc.core.constants import to_MPa
 from spsc.core.curve import Curve
 from spsc.core.errors import ParameterError, require
 from .lumped import Setup, lumped_curve
@@ -39,7 +39,7 @@ def identify(bench: BenchData, *, pressure_kPa: float, bladder_volume_mm3: float
     f_el = np.zeros_like(p) if bench.elastic_force_N is None else bench.elastic_force_N
     area = 1e3 * (bench.force_N - f_el) / p  # N / kPa = 1e3 mm²
     # eq. 40: ΔV = ξ V_b,i (1 − (P_i/P)^(1/n)), the gas law solved for the volume
-    dv = setup.bladder_volume_mm3 - setup.gas().volume(p / KPA_PER_MPA)
+    dv = setup.bladder_volume_mm3 - setup.gas().volume(to_MPa(p))
     return Curve(bench.y_mm, bench.force_N, p, area, dv, model="identified",
                  geometry=geometry or {}, material=material, setup=setup.as_dict(),
                  nominal_volume_mm3=bladder_volume_mm3, inflated_volume_mm3=bladder_volume_mm3)

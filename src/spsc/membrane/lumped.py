@@ -14,7 +14,7 @@ import numpy as np
 from spsc.core.loadcase import PRESSURE_MAX_KPA
 from spsc.core.errors import ParameterError, require
 
-from spsc.core.constants import KPA_PER_MPA, P_AMB
+from spsc.core.constants import P_AMB, P_AMB_KPA, to_kPa, to_MPa
 from spsc.core.curve import Curve
 from spsc.core.gaslaw import GasLaw
 
@@ -80,7 +80,7 @@ class Setup:
 
     def gas(self) -> GasLaw:
         """The closed gas of this setup (eqs. 2, 6): p_i at V_b,i, reservoir V_r."""
-        return GasLaw(self.p_i_kPa / KPA_PER_MPA, self.bladder_volume_mm3, self.reservoir_mm3,
+        return GasLaw(to_MPa(self.p_i_kPa), self.bladder_volume_mm3, self.reservoir_mm3,
                       self.polytropic_n)
 
     def as_dict(self) -> dict:
@@ -100,7 +100,7 @@ def pressure_abs(volume_change_mm3, setup: Setup):
     if np.any(dv >= vi):
         raise ParameterError("volume_change", float(np.max(dv)), f"< ξV_b,i = {vi:.6g} mm³")
     gauge_mpa = setup.gas().pressure(setup.bladder_volume_mm3 - dv)
-    return (gauge_mpa + P_AMB) * KPA_PER_MPA
+    return to_kPa(gauge_mpa + P_AMB)
 
 
 def sensitivity_eq8(y_mm, area_mm2, volume_change_mm3, setup: Setup) -> np.ndarray:
@@ -118,7 +118,7 @@ def sensitivity_eq8(y_mm, area_mm2, volume_change_mm3, setup: Setup) -> np.ndarr
 def stiffness_eq9(y_mm, area_mm2, volume_change_mm3, setup: Setup, elastic_force_N=None):
     """dF/dy in N/mm, eq. 9: k_el + (P − P_amb) dA/dy + (dP/dy) A (kPa → MPa at this edge)."""
     y, a = np.asarray(y_mm, float), np.asarray(area_mm2, float)
-    p_gauge = pressure_abs(volume_change_mm3, setup) - P_AMB * KPA_PER_MPA
+    p_gauge = pressure_abs(volume_change_mm3, setup) - P_AMB_KPA
     k_el = 0.0 if elastic_force_N is None else _grad(np.asarray(elastic_force_N, float), y)
     dpdy = sensitivity_eq8(y, a, volume_change_mm3, setup)
     return k_el + 1e-3 * (p_gauge * _grad(a, y) + dpdy * a)
@@ -140,7 +140,7 @@ def lumped_curve(y_mm, area_mm2, volume_change_mm3, setup: Setup, *, elastic_for
         raise ParameterError("shapes of y, A, ΔV", (y.shape, a.shape, dv.shape), "equal")
     if np.any(a < 0):
         raise ParameterError("contact_area", float(a.min()), ">= 0 (mm²)")
-    p_gauge = pressure_abs(dv, setup) - P_AMB * KPA_PER_MPA
+    p_gauge = pressure_abs(dv, setup) - P_AMB_KPA
     f_el = np.zeros_like(y) if elastic_force_N is None else np.asarray(elastic_force_N, float)
     force = f_el + 1e-3 * p_gauge * a  # kPa · mm² = 1e-3 N
     return Curve(y, force, p_gauge, a, dv, model=model, geometry=geometry or {},

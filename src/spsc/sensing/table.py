@@ -17,13 +17,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from spsc.core.constants import P_AMB
+from spsc.core.constants import P_AMB_KPA
 from spsc.core.errors import ParameterError
 
 __all__ = ["DenseMap", "ForceTable", "PA_KPA"]
 
 #: the ambient pressure (kPa absolute) the gauge pressures are measured against
-PA_KPA = P_AMB * 1e3
+PA_KPA = P_AMB_KPA
 #: the force (N) below which the map's interpolation is taken for no contact
 RINGING_N = 5e-3
 

@@ -7,6 +7,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from spsc.core.constants import to_kPa
+
 __all__ = ["Record", "Result", "Stop", "NewtonFailure"]
 
 
@@ -60,7 +62,7 @@ class Stop:
         if self.kind == "press":
             return f"y = {self.step.travel_at(self.t):{digits}} mm"
         pressure = self.record.pressure if self.record is not None else self.load.pressure
-        return f"p = {pressure * 1e3:{digits}} kPa"
+        return f"p = {to_kPa(pressure):{digits}} kPa"
 
     @property
     def failure(self) -> str:

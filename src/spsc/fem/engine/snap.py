@@ -39,6 +39,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from spsc.core.constants import to_kPa
+
 from .linear import gas_vector
 from .linsolve import FULL_INPUT, factorize, solve_rank_one
 from .newton import _Newton, newton
@@ -77,8 +79,8 @@ class Jump:
 
     def as_dict(self) -> dict:
         d = dataclasses.asdict(self)
-        d["pressure_before_kPa"] = d.pop("pressure_before") * 1e3
-        d["pressure_after_kPa"] = d.pop("pressure_after") * 1e3
+        d["pressure_before_kPa"] = to_kPa(d.pop("pressure_before"))
+        d["pressure_after_kPa"] = to_kPa(d.pop("pressure_after"))
         d["volume_before_mm3"] = d.pop("volume_before")
         d["volume_after_mm3"] = d.pop("volume_after")
         return d
@@ -86,8 +88,8 @@ class Jump:
     def sentence(self) -> str:
         way = "falls" if self.force_after_N < self.force_before_N else "rises"
         gas = "" if self.pressure_before == self.pressure_after == 0.0 else (
-            f", the pressure from {self.pressure_before * 1e3:.4g} to "
-            f"{self.pressure_after * 1e3:.4g} kPa")
+            f", the pressure from {to_kPa(self.pressure_before):.4g} to "
+            f"{to_kPa(self.pressure_after):.4g} kPa")
         return (f"snap-through at y = {self.y_mm:.3g} mm: the plate force {way} from "
                 f"{self.force_before_N:.4g} N to {self.force_after_N:.4g} N{gas}, "
                 f"{self.energy_released_mJ:.3g} mJ released (followed to the stable branch)")

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from spsc.core.constants import KPA_PER_MPA
+from spsc.core.constants import to_kPa, to_MPa
 from spsc.core.errors import require
 
 from ..engine import CloseValve, Cycle, Inflate, solve
@@ -71,7 +71,7 @@ def _cycle(geometry, material, prony, stroke_mm, speed_mm_s, points, pressure_kP
     times = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(travels)))]) / speed_mm_s
     steps = []
     if pressure_kPa > 0:
-        steps = [Inflate(pressure_kPa / KPA_PER_MPA, model.settings.inflate_increments),
+        steps = [Inflate(to_MPa(pressure_kPa), model.settings.inflate_increments),
                  CloseValve(reservoir_mm3)]
     res = solve(model, steps + [Cycle(tuple(times), tuple(travels))], settings=s)
     pressed = [r for r in res.records if r.kind == "press"]
@@ -80,7 +80,7 @@ def _cycle(geometry, material, prony, stroke_mm, speed_mm_s, points, pressure_kP
     P = np.full(2 * n - 1, np.nan)
     F[0], P[0] = 0.0, pressure_kPa
     for k, r in enumerate(pressed, start=1):
-        F[k], P[k] = r.force, r.pressure * KPA_PER_MPA
+        F[k], P[k] = r.force, to_kPa(r.pressure)
     load, unload = F[:n], F[n - 1:][::-1]
     p_load, p_unload = P[:n], P[n - 1:][::-1]
     gap = load - unload
