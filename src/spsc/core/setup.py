@@ -137,6 +137,10 @@ class SetupRecord(Mapping):
     part: dict | None = None
     run: dict = field(default_factory=dict)
 
+    def __post_init__(self):
+        # the flat mapping it reads as, made once (readers index it per point and per run)
+        object.__setattr__(self, "_flat", self._flatten())
+
     @classmethod
     def of(cls, value) -> "SetupRecord":
         """The record of ``value``: a record, or a mapping of the JSON's flat keys."""
@@ -151,6 +155,9 @@ class SetupRecord(Mapping):
 
     def as_dict(self) -> dict:
         """The flat JSON object: the load case, the contact, the part, then ``run``'s keys."""
+        return dict(self._flat)
+
+    def _flatten(self) -> dict:
         out = {"p_i_kPa": self.p_i_kPa, "reservoir_mm3": self.reservoir_mm3,
                "polytropic_n": self.polytropic_n, "indenter": self.indenter,
                "friction": self.friction}
@@ -161,13 +168,13 @@ class SetupRecord(Mapping):
         return out | self.run
 
     def __getitem__(self, key):
-        return self.as_dict()[key]
+        return self._flat[key]
 
     def __iter__(self):
-        return iter(self.as_dict())
+        return iter(self._flat)
 
     def __len__(self) -> int:
-        return len(self.as_dict())
+        return len(self._flat)
 
     @property
     def default_contact(self) -> bool:

@@ -93,10 +93,10 @@ def fit_relaxation(t_s, value, *, per_decade: int = 2) -> PronyFit:
                              "a value that falls with time (a relaxation test at a held "
                              "strain; this rises, as a creep test's strain does)")
     if t.size > _MAX_POINTS:  # a logger's millions of rows: their log-spaced sample
-        keep = np.unique(np.searchsorted(t, np.geomspace(max(t[t > 0][0], 1e-12), t[-1],
-                                                         _MAX_POINTS)).clip(0, t.size - 1))
-        t, y = t[np.r_[0, keep]] if t[0] == 0 else t[keep], \
-            y[np.r_[0, keep]] if t[0] == 0 else y[keep]
+        keep = np.unique(np.searchsorted(t, np.geomspace(t[t > 0][0], t[-1], _MAX_POINTS))
+                         .clip(0, t.size - 1))
+        keep = np.r_[0, keep] if t[0] == 0 else keep  # the step's instant stays
+        t, y = t[keep], y[keep]
     lo, hi = math.floor(math.log10(t[t > 0][0])) - 1, math.ceil(math.log10(t[-1]))
     taus = 10.0 ** np.arange(lo, hi + 1e-9, 1.0 / per_decade)
     taus = taus[taus <= t[-1] * (1 + 1e-12)]  # longer ones would trade with the relaxed level

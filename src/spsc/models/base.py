@@ -19,6 +19,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields
 from typing import Any, Callable, ClassVar, Protocol, runtime_checkable
 
+from spsc.core.errors import ParameterError
+
 __all__ = ["CurveModel", "ModelBase", "Outcome", "Progress", "option", "cli_options",
            "options_from"]
 
@@ -129,8 +131,6 @@ class ModelBase:
         c = setup.contact
         if self.contact or c.default:
             return
-        from spsc.core.errors import ParameterError
-
         name, value = next((n, v) for n, v, d in (
             ("friction", c.friction, c.friction == "0"),
             ("object_stiffness", c.object_stiffness, c.object_stiffness is None),

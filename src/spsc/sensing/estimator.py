@@ -41,6 +41,7 @@ and a material's calibration adds its own),
 from __future__ import annotations
 
 import math
+from collections import deque
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -230,7 +231,8 @@ class Estimator:
             # travel's by no more than its own noise: no jump at the hand-over
             tol = max(self.sigma_kPa, 0.005 * abs(p_kPa - p_eq))
             self.settle = (t_s, y, p_eq, tol, self.noise_half)
-            self._since_open = [(t_s, p_kPa)]
+            # the samples since the opening, the last two windows of them (``_still``)
+            self._opened_at, self._since_open = (t_s, p_kPa), deque([(t_s, p_kPa)])
             self.v = 0.0  # the valve's step is not the press's rate
             return {"valve": "open", "held_depth_mm": y, "pooled_kPa": float(p_eq),
                     "rest_before_kPa": before, "rest_after_kPa": self.table.rest_kPa}
@@ -324,7 +326,10 @@ class Estimator:
             if p0 is not None:
                 self._heat(dt, raw0, p_kPa)
             t0, y, p_eq, tol, _ = self.settle
-            self._since_open.append((t_s, p_kPa))
+            h = self._since_open
+            h.append((t_s, p_kPa))
+            while h[0][0] <= t_s - 2.0 * self.params.settle_still_s:
+                h.popleft()
             still = self._still()
             if abs(self.iso(p) - p_eq) <= tol or t_s - t0 > self.params.settle_max_s or still:
                 self.settle = None
@@ -370,7 +375,8 @@ class Estimator:
         noise and 2 % of its fall since the opening."""
         w, h = self.params.settle_still_s, self._since_open
         t = h[-1][0]
-        if t - h[0][0] < 2.0 * w:
+        t0, p0 = self._opened_at
+        if t - t0 < 2.0 * w:
             return False
         last = [p for s, p in h if s > t - w]
         before = [p for s, p in h if t - 2.0 * w < s <= t - w]
@@ -378,7 +384,7 @@ class Estimator:
             return False
         a, b = sum(last) / len(last), sum(before) / len(before)
         need = max(3.0 * self.params.noise_kPa * math.sqrt(2.0 / len(last)),
-                   0.02 * abs(h[0][1] - a))
+                   0.02 * abs(p0 - a))
         return abs(a - b) < need
 
     def _read(self, p: float, w: float) -> tuple[float, float, bool]:
