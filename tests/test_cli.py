@@ -105,6 +105,7 @@ KEY_OPTIONS = {
     "fit-material": ["--test", "--law", "--ogden-terms", "--range", "--strain-unit",
                      "--stress-unit", "--json", "--png", "--out", "--list-catalogue"],
     "simulate": ["--out", "--csv", "--cache", "--quiet"],
+    "surrogate": [],
     "sense": ["--out", "--type", "--material", "--pressure", "--reservoir", "--noise",
               "--model-error", "--detector", "--follow", "--haptic-calibrate", "--haptic",
               "--cache", "--quiet"],

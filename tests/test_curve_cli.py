@@ -125,6 +125,7 @@ class ToyModel:
     meshed: bool = False
     fast: bool = True
     sweep: bool = True
+    study: bool = True
     color: str = "C4"
     style: str = ":"
     seconds_per_point: float = 1e-3

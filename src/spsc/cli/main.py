@@ -39,6 +39,7 @@ COMMANDS = {
     "simulate": "simulate",
     "sense": "sense",
     "bench-gap": "bench_gap",
+    "surrogate": "surrogate",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

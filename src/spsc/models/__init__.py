@@ -1,5 +1,5 @@
 """The curve models, one interface and one registry: every model of a chamber's static
-response — membrane, simplified, wall, fem — is a :class:`~.base.CurveModel` in
+response — membrane, simplified, wall, fem, surrogate — is a :class:`~.base.CurveModel` in
 :data:`MODELS`, and the command line, sweeps, inverse design, calibration, the report and the
 fused estimate reach models only through it.
 
@@ -12,6 +12,7 @@ from .base import CurveModel, ModelBase, Outcome, cli_options, option, options_f
 from .fem import FEMCurveModel
 from .membrane import MembraneModel
 from .simplified import SimplifiedModel
+from .surrogate.model import SurrogateCurveModel
 from .wall import WallCurveModel
 
 __all__ = ["MODELS", "CurveModel", "ModelBase", "Outcome", "cli_options", "get", "option", "options_from"]
@@ -22,6 +23,7 @@ MODELS: dict[str, CurveModel] = {m.name: m for m in (
     SimplifiedModel(),
     WallCurveModel(),
     FEMCurveModel(),
+    SurrogateCurveModel(),
 )}
 
 

@@ -57,6 +57,8 @@ class CurveModel(Protocol):
     fast : seconds per curve, fit for sweeps and the inverse design's search.
     sweep : the report runs it at every setup pressure on the fine grid (False: the FEM's
         comparison pressure on its own grid, plus the open chamber).
+    study : the report's validation study runs it (False: a model with its own section, e.g.
+        the surrogate, checked against the model it learnt).
     color, style : how the report draws its curves (matplotlib colour and format).
     seconds_per_point : a rough compute time per plate position (s) at a 1 mm mesh with two
         layers, to start the longest runs of a study first.
@@ -75,6 +77,7 @@ class CurveModel(Protocol):
     meshed: bool
     fast: bool
     sweep: bool
+    study: bool
     color: str
     style: str
     seconds_per_point: float
@@ -113,6 +116,7 @@ class ModelBase:
     meshed: bool = False
     fast: bool = True
     sweep: bool = True
+    study: bool = True
     zero_stroke: bool = False
     contact: bool = False
     color: str = "C4"

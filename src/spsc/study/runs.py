@@ -216,12 +216,12 @@ class Study:
     def models(self) -> tuple:
         """The models this study runs: every model of :data:`MODELS`, the FEM only with
         ``fem``."""
-        return tuple(m for m in MODELS.values() if m.sweep or self.fem)
+        return tuple(m for m in MODELS.values() if m.study and (m.sweep or self.fem))
 
     @property
     def sweep_models(self) -> tuple:
         """The models run at every setup pressure (membrane, simplified, …)."""
-        return tuple(m for m in MODELS.values() if m.sweep)
+        return tuple(m for m in MODELS.values() if m.study and m.sweep)
 
     def membrane(self, model: str, type_: str, material: str, pressure: float, mode: str) -> Run:
         """The run of a sweep ``model`` (membrane, simplified, wall …) at one setup pressure."""

@@ -238,3 +238,28 @@ def bench_gap_cases(f, b) -> list[Case]:
         Case(g + ("--workers", "0"), "no worker", "workers"),
         Case(g + ("--workers", "2", "--scheduler", "tcp://127.0.0.1:1"),
              "workers with a scheduler", "workers")]
+
+
+def surrogate_cases(f, tmp) -> list[Case]:
+    """spsc surrogate train and check, and spsc curve --model surrogate outside its domain."""
+    t = ("surrogate", "train", "--out", str(tmp / "sur"))
+    c = ("surrogate", "check")
+    curve = ("curve", "--model", "surrogate", "--type", "B", "--l", "0")
+    return out_dirs(("surrogate", "train"), "--out", f) + [
+        Case(t + ("--designs", "5"), "too few designs", "designs", "range"),
+        Case(t + ("--designs", "abc"), "designs as text", "designs", "number"),
+        Case(t + ("--calibration", "1"), "too few calibration cases", "calibration", "range"),
+        Case(t + ("--family", "stadium"), "a family not trained yet", "family", "choice"),
+        Case(t + ("--workers", "0"), "no worker", "workers", "range"),
+        Case(c + ("--samples", "0"), "no sample", "samples", "range"),
+        Case(c + (str(tmp / "missing.npz"),), "missing surrogate file", "surrogate",
+             "input file"),
+        Case(c + (str(f["file"]),), "a text file as the surrogate", "surrogate", "input file"),
+        Case(c + ("--out", str(f["file"])), "--out an existing file", "out", "output folder"),
+        Case(curve + ("--l", "3"), "a stadium outside the domain", "l", "range"),
+        Case(curve + ("--material", "elastic50a"), "a law outside the domain", "material",
+             "range"),
+        Case(curve + ("--h", "30"), "h/w outside the domain", "h", "range"),
+        Case(curve + ("--stroke", "7.5"), "a stroke beyond the map", "stroke", "range"),
+        Case(curve + ("--friction", "0.3"), "friction with the surrogate", "friction",
+             "combination")]

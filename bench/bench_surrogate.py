@@ -1,0 +1,98 @@
+"""The surrogate's speed and size (issue 48). Time it on a quiet machine.
+
+    python bench/bench_surrogate.py
+
+Prints: the shipped file's size and load time (a fresh process), one 25-point curve warm
+inside Python (with and without the error estimate), curve points per second batched on one
+core (designs × 25 points, mean only), and ``spsc curve --model surrogate`` as a whole process
+beside ``spsc curve --model membrane`` and ``--model wall`` on the same dome (Type B profile,
+l = 0), as medians of five runs.
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # one core, as the issue asks
+
+from spsc.models.surrogate.domain import BOUNDS  # noqa: E402
+from spsc.models.surrogate.predict import SHIPPED, load  # noqa: E402
+
+DOME = np.array([[11.0, 13.0, 0.0, 1.0, 2.0, 2.2, 0.0]])
+MU = 5.0 / 3.0
+
+
+def _median_s(fn, repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return statistics.median(times)
+
+
+def file_figures() -> None:
+    code = ("import time; t = time.perf_counter(); from spsc.models.surrogate.predict import "
+            "load; load(); print(time.perf_counter() - t)")
+    runs = [float(subprocess.run([sys.executable, "-c", code], capture_output=True,
+                                 text=True, check=True).stdout) for _ in range(5)]
+    print(f"file {SHIPPED.name}: {SHIPPED.stat().st_size / 1e6:.2f} MB; import + load in a "
+          f"fresh process: median {statistics.median(runs):.3f} s (min {min(runs):.3f})")
+
+
+def one_curve() -> None:
+    sur = load()
+    y = np.linspace(0, 6, 25)[None, :]
+    sur.curves(DOME, MU, y, 40.0, 0.0, 1.0)
+    mean = _median_s(lambda: sur.curves(DOME, MU, y, 40.0, 0.0, 1.0), 200)
+    err = _median_s(lambda: sur.curves(DOME, MU, y, 40.0, 0.0, 1.0, draws=32), 20)
+    print(f"one 25-point curve, warm: {1000 * mean:.2f} ms (mean); {1000 * err:.1f} ms with "
+          "the error estimate (32 posterior draws)")
+
+
+def batched(m: int = 20_000) -> None:
+    sur = load()
+    rng = np.random.default_rng(0)
+    lo = np.array([BOUNDS[k][0] for k in ("h/w", "t0/w", "n1", "n2", "cy")])
+    hi = np.array([BOUNDS[k][1] for k in ("h/w", "t0/w", "n1", "n2", "cy")])
+    r = lo + rng.random((m, 5)) * (hi - lo)
+    w = 11.0
+    params = np.column_stack([np.full(m, w), r[:, 0] * w, np.zeros(m), r[:, 1] * w,
+                              r[:, 2], r[:, 3], r[:, 4]])
+    y = np.linspace(0, 1, 25)[None, :] * (0.3 * params[:, 1:2])
+    p = rng.uniform(10, 50, m)
+    t = time.perf_counter()
+    out = sur.curves(params, MU, y, p, 40_000.0, 1.0)
+    dt = time.perf_counter() - t
+    print(f"batched: {m:,} designs x 25 points in {dt:.2f} s = {m * 25 / dt:,.0f} points/s "
+          f"on one core ({np.mean(out['converged']):.4f} of points converged)")
+
+
+def processes() -> None:
+    base = [sys.executable, "-m", "spsc.cli.main", "curve", "--type", "B", "--l", "0",
+            "--pressure", "40", "--quiet"]
+    out = {}
+    for model in ("surrogate", "membrane", "wall"):
+        times = []
+        for _ in range(5):
+            t = time.perf_counter()
+            subprocess.run(base + ["--model", model], capture_output=True, check=True)
+            times.append(time.perf_counter() - t)
+        out[model] = statistics.median(times)
+    print("spsc curve as a process (Type B profile as a dome, 40 kPa, closed; median of 5): "
+          + ", ".join(f"{k} {v:.2f} s" for k, v in out.items())
+          + f"; membrane / surrogate = {out['membrane'] / out['surrogate']:.2f}, "
+          f"wall / surrogate = {out['wall'] / out['surrogate']:.2f}")
+
+
+if __name__ == "__main__":
+    file_figures()
+    one_curve()
+    batched()
+    processes()

@@ -1,0 +1,107 @@
+"""From the learnt map to the curve: the gas law applied exactly (eqs. 2, 6–7).
+
+The map of a design holds, at each dimensionless pressure level q_j (P = q μ t0/w) with the
+pressure held, the outer top H(q) and free cavity volume V0(q) of the inflated chamber, and
+over the travels δ from that level's own first contact the volume given up ΔV(δ, q), the plate
+force F(δ, q) and the contact area A(δ, q). Between grid points it is a tensor-product cubic
+spline (:class:`.spline.SplineGrid`).
+
+A plate at travel y below the first contact at the setup pressure p_i meets the chamber at
+pressure P after δ(y, P) = y + H(P) − H(p_i) of that level's travel. With the valve closed the
+trapped gas fixes P (eq. 2): (P + P_atm) (V0(P) − ΔV(δ, P) + V_r)ⁿ = (p_i + P_atm)
+(V0(p_i) + V_r)ⁿ, solved for P at every y by a safeguarded Newton iteration (the left side
+grows with P: a higher pressure both compresses the gas less and inflates the wall). The
+vented chamber (p_i = 0) stays at P = 0. The force, area and volume change then follow from
+the map at (δ, P). Every array is (designs × travels): one call answers thousands of curves.
+
+Units: mm, N, kPa gauge, mm³.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from spsc.core.constants import P_AMB_KPA
+from .domain import Q_LEVELS, TRAVELS
+from .spline import SplineGrid
+
+__all__ = ["Maps", "solve_curves"]
+
+_Q = SplineGrid(Q_LEVELS)
+_D = SplineGrid(TRAVELS)
+
+
+class Maps:
+    """The maps of m designs in real units: ``H`` (m × levels) mm, ``V0`` mm³, ``dV``, ``F``,
+    ``A`` (m × travels × levels), the travels' scale ``h`` (m) mm (δ = TRAVELS · h) and the
+    pressure of q = 1 ``unit`` (m) kPa."""
+
+    def __init__(self, H, V0, dV, F, A, h, unit):
+        self.H, self.V0, self.dV, self.F, self.A = H, V0, dV, F, A
+        self.h, self.unit = np.asarray(h, float), np.asarray(unit, float)
+
+    def level(self, name, q):
+        """(value, d/dq) of a per-level field at the levels q (m × k)."""
+        W, D = _Q.weights(q)
+        f = getattr(self, name)
+        return np.einsum("mkj,mj->mk", W, f), np.einsum("mkj,mj->mk", D, f)
+
+    def grid(self, name, delta, q):
+        """(value, ∂/∂δ, ∂/∂q) of a map field at travels δ (mm) and levels q (m × k)."""
+        Wd, Dd = _D.weights(delta / self.h[:, None])
+        Wq, Dq = _Q.weights(q)
+        f = getattr(self, name)
+        fq = np.einsum("mtj,mkj->mkt", f, Wq)
+        fdq = np.einsum("mtj,mkj->mkt", f, Dq)
+        return (np.einsum("mkt,mkt->mk", Wd, fq),
+                np.einsum("mkt,mkt->mk", Dd, fq) / self.h[:, None],
+                np.einsum("mkt,mkt->mk", Wd, fdq))
+
+
+def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
+                 tol: float = 1e-10) -> dict:
+    """The curves of the m designs at travels ``y`` (m × k, mm from first contact at the setup
+    pressure), setup pressures ``p_i`` (m, kPa gauge; 0: vented), reservoirs (m, mm³) and
+    polytropic indices (m): ``pressure_kPa``, ``force_N``, ``contact_area_mm2``,
+    ``volume_change_mm3``, the map coordinates ``delta_mm`` and ``q`` each point used, and
+    ``converged`` (m × k), whether the gas law's residual fell below ``tol`` (relative)."""
+    y = np.atleast_2d(np.asarray(y, float))
+    m = y.shape[0]
+    p_i, Vr, n = (np.broadcast_to(np.asarray(v, float), (m,)) for v in (p_i, reservoir, n_poly))
+    qi = (p_i / maps.unit)[:, None] * np.ones_like(y)
+    H_i, _ = maps.level("H", qi[:, :1])
+    V0_i, _ = maps.level("V0", qi[:, :1])
+    C = (p_i[:, None] + P_AMB_KPA) * np.maximum(V0_i + Vr[:, None], 1e-9) ** n[:, None]
+    q = qi.copy()
+    lo, hi = qi.copy(), np.full_like(y, Q_LEVELS[-1] * 4.0)
+    vented = p_i <= 0
+    done = np.zeros(y.shape, bool)
+    done[vented] = True
+    for _ in range(iterations):
+        H, dH = maps.level("H", q)
+        V0, dV0 = maps.level("V0", q)
+        delta = y + H - H_i
+        dV, dV_dd, dV_dq = maps.grid("dV", delta, q)
+        P = q * maps.unit[:, None]
+        # a Newton step far out may read the map's cubic continued into negative volumes
+        gas = np.maximum(V0 - dV + Vr[:, None], 1e-9)
+        G = (P + P_AMB_KPA) * gas ** n[:, None] - C
+        dG = (maps.unit[:, None] * gas ** n[:, None] + (P + P_AMB_KPA) * n[:, None]
+              * gas ** (n[:, None] - 1) * (dV0 - dV_dd * dH - dV_dq))
+        done |= np.abs(G) <= tol * C
+        if done.all():
+            break
+        lo = np.where(G < 0, q, lo)
+        hi = np.where(G > 0, q, hi)
+        step = np.where(dG > 0, q - G / np.where(dG > 0, dG, 1.0), np.nan)
+        inside = (step > lo) & (step < hi)
+        q = np.where(done, q, np.where(inside, step, 0.5 * (lo + hi)))
+    H, _ = maps.level("H", q)
+    delta = y + H - H_i
+    dV, _, _ = maps.grid("dV", delta, q)
+    F, _, _ = maps.grid("F", delta, q)
+    A, _, _ = maps.grid("A", delta, q)
+    V0, _ = maps.level("V0", q)
+    return {"pressure_kPa": q * maps.unit[:, None], "force_N": F, "contact_area_mm2": A,
+            "volume_change_mm3": V0_i - V0 + dV, "delta_mm": delta, "q": q,
+            "converged": done}

@@ -1,0 +1,103 @@
+"""The surrogate's learnt maps in NumPy: Gaussian processes on principal components
+(fitted by :mod:`spsc.studies.surrogate.fit`), evaluated for many designs at once.
+
+A block (one field of the map) is ``mean + scale · (c @ modes)`` with its mode coefficients
+c(x) = k(x, X) α, the posterior mean of a Gaussian process with the Matérn 5/2 kernel
+k = a (1 + √5 r + 5r²/3) e^{−√5 r}, r the distance scaled per ratio by the lengths ℓ (Rasmussen
+& Williams 2006, eq. 4.17); the leading modes have kernels of their own, the rest share one.
+Its error scale is read from the neighbours: the root mean square of the leave-one-out
+residuals (R&W eq. 5.12) of the training designs nearest the query — the GP's own error where
+it had to predict a design it did not hold. (The posterior variance on a subset of the
+training designs, tried first, was the prior's almost everywhere in five inputs: its samples
+were maps with negative volumes.)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["matern52", "Block", "FieldModel", "NEIGHBOURS"]
+
+#: training designs whose leave-one-out residuals make a query's error scale
+NEIGHBOURS = 8
+
+
+def matern52(A: np.ndarray, B: np.ndarray, ell: np.ndarray) -> np.ndarray:
+    """The unit Matérn 5/2 kernel between the rows of A and B, lengths ``ell``."""
+    a, b = A / ell, B / ell
+    d2 = (a * a).sum(1)[:, None] + (b * b).sum(1)[None, :] - 2.0 * a @ b.T
+    r = np.sqrt(np.maximum(d2, 0.0)) * np.sqrt(5.0)
+    return (1.0 + r + r * r / 3.0) * np.exp(-r)
+
+
+class _Kernel:
+    """One GP of a block: the mode columns ``cols`` it predicts, its ``ell``, ``amp`` and
+    ``alpha`` (n × len(cols))."""
+
+    def __init__(self, arrays: dict, key: str):
+        g = lambda k: arrays[f"{key}.{k}"]  # noqa: E731
+        self.cols, self.ell, self.amp = g("cols"), g("ell"), float(g("amp"))
+        self.alpha = g("alpha")
+
+
+class Block:
+    """One field: ``mean``, ``scale`` (outputs), ``modes`` (k × outputs), each mode's
+    standard deviation ``s`` (k) and the GPs of its modes."""
+
+    def __init__(self, arrays: dict, name: str, X: np.ndarray):
+        g = lambda k: arrays[f"{name}.{k}"]  # noqa: E731
+        self.mean, self.scale, self.modes, self.s = g("mean"), g("scale"), g("modes"), g("s")
+        self.kernels = [_Kernel(arrays, f"{name}.{j}") for j in range(int(g("groups")))]
+        self.loo = g("loo").astype(float)
+        self.X = X
+
+    def coefficients(self, x: np.ndarray) -> np.ndarray:
+        """The modes' posterior mean at the unit inputs ``x`` (m × d): (m × k)."""
+        c = np.empty((x.shape[0], self.s.size))
+        for kn in self.kernels:
+            c[:, kn.cols] = (kn.amp * matern52(x, self.X, kn.ell)) @ kn.alpha
+        return c * self.s
+
+    def std(self, x: np.ndarray, near: int = NEIGHBOURS) -> np.ndarray:
+        """The modes' error scale (m × k): the root mean square of the leave-one-out
+        residuals of the ``near`` training designs nearest ``x`` (distances scaled by the
+        leading mode's lengths)."""
+        ell = self.kernels[0].ell
+        d2 = (((x[:, None, :] - self.X[None, :, :]) / ell) ** 2).sum(-1)
+        idx = np.argpartition(d2, near - 1, axis=1)[:, :near]
+        return np.sqrt((self.loo[idx] ** 2).mean(axis=1)) * self.s
+
+    def field(self, c: np.ndarray) -> np.ndarray:
+        """The field (… × outputs) of mode coefficients ``c`` (… × k)."""
+        return self.mean + self.scale * (c @ self.modes)
+
+
+class FieldModel:
+    """Every block of a fitted surrogate (:data:`spsc.studies.surrogate.fit.BLOCKS`)."""
+
+    BLOCKS = ("dV", "F", "A", "H", "V0")
+
+    def __init__(self, arrays: dict):
+        self.free = [str(v) for v in arrays["free"]]
+        self.X = arrays["X"]
+        self.jumps = arrays["jumps"]
+        self.blocks = {b: Block(arrays, b, self.X) for b in self.BLOCKS}
+
+    def fields(self, x: np.ndarray, draws: int = 0, rng=None) -> dict:
+        """{block: (m, outputs)} at the unit inputs ``x`` (m × d); with ``draws`` > 0 also
+        ``draws`` posterior samples of each, (draws, m, outputs)."""
+        out = {}
+        for name, blk in self.blocks.items():
+            c = blk.coefficients(x)
+            out[name] = blk.field(c)
+            if draws:
+                z = (rng or np.random.default_rng(0)).standard_normal((draws,) + c.shape)
+                out[name + ".draws"] = blk.field(c + z * blk.std(x))
+        return out
+
+    def snap_risk(self, x: np.ndarray, k: int = 5) -> np.ndarray:
+        """The fraction of the ``k`` nearest training designs that snapped through, per level
+        (m × levels)."""
+        d2 = ((x[:, None, :] - self.X[None, :, :]) ** 2).sum(-1)
+        near = np.argsort(d2, axis=1)[:, :k]
+        return self.jumps[near].mean(axis=1)

@@ -1,0 +1,164 @@
+"""The ``surrogate`` model: the wall model's answers in milliseconds, from maps learnt over
+the design space (:mod:`.predict`), with the gas law applied exactly and the error of every
+point stated, as a :class:`~spsc.models.base.CurveModel`."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from spsc.core.errors import ParameterError
+from ..base import ModelBase, Outcome, option
+from .domain import Q_LEVELS, TRAVELS, ratios_of
+
+__all__ = ["SurrogateCurveModel", "SurrogateOptions", "check_material"]
+
+#: posterior samples behind each answer's error estimate
+DRAWS = 32
+
+
+@dataclass(frozen=True)
+class SurrogateOptions:
+    """``surrogate``: a surrogate file of ``spsc surrogate train`` (None: the shipped one);
+    ``allow_extrapolation``: answer outside the trained domain, with a warning."""
+
+    surrogate: str | None = option(None, "--surrogate", "a surrogate file of spsc surrogate "
+                                   "train (default: the one shipped with spsc)",
+                                   metavar="FILE")
+    allow_extrapolation: bool = option(False, "--allow-extrapolation", "answer outside the "
+                                       "surrogate's trained domain, with a warning",
+                                       kind="flag")
+
+
+def check_material(material, allow: bool) -> list[str]:
+    """A neo-Hookean law (an exact stiffness scale of the trained one) passes; another law is
+    refused unless ``allow`` (then the warning: its initial shear modulus stands for it)."""
+    coefficients = [(i, j) for i, j, c in material.coefficients if c != 0]
+    if coefficients == [(1, 0)]:
+        return []
+    text = (f"a neo-Hookean law (an exact stiffness scale of the trained one); {material.name} "
+            f"is {material.law}")
+    if not allow:
+        raise ParameterError("material", material.name, text + " (--allow-extrapolation: "
+                             "answered with its initial shear modulus, or --model wall)")
+    return [f"material {material.name} ({material.law}) answered as neo-Hookean with its "
+            f"initial shear modulus {material.shear_modulus:.4g} MPa: outside the trained "
+            "domain"]
+
+
+def _refuse_or_note(notes: list, allow: bool, name: str, value, allowed: str) -> None:
+    if not allow:
+        raise ParameterError(name, value, allowed + " (the surrogate's trained domain; "
+                             "--allow-extrapolation or --model wall)")
+    notes.append(f"{name} = {value}: outside the trained domain ({allowed})")
+
+
+@dataclass(frozen=True)
+class SurrogateCurveModel(ModelBase):
+    """Learnt maps of the wall model with the gas law applied exactly: milliseconds per curve,
+    each point with its estimated error."""
+
+    name: str = "surrogate"
+    help: str = ("the wall model's surrogate: learnt maps, exact gas law, the error of each "
+                 "point stated (milliseconds)")
+    module: str = "spsc.models.surrogate.model"
+    Options = SurrogateOptions
+    stroke_mm: float = 6.0
+    points: int = 25
+    bending: bool = True
+    study: bool = False
+    color: str = "C5"
+    style: str = ":"
+    seconds_per_point: float = 1e-4
+
+    def domain_notes(self, setup, options) -> list[str]:
+        """What lies outside the trained domain (ParameterError on the first, unless
+        ``allow_extrapolation``: then the list of warnings)."""
+        from .predict import POLYTROPIC, RESERVOIR_MAX_MM3, load
+
+        allow = bool(options.allow_extrapolation)
+        sur = load(options.surrogate)
+        g, lc = setup.body, setup.load
+        notes = check_material(setup.material, allow)
+        why = sur.outside(ratios_of(g))[0]
+        if why:
+            name, text = why.split(": ", 1)
+            _refuse_or_note(notes, allow, name, getattr(g, name), text)
+        if lc.reservoir_mm3 > RESERVOIR_MAX_MM3:
+            _refuse_or_note(notes, allow, "reservoir", f"{lc.reservoir_mm3:g} mm³",
+                            f"0 to {RESERVOIR_MAX_MM3:g} mm³")
+        lo, hi = POLYTROPIC
+        if not lo <= lc.polytropic_n <= hi:
+            _refuse_or_note(notes, allow, "polytropic_n", lc.polytropic_n, f"{lo:g} to {hi:g}")
+        unit = 1000.0 * setup.material.shear_modulus * g.t0 / g.w
+        if lc.pressure_kPa > Q_LEVELS[-1] * unit:
+            _refuse_or_note(notes, allow, "pressure", f"{lc.pressure_kPa:g} kPa",
+                            f"at most {Q_LEVELS[-1] * unit:.3g} kPa for this wall and material "
+                            f"({Q_LEVELS[-1]:g} μ t0/w)")
+        if lc.stroke_mm > TRAVELS[-1] * g.h:
+            _refuse_or_note(notes, allow, "stroke", f"{lc.stroke_mm:g} mm",
+                            f"at most {TRAVELS[-1] * g.h:.3g} mm ({TRAVELS[-1]:g} h)")
+        return notes
+
+    def check(self, setup, options, *, verb: str, quiet: bool) -> None:
+        self.check_contact(setup)
+        self.domain_notes(setup, options)
+
+    def curve(self, setup, options, *, progress=None, cache_dir=None):
+        from .predict import load
+
+        t0 = time.perf_counter()
+        notes = self.domain_notes(setup, options)
+        sur = load(options.surrogate)
+        g, lc, mat = setup.body, setup.load, setup.material
+        y = np.linspace(0.0, lc.stroke_mm, lc.points)
+        params = np.array([[g.w, g.h, g.l, g.t0, g.n1, g.n2, g.cy]])
+        out = sur.curves(params, mat.shear_modulus, y[None, :], lc.pressure_kPa,
+                         lc.reservoir_mm3, lc.polytropic_n, draws=DRAWS,
+                         rng=np.random.default_rng(0))
+        return Outcome(_to_curve(setup, sur, out, y, notes, bool(options.allow_extrapolation),
+                                 time.perf_counter() - t0))
+
+
+def _to_curve(setup, sur, out, y, notes, allow, seconds):
+    from spsc.core.curve import Curve, SolveInfo
+
+    g, lc = setup.body, setup.load
+    inside = out["inside"][0]
+    solved = out["converged"][0]
+    beyond = ("beyond the surrogate's map (the travel from this pressure's first contact "
+              f"past {TRAVELS[-1]:g} h or the pressure past {Q_LEVELS[-1]:g} μ t0/w)")
+    msg = ["" if ok else (beyond + (": extrapolated" if allow else ""))
+           for ok in inside]
+    msg = [m if s else "the gas law did not converge on the map" for m, s in zip(msg, solved)]
+    conv = solved & (inside | allow)
+    if notes:
+        msg = [m or notes[0] for m in msg]
+    risk = sur.fields.snap_risk(sur.unit_inputs(ratios_of(g)[None, :]))[0]
+    details = {"surrogate": sur.meta.get("name", ""), "trained": sur.meta.get("trained", ""),
+               "training_designs": int(sur.fields.X.shape[0]),
+               "error_scale": sur.error_scale, "draws": DRAWS,
+               "force_err_N": out["force_err_N"][0].round(6).tolist(),
+               "pressure_err_kPa": out["pressure_err_kPa"][0].round(6).tolist(),
+               "snap_risk_per_level": risk.round(3).tolist(),
+               "inflated_height_note": "the outer top less t0 (the map holds the outer top)"}
+    i = np.flatnonzero(conv)
+    info = SolveInfo(converged=bool(conv.all()), message="converged" if conv.all() else
+                     next(m for m in msg if m), y_reached_mm=float(y[i[-1]]) if i.size
+                     else float("nan"), seconds=seconds, notes=tuple(notes), details=details)
+    H, V0 = (sur.maps(np.array([[g.w, g.h, g.l, g.t0, g.n1, g.n2, g.cy]]),
+                      setup.material.shear_modulus)[0].level(k, np.array(
+                          [[lc.pressure_kPa / (1000 * setup.material.shear_modulus
+                                               * g.t0 / g.w)]]))[0][0, 0] for k in ("H", "V0"))
+    nan = lambda a: np.where(conv, a, np.nan)  # noqa: E731
+    setup_rec = {"p_i_kPa": lc.pressure_kPa, "reservoir_mm3": lc.reservoir_mm3,
+                 "polytropic_n": lc.polytropic_n}
+    return Curve(y, nan(out["force_N"][0]), nan(out["pressure_kPa"][0]),
+                 nan(np.maximum(out["contact_area_mm2"][0], 0.0)),
+                 nan(out["volume_change_mm3"][0]), model="surrogate",
+                 geometry=g.as_dict(), material=setup.material.name, setup=setup_rec,
+                 nominal_volume_mm3=g.cavity_volume(), inflated_volume_mm3=float(V0),
+                 inflated_height_mm=float(H - g.t0), converged=conv, message=tuple(msg),
+                 solver=info)

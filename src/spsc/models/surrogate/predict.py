@@ -1,0 +1,138 @@
+"""The trained surrogate as a batched predictor: designs in, curves out, each with its domain
+checked and its error estimated.
+
+:meth:`Surrogate.curves` takes arrays — the seven parameters of m chambers, their materials'
+shear moduli, setup pressures, reservoirs, polytropic indices and travels — and answers with
+the exact gas law of :mod:`.assemble` on the learnt maps of :mod:`.gp`. Its domain
+(:mod:`.domain`) is checked per design: a ratio outside the trained hull, a travel beyond the
+map's deepest, a pressure beyond its highest level, a reservoir or an index outside the trained
+ranges. :func:`load` reads the shipped file once.
+
+Units: mm, MPa (shear modulus), kPa gauge, mm³, N.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+from pathlib import Path
+
+import numpy as np
+
+from spsc.core.errors import ParameterError
+from .assemble import Maps, solve_curves
+from .domain import BOUNDS, Q_LEVELS, RATIOS, TRAVELS
+from .gp import FieldModel
+from .inputs import unit_inputs
+
+__all__ = ["Surrogate", "load", "SHIPPED", "RESERVOIR_MAX_MM3", "POLYTROPIC"]
+
+#: The surrogate the package ships (trained by ``spsc surrogate train``).
+SHIPPED = Path(__file__).with_name("data") / "wall-dome.npz"
+#: The reservoir range (mm³) and polytropic indices the surrogate answers for.
+RESERVOIR_MAX_MM3 = 100_000.0
+POLYTROPIC = (1.0, 1.4)
+#: ratio name -> the parameter a user changes to move it
+_NAMED = {"h/w": "h", "l/w": "l", "t0/w": "t0", "n1": "n1", "n2": "n2", "cy": "cy"}
+
+
+class Surrogate:
+    """A fitted surrogate: its :class:`~.gp.FieldModel`, the ratios it varies (``free``; the
+    others fixed at ``fixed``), its metadata (training, calibration of the error)."""
+
+    def __init__(self, arrays: dict, meta: dict):
+        self.fields = FieldModel(arrays)
+        self.meta = meta
+        self.free = self.fields.free
+        self.fixed = {k: float(v) for k, v in meta.get("fixed", {}).items()}
+        #: the calibrated factors of the posterior spread (force and area; pressure and
+        #: volume), :mod:`spsc.studies.surrogate.build`
+        self.error_scale = dict(meta.get("error_scale", {"force": 1.0, "pressure": 1.0}))
+
+    # -- the domain --------------------------------------------------------------------------
+    def outside(self, ratios: np.ndarray) -> list[str]:
+        """Why each design (rows of the six ratios) is outside the trained hull ('' inside):
+        the first ratio out, named as the user's parameter."""
+        out = []
+        for r in np.atleast_2d(ratios):
+            why = ""
+            for k, name in enumerate(RATIOS):
+                v = r[k]
+                if name in self.fixed:
+                    if abs(v - self.fixed[name]) > 1e-9:
+                        why = (f"{_NAMED[name]}: {name} = {v:.4g}; the surrogate is trained on "
+                               f"{name} = {self.fixed[name]:g} only")
+                        break
+                    continue
+                lo, hi = BOUNDS[name]
+                if not lo - 1e-9 <= v <= hi + 1e-9:
+                    why = f"{_NAMED[name]}: {name} = {v:.4g}, trained on {lo:g}–{hi:g}"
+                    break
+            out.append(why)
+        return out
+
+    def unit_inputs(self, ratios) -> np.ndarray:
+        """The GP inputs of design ratios (:func:`.inputs.unit_inputs`)."""
+        return unit_inputs(ratios, self.free)
+
+    # -- the maps and the curves -------------------------------------------------------------
+    def maps(self, params: np.ndarray, mu_MPa, draws: int = 0, rng=None):
+        """The :class:`~.assemble.Maps` of designs ``params`` (m × 7: w, h, l, t0, n1, n2,
+        c_y) of shear modulus ``mu_MPa`` (m); with ``draws``, also a list of posterior
+        samples of them."""
+        p = np.atleast_2d(np.asarray(params, float))
+        w, h, t0 = p[:, 0], p[:, 1], p[:, 3]
+        ratios = np.column_stack([h / w, p[:, 2] / w, t0 / w, p[:, 4], p[:, 5], p[:, 6]])
+        f = self.fields.fields(self.unit_inputs(ratios), draws, rng)
+        mu = np.broadcast_to(np.asarray(mu_MPa, float), w.shape)
+        nt, nq = len(TRAVELS), len(Q_LEVELS)
+
+        def build(get):
+            grid = lambda b: get(b).reshape(-1, nq, nt).transpose(0, 2, 1)  # noqa: E731
+            return Maps(get("H") * w[:, None], get("V0") * w[:, None] ** 3,
+                        grid("dV") * (w**3)[:, None, None],
+                        grid("F") * (mu * t0 * w)[:, None, None],
+                        grid("A") * (w**2)[:, None, None], h, 1000.0 * mu * t0 / w)
+
+        maps = build(lambda b: f[b])
+        if not draws:
+            return maps, []
+        return maps, [build(lambda b, d=d: f[b + ".draws"][d]) for d in range(draws)]
+
+    def curves(self, params, mu_MPa, y, p_i, reservoir, n_poly, *, draws: int = 0,
+               rng=None) -> dict:
+        """The curves of m designs (see :func:`~.assemble.solve_curves`) with, per point,
+        ``inside`` (the map's travel and pressure ranges hold it) and, with ``draws``, the
+        estimated error (``force_err_N``, ``pressure_err_kPa``: the posterior spread of
+        ``draws`` sampled maps times the calibrated :attr:`error_scale`; the area's with the
+        force's scale, the volume's with the pressure's)."""
+        maps, samples = self.maps(params, mu_MPa, draws, rng)
+        out = solve_curves(maps, y, p_i, reservoir, n_poly)
+        h = maps.h[:, None]
+        out["inside"] = ((out["delta_mm"] <= TRAVELS[-1] * h * (1 + 1e-6))
+                         & (out["q"] <= Q_LEVELS[-1] * (1 + 1e-6)))
+        if samples:
+            runs = [solve_curves(s, y, p_i, reservoir, n_poly) for s in samples]
+            for key, name, scale in (
+                    ("force_N", "force_err_N", "force"),
+                    ("pressure_kPa", "pressure_err_kPa", "pressure"),
+                    ("contact_area_mm2", "area_err_mm2", "force"),
+                    ("volume_change_mm3", "volume_err_mm3", "pressure")):
+                spread = np.std([r[key] for r in runs], axis=0)
+                out[name] = self.error_scale[scale] * spread
+        return out
+
+
+@functools.lru_cache(maxsize=4)
+def load(path: str | None = None) -> Surrogate:
+    """The surrogate in ``path`` (None: the shipped one, :data:`SHIPPED`); a one-line
+    ParameterError if it is missing or not a surrogate file."""
+    path = Path(path) if path else SHIPPED
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            arrays = {k: z[k] for k in z.files}
+        meta = json.loads(str(arrays.pop("meta")))
+    except (OSError, KeyError, ValueError) as exc:
+        raise ParameterError("surrogate", str(path), f"a surrogate file of spsc surrogate "
+                             f"train ({type(exc).__name__}: {exc})") from None
+    return Surrogate(arrays, meta)

@@ -1,0 +1,52 @@
+"""The surrogate check's figure: the error's distribution, and where in the domain it grows."""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["check_figure"]
+
+_INPUTS = (("h", "w", "h/w"), ("t0", "w", "t0/w"), ("n1", None, "n1"), ("n2", None, "n2"),
+           ("cy", None, "c_y"), ("pressure_kPa", None, "p_i (kPa)"))
+
+
+def check_figure(result: dict, path) -> None:
+    """Histograms of the per-point errors (force, pressure rise) and each curve's largest
+    force error against each input, both modes; PNG at ``path``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rows, pts = result["rows"], result["points"]
+    fig, axes = plt.subplots(2, 4, figsize=(14, 6.5), constrained_layout=True)
+    ax = axes[0, 0]
+    bins = np.logspace(-5, 0, 41)
+    for key, label in (("force", "force"), ("pressure", "pressure rise")):
+        ax.hist(np.clip(pts[key], 1e-5, 1), bins=bins, histtype="step", label=label)
+    ax.set_xscale("log")
+    ax.set_xlabel("|error| / curve max (per point)")
+    ax.set_ylabel("points")
+    ax.legend(frameon=False)
+    ax.set_title("surrogate vs wall model")
+    for k, (a, b, label) in enumerate(_INPUTS):
+        ax = axes.flat[k + 1]
+        for mode, marker in (("high", "o"), ("low", "^")):
+            sel = [r for r in rows if r["mode"] == mode]
+            x = [r[a] / r[b] if b else r[a] for r in sel]
+            ax.scatter(x, [100 * r["force_err"] for r in sel], s=9, marker=marker,
+                       alpha=0.6, label=f"{mode} mode")
+        ax.set_yscale("log")
+        ax.set_xlabel(label)
+        ax.set_ylabel("largest force error (%)")
+    axes.flat[1].legend(frameon=False, fontsize=8)
+    ax = axes.flat[-1]
+    ax.hist([100 * r["stiffness_err"] for r in rows], bins=30, histtype="step",
+            label="mean stiffness")
+    ax.hist([100 * r["sensitivity_err"] for r in rows], bins=30, histtype="step",
+            label="mean sensitivity")
+    ax.set_xlabel("error per curve (%)")
+    ax.set_ylabel("curves")
+    ax.legend(frameon=False, fontsize=8)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -1,0 +1,116 @@
+"""The surrogate's fit: the wall maps of a training study (:mod:`.train`) turned into the
+arrays of a :class:`~spsc.models.surrogate.gp.FieldModel`.
+
+Each field of the map — the volume given up ΔV = V0(q) − V(δ, q), the plate force F(δ, q) and
+the contact area A(δ, q) on the travels × levels grid, and the inflated top H(q) and free volume
+V0(q) per level — is made dimensionless by the exact similarities of
+:mod:`spsc.models.surrogate.domain` (F / (μ t0 w), V / w³, A / w², H / w), standardised and
+compressed by a principal component analysis (the modes that hold all but 1e-6 of its
+variance). Each mode is then a Gaussian process of the design ratios (scikit-learn, a Matérn
+5/2 kernel with one length per ratio and a white-noise term for the mesh's own scatter between
+neighbouring designs): the leading ``own_kernels`` modes of a block each with hyperparameters
+of their own, the rest sharing those found on the first of them. Each mode's leave-one-out
+residuals at the training designs are kept: the model's error estimate reads its neighbours'.
+
+Designs the wall model could not mesh or press over the whole grid are left out and counted;
+designs that snap through stay in (their jump is the map's) and are kept as a flag the model
+reads back for its neighbours.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from spsc.models.surrogate.domain import MU_REF_MPA, W_REF_MM
+from spsc.models.surrogate.inputs import unit_inputs
+
+__all__ = ["fields_of", "fit_study", "BLOCKS"]
+
+#: the map's blocks, in the order a FieldModel stores them
+BLOCKS = ("dV", "F", "A", "H", "V0")
+
+
+def fields_of(run: dict) -> dict[str, np.ndarray] | None:
+    """The dimensionless blocks of one training run (each flattened, travels fastest), or
+    None if the run is incomplete."""
+    if "error" in run or not np.all(np.isfinite(run["force_N"])):
+        return None
+    r = run["ratios"]
+    w, t0 = W_REF_MM, r[2] * W_REF_MM
+    V0 = run["free_volume_mm3"]
+    return {"dV": ((V0[None, :] - run["volume_mm3"]) / w**3).ravel(order="F"),
+            "F": (run["force_N"] / (MU_REF_MPA * t0 * w)).ravel(order="F"),
+            "A": (run["area_mm2"] / w**2).ravel(order="F"),
+            "H": run["top_mm"] / w, "V0": V0 / w**3}
+
+
+def _pca(Y: np.ndarray, keep: float):
+    mean, scale = Y.mean(axis=0), Y.std(axis=0)
+    scale = np.where(scale > 1e-12 * max(scale.max(), 1e-300), scale, 1.0)
+    Z = (Y - mean) / scale
+    _, s, vt = np.linalg.svd(Z, full_matrices=False)
+    energy = np.cumsum(s**2) / np.sum(s**2)
+    k = int(np.searchsorted(energy, 1.0 - keep) + 1)
+    return mean, scale, vt[:k], Z @ vt[:k].T
+
+
+def _kernel_fit(X, y, seed, hyper_points: int):
+    """(length scales, signal variance, noise variance) of a Matérn 5/2 + white GP on the
+    leading mode, found by scikit-learn on at most ``hyper_points`` designs."""
+    import warnings
+
+    from sklearn.exceptions import ConvergenceWarning
+    from sklearn.gaussian_process import GaussianProcessRegressor
+    from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
+
+    rng = np.random.default_rng(seed)
+    pick = rng.permutation(len(X))[:hyper_points]
+    kernel = ConstantKernel(1.0, (1e-3, 1e3)) * Matern(
+        np.full(X.shape[1], 0.5), (1e-2, 1e2), nu=2.5) + WhiteKernel(1e-4, (1e-9, 1e-1))
+    s = y.std()
+    with warnings.catch_warnings():
+        # a bound reached (a length at its top: the mode ignores that input) is an answer
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        gp = GaussianProcessRegressor(kernel, normalize_y=False, n_restarts_optimizer=1,
+                                      random_state=seed).fit(X[pick], y[pick] / s)
+    k = gp.kernel_
+    return np.asarray(k.k1.k2.length_scale, float), float(k.k1.k1.constant_value), \
+        float(k.k2.noise_level)
+
+
+def fit_study(runs: list[dict], *, free: list[str], keep: float = 1e-6, seed: int = 0,
+              hyper_points: int = 400, own_kernels: int = 8) -> dict:
+    """The arrays of a FieldModel fitted to ``runs`` (:func:`.train.load_runs`)."""
+    from spsc.models.surrogate.gp import matern52
+
+    usable = [(r, f) for r in runs if (f := fields_of(r)) is not None]
+    X = unit_inputs(np.array([r["ratios"] for r, _ in usable]), free)
+    out = {"free": np.array(free), "X": X, "excluded": np.array(len(runs) - len(usable))}
+    jumps = np.zeros((len(usable), len(runs[0]["pressure_kPa"]) if runs else 0))
+    for i, (r, _) in enumerate(usable):
+        for level, _, _ in r.get("jumps", np.zeros((0, 3))):
+            jumps[i, int(level)] = 1.0
+    out["jumps"] = jumps
+    for b in BLOCKS:
+        Y = np.array([f[b] for _, f in usable])
+        mean, scale, modes, C = _pca(Y, keep)
+        s = C.std(axis=0)
+        out.update({f"{b}.mean": mean, f"{b}.scale": scale, f"{b}.modes": modes, f"{b}.s": s})
+        groups = [[k] for k in range(min(own_kernels, C.shape[1]))]
+        if C.shape[1] > own_kernels:
+            groups.append(list(range(own_kernels, C.shape[1])))
+        loo = np.empty_like(C)
+        for g, cols in enumerate(groups):
+            ell, amp, noise = _kernel_fit(X, C[:, cols[0]], seed, hyper_points)
+            K = amp * matern52(X, X, ell) + noise * np.eye(len(X))
+            L = np.linalg.cholesky(K)
+            alpha = np.linalg.solve(L.T, np.linalg.solve(L, C[:, cols] / s[cols]))
+            # leave-one-out residuals in closed form: α_i / (K⁻¹)_ii (R&W 2006, eq. 5.12)
+            Linv = np.linalg.solve(L, np.eye(len(X)))
+            loo[:, cols] = alpha / (Linv**2).sum(axis=0)[:, None]
+            out.update({f"{b}.{g}.cols": np.array(cols), f"{b}.{g}.ell": ell,
+                        f"{b}.{g}.amp": np.array(amp), f"{b}.{g}.noise": np.array(noise),
+                        f"{b}.{g}.alpha": alpha})
+        out[f"{b}.groups"] = np.array(len(groups))
+        out[f"{b}.loo"] = loo.astype(np.float32)
+    return out

@@ -1,0 +1,115 @@
+"""The surrogate's training study: designs sampled over the domain, the wall map of each
+(:func:`.sample.run_design`) on Dask workers, one file per design, resumable.
+
+A run folder holds ``study.json`` (the domain, the sampling, the code version) and
+``runs/NNNNN.npz``, one per design as it finishes: a re-run with the same folder computes only
+the designs it lacks, and refuses a folder of another sampling or code version (its maps would
+not be the same model's).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from spsc.core.errors import ParameterError
+from spsc.models.surrogate.domain import BOUNDS, RATIOS
+
+__all__ = ["FAMILIES", "design_points", "train_maps", "load_runs"]
+
+#: The design families a study samples: ``dome`` (l = 0, the axisymmetric wall, about 3 s a
+#: design) and ``stadium`` (l/w over its range, the swept wall, about a minute a design).
+FAMILIES = ("dome", "stadium")
+
+
+def design_points(count: int, seed: int, family: str) -> np.ndarray:
+    """``count`` designs (rows of the six ratios) of a scrambled Sobol sequence over
+    :data:`BOUNDS` (scipy.stats.qmc; l/w fixed at 0 for ``dome``)."""
+    from scipy.stats import qmc
+
+    if family not in FAMILIES:
+        raise ParameterError("family", family, "one of " + ", ".join(FAMILIES))
+    free = [r for r in RATIOS if not (family == "dome" and r == "l/w")]
+    unit = qmc.Sobol(len(free), scramble=True, seed=np.random.default_rng(seed)).random(count)
+    out = np.zeros((count, len(RATIOS)))
+    for k, name in enumerate(free):
+        lo, hi = BOUNDS[name]
+        out[:, RATIOS.index(name)] = lo + unit[:, k] * (hi - lo)
+    return np.round(out, 6)
+
+
+def _job(index: int, ratios) -> tuple[int, dict]:
+    from .sample import run_design
+
+    try:
+        return index, run_design(ratios)
+    except Exception as exc:  # a design the wall model cannot mesh or solve is a datum too
+        return index, {"ratios": np.asarray(ratios, float), "error": repr(exc)}
+
+
+def _meta(count, seed, family) -> dict:
+    import hashlib
+
+    from spsc.study.runs import source_closure
+
+    h = hashlib.sha256()
+    for path in source_closure("spsc.studies.surrogate.sample"):
+        h.update(path.name.encode() + path.read_bytes())
+    return {"count": int(count), "seed": int(seed), "family": family,
+            "ratios": list(RATIOS), "bounds": {k: list(v) for k, v in BOUNDS.items()},
+            "code": h.hexdigest()[:16]}
+
+
+def _open(out: Path, meta: dict) -> None:
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "runs").mkdir(exist_ok=True)
+    path = out / "study.json"
+    if path.exists():
+        old = json.loads(path.read_text())
+        for key in ("seed", "family", "bounds", "code"):
+            if old.get(key) != meta[key]:
+                raise ParameterError("out", str(out), f"a new folder or one of the same study "
+                                     f"(its {key} differs: {old.get(key)} against {meta[key]})")
+        meta = {**meta, "count": max(int(old["count"]), meta["count"])}
+    path.write_text(json.dumps(meta, indent=1))
+
+
+def train_maps(out, *, count: int, seed: int = 0, family: str = "dome", workers=None,
+               scheduler=None, progress=None) -> int:
+    """The wall maps of the first ``count`` designs of the study in ``out`` (computing those
+    it lacks); returns how many were computed now. ``progress(done, total)`` per design."""
+    out = Path(out)
+    points = design_points(count, seed, family)
+    _open(out, _meta(count, seed, family))
+    todo = [i for i in range(count) if not (out / "runs" / f"{i:05d}.npz").exists()]
+    if progress is not None:
+        progress(count - len(todo), count)
+    if not todo:
+        return 0
+    from distributed import as_completed
+
+    from spsc.study.executor import dask_client
+
+    with dask_client(workers, scheduler) as client:
+        futures = [client.submit(_job, i, points[i], pure=False) for i in todo]
+        for k, fut in enumerate(as_completed(futures), start=1):
+            i, d = fut.result()
+            tmp = out / "runs" / f"{i:05d}.tmp.npz"
+            np.savez_compressed(tmp, **d)
+            tmp.replace(out / "runs" / f"{i:05d}.npz")
+            if progress is not None:
+                progress(count - len(todo) + k, count)
+    return len(todo)
+
+
+def load_runs(out) -> list[dict]:
+    """Every design's arrays of the study in ``out``, in index order."""
+    runs = []
+    for path in sorted((Path(out) / "runs").glob("[0-9]*.npz")):
+        if ".tmp" in path.name:
+            continue
+        with np.load(path, allow_pickle=False) as z:
+            runs.append({k: z[k] for k in z.files})
+    return runs
