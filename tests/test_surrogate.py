@@ -40,7 +40,7 @@ def test_the_gas_law_holds_exactly_on_the_learnt_map(reservoir, n):
     out = sur.curves(DOME, MU, y, 40.0, reservoir, n)
     maps, _ = sur.maps(DOME, MU)
     q0 = np.array([[40.0 / maps.unit[0]]])
-    V0_i = maps.level("V0", q0)[0][0, 0]
+    V0_i = maps.at("V0", q0)[0, 0]
     volume = V0_i - out["volume_change_mm3"][0] + reservoir
     invariant = (out["pressure_kPa"][0] + P_AMB_KPA) * volume**n
     # eq. 2 closed chamber: (P + P_atm)(V + V_r)^n is the setup's at every travel (the

@@ -40,22 +40,19 @@ class Maps:
         self.H, self.V0, self.dV, self.F, self.A = H, V0, dV, F, A
         self.h, self.unit = np.asarray(h, float), np.asarray(unit, float)
 
-    def level(self, name, q):
-        """(value, d/dq) of a per-level field at the levels q (m × k)."""
-        W, D = _Q.weights(q)
-        f = getattr(self, name)
-        return np.einsum("mkj,mj->mk", W, f), np.einsum("mkj,mj->mk", D, f)
+    def at(self, name, q):
+        """A per-level field (``H`` or ``V0``) at the levels q (m × k)."""
+        return self.level(name, _Q.weights(np.asarray(q, float))[0])
 
-    def grid(self, name, delta, q):
-        """(value, ∂/∂δ, ∂/∂q) of a map field at travels δ (mm) and levels q (m × k)."""
-        Wd, Dd = _D.weights(delta / self.h[:, None])
-        Wq, Dq = _Q.weights(q)
-        f = getattr(self, name)
-        fq = np.einsum("mtj,mkj->mkt", f, Wq)
-        fdq = np.einsum("mtj,mkj->mkt", f, Dq)
-        return (np.einsum("mkt,mkt->mk", Wd, fq),
-                np.einsum("mkt,mkt->mk", Dd, fq) / self.h[:, None],
-                np.einsum("mkt,mkt->mk", Wd, fdq))
+    def level(self, name, Wq):
+        """A per-level field at the levels whose spline weights are ``Wq`` (m × k × levels)."""
+        return np.matmul(Wq, getattr(self, name)[:, :, None])[..., 0]
+
+    def grid(self, name, Wd, Wq):
+        """A map field at travels and levels of spline weights ``Wd`` (m × k × travels) and
+        ``Wq`` (m × k × levels)."""
+        fq = np.matmul(Wq, np.swapaxes(getattr(self, name), 1, 2))  # m × k × travels
+        return (Wd * fq).sum(-1)
 
 
 def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
@@ -68,26 +65,29 @@ def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
     y = np.atleast_2d(np.asarray(y, float))
     m = y.shape[0]
     p_i, Vr, n = (np.broadcast_to(np.asarray(v, float), (m,)) for v in (p_i, reservoir, n_poly))
+    unit, h = maps.unit[:, None], maps.h[:, None]
+    n2, Vr2 = n[:, None], Vr[:, None]
     qi = (p_i / maps.unit)[:, None] * np.ones_like(y)
-    H_i, _ = maps.level("H", qi[:, :1])
-    V0_i, _ = maps.level("V0", qi[:, :1])
-    C = (p_i[:, None] + P_AMB_KPA) * np.maximum(V0_i + Vr[:, None], 1e-9) ** n[:, None]
+    Wi, _ = _Q.weights(qi[:, :1])
+    H_i, V0_i = maps.level("H", Wi), maps.level("V0", Wi)
+    C = (p_i[:, None] + P_AMB_KPA) * np.maximum(V0_i + Vr2, 1e-9) ** n2
     q = qi.copy()
     lo, hi = qi.copy(), np.full_like(y, Q_LEVELS[-1] * 4.0)
-    vented = p_i <= 0
     done = np.zeros(y.shape, bool)
-    done[vented] = True
+    done[p_i <= 0] = True  # the vented chamber stays at P = 0
     for _ in range(iterations):
-        H, dH = maps.level("H", q)
-        V0, dV0 = maps.level("V0", q)
-        delta = y + H - H_i
-        dV, dV_dd, dV_dq = maps.grid("dV", delta, q)
-        P = q * maps.unit[:, None]
+        Wq, Dq = _Q.weights(q)
+        H, dH = maps.level("H", Wq), maps.level("H", Dq)
+        V0, dV0 = maps.level("V0", Wq), maps.level("V0", Dq)
+        Wd, Dd = _D.weights((y + H - H_i) / h)
+        dV = maps.grid("dV", Wd, Wq)
+        dV_dd = maps.grid("dV", Dd, Wq) / h
+        dV_dq = maps.grid("dV", Wd, Dq)
         # a Newton step far out may read the map's cubic continued into negative volumes
-        gas = np.maximum(V0 - dV + Vr[:, None], 1e-9)
-        G = (P + P_AMB_KPA) * gas ** n[:, None] - C
-        dG = (maps.unit[:, None] * gas ** n[:, None] + (P + P_AMB_KPA) * n[:, None]
-              * gas ** (n[:, None] - 1) * (dV0 - dV_dd * dH - dV_dq))
+        gas = np.maximum(V0 - dV + Vr2, 1e-9)
+        G = (q * unit + P_AMB_KPA) * gas**n2 - C
+        dG = unit * gas**n2 + (q * unit + P_AMB_KPA) * n2 * gas ** (n2 - 1) * (
+            dV0 - dV_dd * dH - dV_dq)
         done |= np.abs(G) <= tol * C
         if done.all():
             break
@@ -96,12 +96,11 @@ def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
         step = np.where(dG > 0, q - G / np.where(dG > 0, dG, 1.0), np.nan)
         inside = (step > lo) & (step < hi)
         q = np.where(done, q, np.where(inside, step, 0.5 * (lo + hi)))
-    H, _ = maps.level("H", q)
+    Wq, _ = _Q.weights(q)
+    H, V0 = maps.level("H", Wq), maps.level("V0", Wq)
     delta = y + H - H_i
-    dV, _, _ = maps.grid("dV", delta, q)
-    F, _, _ = maps.grid("F", delta, q)
-    A, _, _ = maps.grid("A", delta, q)
-    V0, _ = maps.level("V0", q)
-    return {"pressure_kPa": q * maps.unit[:, None], "force_N": F, "contact_area_mm2": A,
+    Wd, _ = _D.weights(delta / h)
+    dV, F, A = (maps.grid(k, Wd, Wq) for k in ("dV", "F", "A"))
+    return {"pressure_kPa": q * unit, "force_N": F, "contact_area_mm2": A,
             "volume_change_mm3": V0_i - V0 + dV, "delta_mm": delta, "q": q,
             "converged": done}

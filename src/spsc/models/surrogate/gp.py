@@ -20,6 +20,8 @@ __all__ = ["matern52", "Block", "FieldModel", "NEIGHBOURS"]
 
 #: training designs whose leave-one-out residuals make a query's error scale
 NEIGHBOURS = 8
+#: designs evaluated together (bounds the m × n × kernels temporaries to about 40 MB)
+CHUNK = 128
 
 
 def matern52(A: np.ndarray, B: np.ndarray, ell: np.ndarray) -> np.ndarray:
@@ -51,13 +53,6 @@ class Block:
         self.loo = g("loo").astype(float)
         self.X = X
 
-    def coefficients(self, x: np.ndarray) -> np.ndarray:
-        """The modes' posterior mean at the unit inputs ``x`` (m × d): (m × k)."""
-        c = np.empty((x.shape[0], self.s.size))
-        for kn in self.kernels:
-            c[:, kn.cols] = (kn.amp * matern52(x, self.X, kn.ell)) @ kn.alpha
-        return c * self.s
-
     def std(self, x: np.ndarray, near: int = NEIGHBOURS) -> np.ndarray:
         """The modes' error scale (m × k): the root mean square of the leave-one-out
         residuals of the ``near`` training designs nearest ``x`` (distances scaled by the
@@ -83,12 +78,33 @@ class FieldModel:
         self.jumps = arrays["jumps"]
         self.blocks = {b: Block(arrays, b, self.X) for b in self.BLOCKS}
 
+        kernels = [kn for b in self.blocks.values() for kn in b.kernels]
+        self._inv_ell2 = np.array([1.0 / kn.ell**2 for kn in kernels]).T  # d × K
+        self._amp = np.array([kn.amp for kn in kernels])
+
+    def coefficients(self, x: np.ndarray, chunk: int = CHUNK) -> dict:
+        """{block: mode coefficients (m × k)} at the unit inputs ``x`` (m × d): every kernel
+        of every block from one squared difference per chunk of ``chunk`` designs (the
+        kernels differ only in their lengths)."""
+        out = {name: np.empty((x.shape[0], b.s.size)) for name, b in self.blocks.items()}
+        for a in range(0, x.shape[0], chunk):
+            xs = x[a:a + chunk]
+            diff2 = (xs[:, None, :] - self.X[None, :, :]) ** 2  # m × n × d
+            r = np.sqrt(np.maximum(diff2 @ self._inv_ell2, 0.0) * 5.0)  # m × n × K
+            k = self._amp * (1.0 + r + r * r / 3.0) * np.exp(-r)
+            j = 0
+            for name, b in self.blocks.items():
+                for kn in b.kernels:
+                    out[name][a:a + chunk, kn.cols] = k[:, :, j] @ kn.alpha
+                    j += 1
+        return {name: c * self.blocks[name].s for name, c in out.items()}
+
     def fields(self, x: np.ndarray, draws: int = 0, rng=None) -> dict:
         """{block: (m, outputs)} at the unit inputs ``x`` (m × d); with ``draws`` > 0 also
         ``draws`` posterior samples of each, (draws, m, outputs)."""
         out = {}
-        for name, blk in self.blocks.items():
-            c = blk.coefficients(x)
+        for name, c in self.coefficients(x).items():
+            blk = self.blocks[name]
             out[name] = blk.field(c)
             if draws:
                 z = (rng or np.random.default_rng(0)).standard_normal((draws,) + c.shape)

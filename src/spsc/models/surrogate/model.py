@@ -148,10 +148,10 @@ def _to_curve(setup, sur, out, y, notes, allow, seconds):
     info = SolveInfo(converged=bool(conv.all()), message="converged" if conv.all() else
                      next(m for m in msg if m), y_reached_mm=float(y[i[-1]]) if i.size
                      else float("nan"), seconds=seconds, notes=tuple(notes), details=details)
-    H, V0 = (sur.maps(np.array([[g.w, g.h, g.l, g.t0, g.n1, g.n2, g.cy]]),
-                      setup.material.shear_modulus)[0].level(k, np.array(
-                          [[lc.pressure_kPa / (1000 * setup.material.shear_modulus
-                                               * g.t0 / g.w)]]))[0][0, 0] for k in ("H", "V0"))
+    maps, _ = sur.maps(np.array([[g.w, g.h, g.l, g.t0, g.n1, g.n2, g.cy]]),
+                       setup.material.shear_modulus)
+    q_i = np.array([[lc.pressure_kPa / maps.unit[0]]])
+    H, V0 = (float(maps.at(k, q_i)[0, 0]) for k in ("H", "V0"))
     nan = lambda a: np.where(conv, a, np.nan)  # noqa: E731
     setup_rec = {"p_i_kPa": lc.pressure_kPa, "reservoir_mm3": lc.reservoir_mm3,
                  "polytropic_n": lc.polytropic_n}
@@ -159,6 +159,6 @@ def _to_curve(setup, sur, out, y, notes, allow, seconds):
                  nan(np.maximum(out["contact_area_mm2"][0], 0.0)),
                  nan(out["volume_change_mm3"][0]), model="surrogate",
                  geometry=g.as_dict(), material=setup.material.name, setup=setup_rec,
-                 nominal_volume_mm3=g.cavity_volume(), inflated_volume_mm3=float(V0),
-                 inflated_height_mm=float(H - g.t0), converged=conv, message=tuple(msg),
+                 nominal_volume_mm3=g.cavity_volume(), inflated_volume_mm3=V0,
+                 inflated_height_mm=H - g.t0, converged=conv, message=tuple(msg),
                  solver=info)
