@@ -7,7 +7,7 @@ press and the valve events, read from TOML and checked, every malformed entry a 
     [chamber]                 # what spsc curve takes
     type = "B"                # or all of w, h, l, t0, n1, n2, cy; footprint = "table1" | "GS1"
     material = "tpu60a"       # catalogue name or a material file (.json)
-    model = "wall"            # the static model that maps the chamber
+    model = "wall"            # the static model that maps the chamber (or "surrogate")
     mesh_size = 0.5           # optional, mm; layers = 2
 
     [circuit]
@@ -71,7 +71,7 @@ _CIRCUIT = {"setup_kPa", "reservoir_mm3", "valve", "gas", "sensor"}
 _VALVE = {"C", "b", "m", "area_mm2", "state"}
 _GAS = {"n", "thermal_time_s", "ambient_K"}
 _SENSOR = {"preset", "rate_Hz", "noise_kPa", "resolution_kPa", "full_scale_kPa", "seed"}
-_MODELS = ("wall",)
+_MODELS = ("wall", "surrogate")
 _BODE = {"y_mm", "valve", "f_min_Hz", "f_max_Hz", "points"}
 
 
@@ -316,8 +316,8 @@ def parse_scenario(doc: dict) -> Scenario:
     _unknown("output", out, {"dt"})
     model = ch.get("model", "wall")
     if model not in _MODELS:
-        raise ParameterError("chamber.model", model, "wall (the static model the time "
-                             "domain maps the chamber with)")
+        raise ParameterError("chamber.model", model, "wall or surrogate (the static model "
+                             "the time domain maps the chamber with)")
     mesh = ch.get("mesh_size")
     spec = ChamberSpec({k: v for k, v in ch.items() if k in _CHAMBER - {"material", "model",
                                                                           "mesh_size", "layers"}},

@@ -81,7 +81,8 @@ def chamber_map_for(scenario, *, cache_dir=None, progress=None, workers: int | N
                     scheduler: str | None = None) -> ChamberMap:
     """The map the scenario needs, from the cache (``cache_dir``/dynamics, keyed by the
     chamber, the grid and the code) or built (its levels on ``workers`` local processes or
-    ``scheduler``'s cluster, :func:`~.chamber_map.build_map`)."""
+    ``scheduler``'s cluster, :func:`~.chamber_map.build_map`); with ``[chamber] model =
+    "surrogate"`` read from the wall model's surrogate (:func:`~.surrogate_map.surrogate_map`)."""
     from spsc.fem.wall.model import WallSettings
     from spsc.materials import material
 
@@ -91,8 +92,14 @@ def chamber_map_for(scenario, *, cache_dir=None, progress=None, workers: int | N
     lo, hi = sc.press.extent
     top = max(2.0 * sc.setup_kPa, sc.setup_kPa + 30.0)
     while True:
-        m = _cached(geometry, mat, settings, sc.setup_kPa, top, max(hi, 0.0), cache_dir,
-                    progress, {"workers": workers, "scheduler": scheduler})
+        if spec.model == "surrogate":  # milliseconds: nothing to cache
+            from .surrogate_map import surrogate_map
+
+            m = surrogate_map(geometry, mat, setup_kPa=sc.setup_kPa, top_kPa=top,
+                              y_max_mm=max(hi, 0.0))
+        else:
+            m = _cached(geometry, mat, settings, sc.setup_kPa, top, max(hi, 0.0), cache_dir,
+                        progress, {"workers": workers, "scheduler": scheduler})
         n = 1.0 if sc.gas.isothermal else sc.gas.n
         need = _closed_ceiling(m, sc.setup_kPa, max(lo, m.y_range[0]), max(hi, 0.0), n)
         if sc.stiffness is not None:
