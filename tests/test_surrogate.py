@@ -148,3 +148,25 @@ def test_a_stadium_in_a_scenario_is_refused_by_the_surrogate_map():
     with pytest.raises(ParameterError, match="chamber.l"):
         surrogate_map(preset("B"), material("tpu60a"), setup_kPa=40.0, top_kPa=80.0,
                       y_max_mm=5.0)
+
+
+def test_a_chamber_near_snapping_designs_is_flagged_and_a_plain_one_is_not(capsys, tmp_path):
+    """A tall, pointed dome at low pressure (a check case whose wall solve snaps through and
+    whose surrogate answer missed its pressure rise by 21 %) is flagged with a warning; the
+    Type B dome at 40 kPa is not."""
+    import json
+
+    from spsc.cli.main import main
+
+    j = tmp_path / "c.json"
+    tall = ["--w", "9.354", "--h", "16.763", "--t0", "0.843", "--n1", "2.438", "--n2", "1.168",
+            "--cy", "0.165", "--pressure", "13.88", "--stroke", "6"]
+    assert main(["curve", "--model", "surrogate", "--type", "B", "--l", "0", *tall,
+                 "--json", str(j)]) == 0
+    err = capsys.readouterr().err
+    details = json.loads(j.read_text())["solver"]["details"]
+    assert details["snap_flag"] and "snap through" in err
+    assert main(["curve", "--model", "surrogate", "--type", "B", "--l", "0", "--json",
+                 str(j)]) == 0
+    assert not json.loads(j.read_text())["solver"]["details"]["snap_flag"]
+    assert "snap" not in capsys.readouterr().err

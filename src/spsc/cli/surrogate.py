@@ -166,6 +166,13 @@ def _check(args) -> int:
               f"{100 * q['max']:7.2f}%")
     print(f"stated error covers the true error: force {100 * s['coverage_force']:.1f} %, "
           f"pressure {100 * s['coverage_pressure']:.1f} % of points")
+    print(f"flagged (near designs that snap through): {s['flagged']} of {s['curves']} curves, "
+          f"{s['snapping_flagged']} of the {s['snapping']} whose wall solve snapped")
+    if "unflagged" in s:
+        u = s["unflagged"]
+        print("the unflagged curves' largest errors (median / p95 / max of the curves): "
+              + "; ".join(f"{k} {100 * u[k]['median']:.2f} / {100 * u[k]['p95']:.2f} / "
+                          f"{100 * u[k]['max']:.2f} %" for k in u))
     if args.out is not None:
         from spsc.report.surrogate_figures import check_figure
 

@@ -16,10 +16,12 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["matern52", "Block", "FieldModel", "NEIGHBOURS"]
+__all__ = ["matern52", "Block", "FieldModel", "NEIGHBOURS", "RISK_FLAG"]
 
 #: training designs whose leave-one-out residuals make a query's error scale
 NEIGHBOURS = 8
+#: training designs whose snap-throughs make a query's snap risk, and the risk flagged
+RISK_NEIGHBOURS, RISK_FLAG = 5, 0.45
 #: designs evaluated together (bounds the m × n × kernels temporaries to about 40 MB)
 CHUNK = 128
 
@@ -75,7 +77,7 @@ class FieldModel:
     def __init__(self, arrays: dict):
         self.free = [str(v) for v in arrays["free"]]
         self.X = arrays["X"]
-        self.jumps = arrays["jumps"]
+        self.risk_X, self.risk = arrays["risk_X"], arrays["risk"]
         self.blocks = {b: Block(arrays, b, self.X) for b in self.BLOCKS}
 
         kernels = [kn for b in self.blocks.values() for kn in b.kernels]
@@ -111,9 +113,10 @@ class FieldModel:
                 out[name + ".draws"] = blk.field(c + z * blk.std(x))
         return out
 
-    def snap_risk(self, x: np.ndarray, k: int = 5) -> np.ndarray:
-        """The fraction of the ``k`` nearest training designs that snapped through, per level
-        (m × levels)."""
-        d2 = ((x[:, None, :] - self.X[None, :, :]) ** 2).sum(-1)
+    def snap_risk(self, x: np.ndarray, levels: np.ndarray, k: int = RISK_NEIGHBOURS):
+        """The share of the ``k`` training designs nearest each ``x`` (m × d) that snapped
+        through, or could not be pressed over the map, at one of the pressure ``levels``
+        (a boolean mask of :data:`~.domain.Q_LEVELS`, m × levels): (m,)."""
+        d2 = ((x[:, None, :] - self.risk_X[None, :, :]) ** 2).sum(-1)
         near = np.argsort(d2, axis=1)[:, :k]
-        return self.jumps[near].mean(axis=1)
+        return (self.risk[near] * levels[:, None, :]).max(axis=2).mean(axis=1)

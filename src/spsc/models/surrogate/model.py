@@ -12,6 +12,7 @@ import numpy as np
 from spsc.core.errors import ParameterError
 from ..base import ModelBase, Outcome, option
 from .domain import Q_LEVELS, TRAVELS, ratios_of
+from .gp import RISK_FLAG
 
 __all__ = ["SurrogateCurveModel", "SurrogateOptions", "check_material"]
 
@@ -134,15 +135,20 @@ def _to_curve(setup, sur, out, y, notes, allow, seconds):
            for ok in inside]
     msg = [m if s else "the gas law did not converge on the map" for m, s in zip(msg, solved)]
     conv = solved & (inside | allow)
+    risk = float(out["snap_risk"][0])
+    if risk >= RISK_FLAG:
+        notes = notes + [f"near designs that snap through or that the wall model could not "
+                         f"press at these pressures ({risk:.0%} of the nearest training "
+                         "designs): the surrogate smooths what the wall model resolves; "
+                         "--model wall for this chamber"]
     if notes:
         msg = [m or notes[0] for m in msg]
-    risk = sur.fields.snap_risk(sur.unit_inputs(ratios_of(g)[None, :]))[0]
     details = {"surrogate": sur.meta.get("name", ""), "trained": sur.meta.get("trained", ""),
                "training_designs": int(sur.fields.X.shape[0]),
                "error_scale": sur.error_scale, "draws": DRAWS,
                "force_err_N": out["force_err_N"][0].round(6).tolist(),
                "pressure_err_kPa": out["pressure_err_kPa"][0].round(6).tolist(),
-               "snap_risk_per_level": risk.round(3).tolist(),
+               "snap_risk": round(risk, 3), "snap_flag": risk >= RISK_FLAG,
                "inflated_height_note": "the outer top less t0 (the map holds the outer top)"}
     i = np.flatnonzero(conv)
     info = SolveInfo(converged=bool(conv.all()), message="converged" if conv.all() else

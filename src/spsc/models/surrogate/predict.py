@@ -111,6 +111,7 @@ class Surrogate:
         h = maps.h[:, None]
         out["inside"] = ((out["delta_mm"] <= TRAVELS[-1] * h * (1 + 1e-6))
                          & (out["q"] <= Q_LEVELS[-1] * (1 + 1e-6)))
+        out["snap_risk"] = self.snap_risk(params, out["q"])
         if samples:
             runs = [solve_curves(s, y, p_i, reservoir, n_poly) for s in samples]
             for key, name, scale in (
@@ -121,6 +122,20 @@ class Surrogate:
                 spread = np.std([r[key] for r in runs], axis=0)
                 out[name] = self.error_scale[scale] * spread
         return out
+
+
+    def snap_risk(self, params, q) -> np.ndarray:
+        """Per design, the share of its nearest training designs that snapped through or could
+        not be pressed at the pressure levels its curve passes (q, m × points, one level of
+        margin each side): at or above :data:`~.gp.RISK_FLAG` its answer is flagged."""
+        p = np.atleast_2d(np.asarray(params, float))
+        w = p[:, 0]
+        ratios = np.column_stack([p[:, 1] / w, p[:, 2] / w, p[:, 3] / w, p[:, 4], p[:, 5],
+                                  p[:, 6]])
+        step = Q_LEVELS[1] - Q_LEVELS[0]
+        lo, hi = np.nanmin(q, axis=1) - step, np.nanmax(q, axis=1) + step
+        levels = (Q_LEVELS[None, :] >= lo[:, None]) & (Q_LEVELS[None, :] <= hi[:, None])
+        return self.fields.snap_risk(self.unit_inputs(ratios), levels)
 
 
 @functools.lru_cache(maxsize=4)

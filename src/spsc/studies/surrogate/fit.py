@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from spsc.models.surrogate.domain import MU_REF_MPA, W_REF_MM
+from spsc.models.surrogate.domain import MU_REF_MPA, Q_LEVELS, W_REF_MM
 from spsc.models.surrogate.inputs import unit_inputs
 
 __all__ = ["fields_of", "fit_study", "BLOCKS"]
@@ -86,11 +86,18 @@ def fit_study(runs: list[dict], *, free: list[str], keep: float = 1e-6, seed: in
     usable = [(r, f) for r in runs if (f := fields_of(r)) is not None]
     X = unit_inputs(np.array([r["ratios"] for r, _ in usable]), free)
     out = {"free": np.array(free), "X": X, "excluded": np.array(len(runs) - len(usable))}
-    jumps = np.zeros((len(usable), len(runs[0]["pressure_kPa"]) if runs else 0))
-    for i, (r, _) in enumerate(usable):
+    # where the wall model snapped or could not press: every design, per level (1 for all
+    # levels of a design it could not mesh or press over the whole grid)
+    levels = len(Q_LEVELS)
+    risk = np.zeros((len(runs), levels))
+    for i, r in enumerate(runs):
+        if fields_of(r) is None:
+            risk[i] = 1.0
+            continue
         for level, _, _ in r.get("jumps", np.zeros((0, 3))):
-            jumps[i, int(level)] = 1.0
-    out["jumps"] = jumps
+            risk[i, int(level)] = 1.0
+    out["risk_X"] = unit_inputs(np.array([r["ratios"] for r in runs]), free)
+    out["risk"] = risk
     for b in BLOCKS:
         Y = np.array([f[b] for _, f in usable])
         mean, scale, modes, C = _pca(Y, keep)
