@@ -217,6 +217,12 @@ def wall_section(g: SPSCGeometry, n_profile: int, layers: int) -> np.ndarray:
     """Fine section grid (2n+1, 2·layers+1, 2) of (x, z): cavity profile to the outer wall,
     straight lines through the thickness, ending exactly on the axis and on z = 0."""
     inner, _ = g.profile_points(2 * n_profile + 1)
+    if len(inner) != 2 * n_profile + 1:
+        # points closer than 1e-6 w were merged (a near-corner profile, n2 -> 1 with c_y > 0,
+        # crowds its samples at the corner): back to the grid's count along the kept points
+        k = np.linspace(0.0, len(inner) - 1.0, 2 * n_profile + 1)
+        inner = np.column_stack([np.interp(k, np.arange(len(inner)), inner[:, j])
+                                 for j in (0, 1)])
     outer = g.outer_profile_points(4001)
     s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(outer, axis=0).T))])
     t = np.linspace(0.0, 1.0, 2 * n_profile + 1) * s[-1]
