@@ -427,4 +427,7 @@ def test_a_body_is_one_class_and_one_registry_line(monkeypatch, tmp_path):
         out[body] = Curve.from_json(f)
     toy, sphere = out.values()
     assert toy.setup["indenter"] == "paraboloid:R=10"
+    # a misspelt body's one line lists the registered one beside the built-ins
+    with pytest.raises(ParameterError, match=r"paraboloid:r=…"):
+        indenters.parse_indenter("parabola:R=10")
     assert_allclose(toy.force_N, sphere.force_N, rtol=0.01, atol=1e-6)

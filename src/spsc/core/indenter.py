@@ -45,6 +45,18 @@ _ALLOWED = ("plate[:tilt=DEG,axis=x|y], sphere:R=MM, cylinder:R=MM,axis=x|y, "
             "r >= 0) "
             "or a body's FILE.stl|.3mf|.step")
 
+
+
+def _allowed() -> str:
+    """What ``--indenter`` takes: the built-in spellings and every body registered in
+    :data:`INDENTERS` since (its kind and keys)."""
+    extra = [f"{k}:" + ",".join(f"{key}=…" for key in sorted(c.keys))
+             for k, c in INDENTERS.items() if k not in INDENTER_KINDS]
+    if not extra:
+        return _ALLOWED
+    return _ALLOWED.replace(" or a body's", ", " + ", ".join(extra) + " or a body's")
+
+
 #: the files a rigid body is read from (:mod:`spsc.cad.heightfield`)
 FILE_SUFFIXES = (".stl", ".3mf", ".step", ".stp")
 
@@ -135,7 +147,7 @@ class Plate(Indenter):
     def of(cls, keys, text):
         tilt = _number("tilt", keys.get("tilt", 0.0), text)
         if not -45.0 < tilt < 45.0:
-            raise ParameterError("indenter", text, _ALLOWED)
+            raise ParameterError("indenter", text, _allowed())
         return cls(angle=tilt, axis=_axis(keys, text)) if tilt else cls()
 
     @property
@@ -218,11 +230,11 @@ class Wedge(Indenter):
     @classmethod
     def of(cls, keys, text):
         if "angle" not in keys:
-            raise ParameterError("indenter", text, _ALLOWED)
+            raise ParameterError("indenter", text, _allowed())
         angle = _number("angle", keys["angle"], text)
         r = _number("r", keys.get("r", WEDGE_EDGE_MM), text)
         if not 0 < angle < 180 or r < 0:
-            raise ParameterError("indenter", text, _ALLOWED)
+            raise ParameterError("indenter", text, _allowed())
         return cls(angle=angle, radius=r, axis=_axis(keys, text))
 
     @property
@@ -264,16 +276,16 @@ INDENTER_KINDS = tuple(INDENTERS)
 def _axis(keys: dict, text: str) -> str:
     axis = keys.get("axis", "x").lower()
     if axis not in ("x", "y"):
-        raise ParameterError("indenter", text, _ALLOWED)
+        raise ParameterError("indenter", text, _allowed())
     return axis
 
 
 def _radius(keys: dict, text: str) -> float:
     if "r" not in keys:
-        raise ParameterError("indenter", text, _ALLOWED)
+        raise ParameterError("indenter", text, _allowed())
     R = _number("r", keys["r"], text)
     if not 0 < R <= MAX_RADIUS_MM:
-        raise ParameterError("indenter", text, _ALLOWED)
+        raise ParameterError("indenter", text, _allowed())
     return R
 
 
@@ -339,9 +351,9 @@ def _number(key, value, text) -> float:
     try:
         out = float(value)
     except ValueError:
-        raise ParameterError("indenter", text, _ALLOWED) from None
+        raise ParameterError("indenter", text, _allowed()) from None
     if not math.isfinite(out):
-        raise ParameterError("indenter", text, _ALLOWED)
+        raise ParameterError("indenter", text, _allowed())
     return out
 
 
@@ -359,23 +371,23 @@ def parse_indenter(value) -> Indenter:
 
         if not Path(text).is_file():
             raise ParameterError("indenter", value, "an existing .stl, .3mf or .step file, "
-                                 "or " + _ALLOWED)
+                                 "or " + _allowed())
         return FileBody(path=text)
     kind, _, rest = text.partition(":")
     cls = INDENTERS.get(kind.strip().lower())
     if cls is None:
-        raise ParameterError("indenter", value, _ALLOWED)
+        raise ParameterError("indenter", value, _allowed())
     keys = {}
     for item in filter(None, (s.strip() for s in rest.split(","))):
         key, eq, val = item.partition("=")
         if not eq:
-            raise ParameterError("indenter", value, _ALLOWED)
+            raise ParameterError("indenter", value, _allowed())
         if key.strip().lower() in keys:  # sphere:R=10,R=20 was the last one silently
             raise ParameterError("indenter", value, f"each key once ({key.strip()} is given "
-                                 "twice): " + _ALLOWED)
+                                 "twice): " + _allowed())
         keys[key.strip().lower()] = val.strip()
     if set(keys) - cls.keys:
-        raise ParameterError("indenter", value, _ALLOWED)
+        raise ParameterError("indenter", value, _allowed())
     return cls.of(keys, value)
 
 
