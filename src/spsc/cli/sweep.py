@@ -117,10 +117,11 @@ def prepare(args):
     require("stroke", args.stroke, gt=0, unit="mm")
     space = build_space({k: getattr(args, k) for k in INPUTS}, samples=args.samples,
                         seed=args.seed, footprint=args.footprint, force=args.force)
-    if len(space) <= 10**6:  # a stroke no design of the space can take refuses the sweep
-        tallest = max(float(d["h"]) for d in space)
-        require("stroke", args.stroke, gt=0, lt=tallest, unit=f"mm, below the tallest "
-                f"chamber's height in the space, h = {tallest:g} mm: no design could take it")
+    # a stroke no design of the space can take refuses the sweep (read from the axes: the
+    # space is not walked twice)
+    tallest = space.tallest_h
+    require("stroke", args.stroke, gt=0, lt=tallest, unit=f"mm, below the tallest "
+            f"chamber's height in the space, h = {tallest:g} mm: no design could take it")
     if args.model in ("membrane", "simplified"):
         for a in space.axes:
             if a.name == "pressure" and a.kind != "range":

@@ -172,6 +172,18 @@ class SweepSpace:
     def __len__(self) -> int:
         return math.prod(len(a) for a in self.axes) * (self.samples or 1)
 
+    @property
+    def tallest_h(self) -> float:
+        """The largest cavity height h of the space (mm), read from its axes: the h axis's
+        largest value (a range's top), else the footprint's preset h that every type takes."""
+        from spsc.cad.geometry import SIZES
+
+        for a in self.axes:
+            if a.name == "h":
+                return float(a.hi if a.kind == "range" else max(a.values))
+        size = next(v for k, v in SIZES.items() if k.lower() == self.footprint.lower())
+        return float(size[1])
+
     def sample_points(self) -> np.ndarray:
         """The Latin hypercube in [0, 1)^d (samples × ranges), reproducible by ``seed``."""
         if self._unit is None:
