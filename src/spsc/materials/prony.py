@@ -19,7 +19,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import nnls
 
 from spsc.core.errors import ParameterError, require
 
@@ -103,6 +102,8 @@ def fit_relaxation(t_s, value, *, per_decade: int = 2) -> PronyFit:
     # y = c0 + Σ c_i e^{−t/τ_i}, every c ≥ 0: c0 the relaxed level, β_i = c_i/c0
     basis = np.column_stack([np.ones_like(t)] + [np.exp(-t / tau) for tau in taus])
     scale = y.max()
+    from scipy.optimize import nnls  # kept off the import of every verb
+
     c, _ = nnls(basis, y / scale)
     c *= scale
     if c[0] <= 0:
