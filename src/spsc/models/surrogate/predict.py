@@ -60,13 +60,14 @@ class Surrogate:
                 v = r[k]
                 if name in self.fixed:
                     if abs(v - self.fixed[name]) > 1e-9:
-                        why = (f"{_NAMED[name]}: {name} = {v:.4g}; the surrogate is trained on "
-                               f"{name} = {self.fixed[name]:g} only")
+                        why = (f"{_NAMED[name]}: {name} = {self.fixed[name]:g} (the surrogate "
+                               f"is trained on it only; {name} = {v:.4g} here)")
                         break
                     continue
                 lo, hi = BOUNDS[name]
                 if not lo - 1e-9 <= v <= hi + 1e-9:
-                    why = f"{_NAMED[name]}: {name} = {v:.4g}, trained on {lo:g}–{hi:g}"
+                    why = (f"{_NAMED[name]}: {name} from {lo:g} to {hi:g} ({name} = {v:.4g} "
+                           "here)")
                     break
             out.append(why)
         return out
