@@ -61,7 +61,8 @@ def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
     pressure), setup pressures ``p_i`` (m, kPa gauge; 0: vented), reservoirs (m, mm³) and
     polytropic indices (m): ``pressure_kPa``, ``force_N``, ``contact_area_mm2``,
     ``volume_change_mm3``, the map coordinates ``delta_mm`` and ``q`` each point used, and
-    ``converged`` (m × k), whether the gas law's residual fell below ``tol`` (relative)."""
+    ``converged`` (m × k), whether the gas law's residual fell below ``tol`` (relative); the
+    inflated chamber's outer ``top_mm`` and cavity ``inflated_volume_mm3`` (m)."""
     y = np.atleast_2d(np.asarray(y, float))
     m = y.shape[0]
     p_i, Vr, n = (np.broadcast_to(np.asarray(v, float), (m,)) for v in (p_i, reservoir, n_poly))
@@ -103,4 +104,4 @@ def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
     dV, F, A = (maps.grid(k, Wd, Wq) for k in ("dV", "F", "A"))
     return {"pressure_kPa": q * unit, "force_N": F, "contact_area_mm2": A,
             "volume_change_mm3": V0_i - V0 + dV, "delta_mm": delta, "q": q,
-            "converged": done}
+            "converged": done, "top_mm": H_i[:, 0], "inflated_volume_mm3": V0_i[:, 0]}

@@ -118,5 +118,5 @@ class FieldModel:
         through, or could not be pressed over the map, at one of the pressure ``levels``
         (a boolean mask of :data:`~.domain.Q_LEVELS`, m × levels): (m,)."""
         d2 = ((x[:, None, :] - self.risk_X[None, :, :]) ** 2).sum(-1)
-        near = np.argsort(d2, axis=1)[:, :k]
+        near = np.argpartition(d2, k - 1, axis=1)[:, :k]
         return (self.risk[near] * levels[:, None, :]).max(axis=2).mean(axis=1)

@@ -154,10 +154,7 @@ def _to_curve(setup, sur, out, y, notes, allow, seconds):
     info = SolveInfo(converged=bool(conv.all()), message="converged" if conv.all() else
                      next(m for m in msg if m), y_reached_mm=float(y[i[-1]]) if i.size
                      else float("nan"), seconds=seconds, notes=tuple(notes), details=details)
-    maps, _ = sur.maps(np.array([[g.w, g.h, g.l, g.t0, g.n1, g.n2, g.cy]]),
-                       setup.material.shear_modulus)
-    q_i = np.array([[lc.pressure_kPa / maps.unit[0]]])
-    H, V0 = (float(maps.at(k, q_i)[0, 0]) for k in ("H", "V0"))
+    H, V0 = float(out["top_mm"][0]), float(out["inflated_volume_mm3"][0])
     nan = lambda a: np.where(conv, a, np.nan)  # noqa: E731
     setup_rec = {"p_i_kPa": lc.pressure_kPa, "reservoir_mm3": lc.reservoir_mm3,
                  "polytropic_n": lc.polytropic_n}

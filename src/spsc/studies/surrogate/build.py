@@ -26,23 +26,12 @@ def calibrate(surrogate, results: list[dict], *, draws: int = 32, seed: int = 0)
     """The error scales ``{"force": …, "pressure": …}``: for each, the :data:`COVER` quantile
     of |error| / posterior spread over the points past first contact of the wall ``results``
     (:func:`.check.wall_cases`)."""
-    from spsc.materials import material
+    from .check import MODES, beside
 
-    from .check import MODES
-
-    mu = material("tpu60a").shear_modulus
     old, surrogate.error_scale = surrogate.error_scale, {"force": 1.0, "pressure": 1.0}
     ratios = {"force": [], "pressure": []}
     try:
-        for res in results:
-            if "error" in res or any(not np.all(res[m]["converged"]) for m, _ in MODES):
-                continue
-            g = res["geometry"]
-            params = np.array([[g[k] for k in ("w", "h", "l", "t0", "n1", "n2", "cy")]] * 2)
-            y = np.array([res[m]["y"] for m, _ in MODES])
-            s = surrogate.curves(params, mu, y, res["pressure_kPa"], [v for _, v in MODES],
-                                 res["polytropic_n"], draws=draws,
-                                 rng=np.random.default_rng(seed))
+        for res, s in beside(surrogate, results, draws=draws, seed=seed):
             for j, (mode, _) in enumerate(MODES):
                 w = res[mode]
                 for name, key, err, true in (("force", "force_N", "force_err_N", w["F"]),

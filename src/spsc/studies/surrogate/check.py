@@ -16,7 +16,7 @@ import numpy as np
 from spsc.models.surrogate.domain import BOUNDS, RATIOS
 from spsc.models.surrogate.gp import RISK_FLAG
 
-__all__ = ["check_cases", "wall_cases", "compare", "MODES"]
+__all__ = ["check_cases", "wall_cases", "beside", "compare", "summary", "MODES"]
 
 #: The modes every check case runs: (name, reservoir mm³).
 MODES = (("high", 0.0), ("low", 40_000.0))
@@ -86,24 +86,35 @@ def wall_cases(cases: list[dict], *, workers=None, scheduler=None, progress=None
     return done
 
 
-def compare(surrogate, results: list[dict], *, draws: int = 32, seed: int = 0) -> dict:
-    """Per-point and per-curve errors of ``surrogate`` against the wall ``results`` of
-    :func:`wall_cases` (cases the wall model did not finish are counted apart)."""
+def _finished(res: dict) -> bool:
+    """The wall model computed both modes of the case to the end."""
+    return "error" not in res and all(np.all(res[m]["converged"]) for m, _ in MODES)
+
+
+def beside(surrogate, results: list[dict], *, draws: int = 32, seed: int = 0):
+    """(case, the surrogate's answer for both modes, :meth:`~spsc.models.surrogate.predict.
+    Surrogate.curves`) for every case of ``results`` the wall model finished, on the wall
+    curves' own travels."""
+    from spsc.cad.geometry import PARAMS
     from spsc.materials import material
 
     mu = material("tpu60a").shear_modulus
-    rows, points = [], {"force": [], "pressure": [], "force_cov": [], "pressure_cov": []}
-    skipped = 0
-    for res in results:
-        if "error" in res or any(not np.all(res[m]["converged"]) for m, _ in MODES):
-            skipped += 1
-            continue
-        g = res["geometry"]
-        params = np.array([[g[k] for k in ("w", "h", "l", "t0", "n1", "n2", "cy")]] * 2)
+    for res in filter(_finished, results):
+        params = np.array([[res["geometry"][k] for k in PARAMS]] * len(MODES))
         y = np.array([res[m]["y"] for m, _ in MODES])
-        s = surrogate.curves(params, mu, y, res["pressure_kPa"], [v for _, v in MODES],
-                             res["polytropic_n"], draws=draws,
-                             rng=np.random.default_rng(seed))
+        yield res, surrogate.curves(params, mu, y, res["pressure_kPa"],
+                                    [v for _, v in MODES], res["polytropic_n"], draws=draws,
+                                    rng=np.random.default_rng(seed))
+
+
+def compare(surrogate, results: list[dict], *, draws: int = 32, seed: int = 0) -> dict:
+    """Per-point and per-curve errors of ``surrogate`` against the wall ``results`` of
+    :func:`wall_cases` (cases the wall model did not finish are counted apart)."""
+    rows, points = [], {"force": [], "pressure": [], "force_cov": [], "pressure_cov": []}
+    finished = [r for r in results if _finished(r)]
+    skipped = len(results) - len(finished)
+    for res, s in beside(surrogate, finished, draws=draws, seed=seed):
+        g = res["geometry"]
         for j, (mode, _) in enumerate(MODES):
             w = res[mode]
             eF, eP = s["force_N"][j] - w["F"], s["pressure_kPa"][j] - w["P"]
