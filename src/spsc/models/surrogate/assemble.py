@@ -25,7 +25,10 @@ from spsc.core.constants import P_AMB_KPA
 from .domain import Q_LEVELS, TRAVELS
 from .spline import SplineGrid
 
-__all__ = ["Maps", "solve_curves"]
+__all__ = ["Maps", "solve_curves", "CHUNK"]
+
+#: designs solved together (their points' spline weights stay in the cache)
+CHUNK = 256
 
 _Q = SplineGrid(Q_LEVELS)
 _D = SplineGrid(TRAVELS)
@@ -44,64 +47,80 @@ class Maps:
         """A per-level field (``H`` or ``V0``) at the levels q (m × k)."""
         return self.level(name, _Q.weights(np.asarray(q, float))[0])
 
-    def level(self, name, Wq):
-        """A per-level field at the levels whose spline weights are ``Wq`` (m × k × levels)."""
-        return np.matmul(Wq, getattr(self, name)[:, :, None])[..., 0]
+    def level(self, name, Wq, rows=slice(None)):
+        """A per-level field at the levels whose spline weights are ``Wq`` (m × k × levels),
+        of the designs ``rows`` (all)."""
+        return np.matmul(Wq, getattr(self, name)[rows, :, None])[..., 0]
 
-    def grid(self, name, Wd, Wq):
+    def grid(self, name, Wd, Wq, rows=slice(None)):
         """A map field at travels and levels of spline weights ``Wd`` (m × k × travels) and
-        ``Wq`` (m × k × levels)."""
-        fq = np.matmul(Wq, np.swapaxes(getattr(self, name), 1, 2))  # m × k × travels
+        ``Wq`` (m × k × levels), of the designs ``rows`` (all)."""
+        fq = np.matmul(Wq, np.swapaxes(getattr(self, name)[rows], 1, 2))  # m × k × travels
         return (Wd * fq).sum(-1)
 
 
 def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
-                 tol: float = 1e-10) -> dict:
+                 tol: float = 1e-10, chunk: int = CHUNK) -> dict:
     """The curves of the m designs at travels ``y`` (m × k, mm from first contact at the setup
     pressure), setup pressures ``p_i`` (m, kPa gauge; 0: vented), reservoirs (m, mm³) and
     polytropic indices (m): ``pressure_kPa``, ``force_N``, ``contact_area_mm2``,
     ``volume_change_mm3``, the map coordinates ``delta_mm`` and ``q`` each point used, and
     ``converged`` (m × k), whether the gas law's residual fell below ``tol`` (relative); the
-    inflated chamber's outer ``top_mm`` and cavity ``inflated_volume_mm3`` (m)."""
+    inflated chamber's outer ``top_mm`` and cavity ``inflated_volume_mm3`` (m). Solved
+    ``chunk`` designs at a time."""
     y = np.atleast_2d(np.asarray(y, float))
     m = y.shape[0]
     p_i, Vr, n = (np.broadcast_to(np.asarray(v, float), (m,)) for v in (p_i, reservoir, n_poly))
-    unit, h = maps.unit[:, None], maps.h[:, None]
+    parts = [_solve(maps, slice(a, a + chunk), y[a:a + chunk], p_i[a:a + chunk],
+                    Vr[a:a + chunk], n[a:a + chunk], iterations, tol)
+             for a in range(0, m, chunk)]
+    return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+
+
+def _solve(maps, sel, y, p_i, Vr, n, iterations, tol) -> dict:
+    rows = np.arange(maps.h.size)[sel]
+    unit, h = maps.unit[rows, None], maps.h[rows, None]
     n2, Vr2 = n[:, None], Vr[:, None]
-    qi = (p_i / maps.unit)[:, None] * np.ones_like(y)
+    qi = (p_i / maps.unit[rows])[:, None] * np.ones_like(y)
     Wi, _ = _Q.weights(qi[:, :1])
-    H_i, V0_i = maps.level("H", Wi), maps.level("V0", Wi)
+    H_i, V0_i = maps.level("H", Wi, rows), maps.level("V0", Wi, rows)
     C = (p_i[:, None] + P_AMB_KPA) * np.maximum(V0_i + Vr2, 1e-9) ** n2
     q = qi.copy()
     lo, hi = qi.copy(), np.full_like(y, Q_LEVELS[-1] * 4.0)
     done = np.zeros(y.shape, bool)
     done[p_i <= 0] = True  # the vented chamber stays at P = 0
     for _ in range(iterations):
-        Wq, Dq = _Q.weights(q)
-        H, dH = maps.level("H", Wq), maps.level("H", Dq)
-        V0, dV0 = maps.level("V0", Wq), maps.level("V0", Dq)
-        Wd, Dd = _D.weights((y + H - H_i) / h)
-        dV = maps.grid("dV", Wd, Wq)
-        dV_dd = maps.grid("dV", Dd, Wq) / h
-        dV_dq = maps.grid("dV", Wd, Dq)
-        # a Newton step far out may read the map's cubic continued into negative volumes
-        gas = np.maximum(V0 - dV + Vr2, 1e-9)
-        G = (q * unit + P_AMB_KPA) * gas**n2 - C
-        dG = unit * gas**n2 + (q * unit + P_AMB_KPA) * n2 * gas ** (n2 - 1) * (
-            dV0 - dV_dd * dH - dV_dq)
-        done |= np.abs(G) <= tol * C
-        if done.all():
+        # only the designs with a point still to converge (one slow point must not keep
+        # thousands of converged ones iterating)
+        a = np.flatnonzero(~done.all(axis=1))
+        if a.size == 0:
             break
-        lo = np.where(G < 0, q, lo)
-        hi = np.where(G > 0, q, hi)
-        step = np.where(dG > 0, q - G / np.where(dG > 0, dG, 1.0), np.nan)
-        inside = (step > lo) & (step < hi)
-        q = np.where(done, q, np.where(inside, step, 0.5 * (lo + hi)))
+        qa, ya = q[a], y[a]
+        Wq, Dq = _Q.weights(qa)
+        H, dH = maps.level("H", Wq, rows[a]), maps.level("H", Dq, rows[a])
+        V0, dV0 = maps.level("V0", Wq, rows[a]), maps.level("V0", Dq, rows[a])
+        Wd, Dd = _D.weights((ya + H - H_i[a]) / h[a])
+        dV = maps.grid("dV", Wd, Wq, rows[a])
+        dV_dd = maps.grid("dV", Dd, Wq, rows[a]) / h[a]
+        dV_dq = maps.grid("dV", Wd, Dq, rows[a])
+        # a Newton step far out may read the map's cubic continued into negative volumes
+        gas = np.maximum(V0 - dV + Vr2[a], 1e-9)
+        P = qa * unit[a] + P_AMB_KPA
+        G = P * gas ** n2[a] - C[a]
+        dG = unit[a] * gas ** n2[a] + P * n2[a] * gas ** (n2[a] - 1) * (
+            dV0 - dV_dd * dH - dV_dq)
+        da = done[a] | (np.abs(G) <= tol * C[a])
+        la = np.where(G < 0, qa, lo[a])
+        ha = np.where(G > 0, qa, hi[a])
+        step = np.where(dG > 0, qa - G / np.where(dG > 0, dG, 1.0), np.nan)
+        inside = (step > la) & (step < ha)
+        q[a] = np.where(da, qa, np.where(inside, step, 0.5 * (la + ha)))
+        done[a], lo[a], hi[a] = da, la, ha
     Wq, _ = _Q.weights(q)
-    H, V0 = maps.level("H", Wq), maps.level("V0", Wq)
+    H, V0 = maps.level("H", Wq, rows), maps.level("V0", Wq, rows)
     delta = y + H - H_i
     Wd, _ = _D.weights(delta / h)
-    dV, F, A = (maps.grid(k, Wd, Wq) for k in ("dV", "F", "A"))
+    dV, F, A = (maps.grid(k, Wd, Wq, rows) for k in ("dV", "F", "A"))
     return {"pressure_kPa": q * unit, "force_N": F, "contact_area_mm2": A,
             "volume_change_mm3": V0_i - V0 + dV, "delta_mm": delta, "q": q,
             "converged": done, "top_mm": H_i[:, 0], "inflated_volume_mm3": V0_i[:, 0]}

@@ -4,7 +4,8 @@
 A block (one field of the map) is ``mean + scale · (c @ modes)`` with its mode coefficients
 c(x) = k(x, X) α, the posterior mean of a Gaussian process with the Matérn 5/2 kernel
 k = a (1 + √5 r + 5r²/3) e^{−√5 r}, r the distance scaled per ratio by the lengths ℓ (Rasmussen
-& Williams 2006, eq. 4.17); the leading modes have kernels of their own, the rest share one.
+& Williams 2006, eq. 4.17): by default one kernel serves every mode (:mod:`spsc.studies.
+surrogate.fit`), evaluated once per design.
 Its error scale is read from the neighbours: the root mean square of the leave-one-out
 residuals (R&W eq. 5.12) of the training designs nearest the query — the GP's own error where
 it had to predict a design it did not hold. (The posterior variance on a subset of the
@@ -54,14 +55,16 @@ class Block:
         self.kernels = [_Kernel(arrays, f"{name}.{j}") for j in range(int(g("groups")))]
         self.loo = g("loo").astype(float)
         self.X = X
+        self._tree = None
 
     def std(self, x: np.ndarray, near: int = NEIGHBOURS) -> np.ndarray:
         """The modes' error scale (m × k): the root mean square of the leave-one-out
         residuals of the ``near`` training designs nearest ``x`` (distances scaled by the
         leading mode's lengths)."""
         ell = self.kernels[0].ell
-        d2 = (((x[:, None, :] - self.X[None, :, :]) / ell) ** 2).sum(-1)
-        idx = np.argpartition(d2, near - 1, axis=1)[:, :near]
+        if self._tree is None:
+            self._tree = _kdtree(self.X / ell)
+        _, idx = self._tree.query(x / ell, k=near)
         return np.sqrt((self.loo[idx] ** 2).mean(axis=1)) * self.s
 
     def field(self, c: np.ndarray) -> np.ndarray:
@@ -78,27 +81,41 @@ class FieldModel:
         self.free = [str(v) for v in arrays["free"]]
         self.X = arrays["X"]
         self.risk_X, self.risk = arrays["risk_X"], arrays["risk"]
+        self._risk_tree = None
         self.blocks = {b: Block(arrays, b, self.X) for b in self.BLOCKS}
 
-        kernels = [kn for b in self.blocks.values() for kn in b.kernels]
-        self._inv_ell2 = np.array([1.0 / kn.ell**2 for kn in kernels]).T  # d × K
-        self._amp = np.array([kn.amp for kn in kernels])
+        # the distinct kernels (a shared kernel is evaluated once for every block), each with
+        # the mode coefficients of every block it serves side by side
+        self._kernels, self._serves = [], []
+        for name, b in self.blocks.items():
+            for kn in b.kernels:
+                j = next((i for i, k in enumerate(self._kernels)
+                          if k.amp == kn.amp and np.array_equal(k.ell, kn.ell)), None)
+                if j is None:
+                    self._kernels.append(kn)
+                    self._serves.append([])
+                    j = len(self._kernels) - 1
+                self._serves[j].append((name, kn.cols, kn.alpha))
+        self._alpha = [np.hstack([a for _, _, a in serves]) for serves in self._serves]
+        self._inv_ell2 = np.array([1.0 / kn.ell**2 for kn in self._kernels]).T  # d × K
+        self._amp = np.array([kn.amp for kn in self._kernels])
 
     def coefficients(self, x: np.ndarray, chunk: int = CHUNK) -> dict:
-        """{block: mode coefficients (m × k)} at the unit inputs ``x`` (m × d): every kernel
-        of every block from one squared difference per chunk of ``chunk`` designs (the
-        kernels differ only in their lengths)."""
+        """{block: mode coefficients (m × k)} at the unit inputs ``x`` (m × d): every distinct
+        kernel from one squared difference per chunk of ``chunk`` designs (the kernels differ
+        only in their lengths), each times the coefficients of all the modes it serves."""
         out = {name: np.empty((x.shape[0], b.s.size)) for name, b in self.blocks.items()}
         for a in range(0, x.shape[0], chunk):
             xs = x[a:a + chunk]
             diff2 = (xs[:, None, :] - self.X[None, :, :]) ** 2  # m × n × d
             r = np.sqrt(np.maximum(diff2 @ self._inv_ell2, 0.0) * 5.0)  # m × n × K
             k = self._amp * (1.0 + r + r * r / 3.0) * np.exp(-r)
-            j = 0
-            for name, b in self.blocks.items():
-                for kn in b.kernels:
-                    out[name][a:a + chunk, kn.cols] = k[:, :, j] @ kn.alpha
-                    j += 1
+            for j, serves in enumerate(self._serves):
+                c = k[:, :, j] @ self._alpha[j]
+                start = 0
+                for name, cols, alpha in serves:
+                    out[name][a:a + chunk, cols] = c[:, start:start + alpha.shape[1]]
+                    start += alpha.shape[1]
         return {name: c * self.blocks[name].s for name, c in out.items()}
 
     def fields(self, x: np.ndarray, draws: int = 0, rng=None) -> dict:
@@ -117,6 +134,16 @@ class FieldModel:
         """The share of the ``k`` training designs nearest each ``x`` (m × d) that snapped
         through, or could not be pressed over the map, at one of the pressure ``levels``
         (a boolean mask of :data:`~.domain.Q_LEVELS`, m × levels): (m,)."""
-        d2 = ((x[:, None, :] - self.risk_X[None, :, :]) ** 2).sum(-1)
-        near = np.argpartition(d2, k - 1, axis=1)[:, :k]
+        if self._risk_tree is None:
+            self._risk_tree = _kdtree(self.risk_X)
+        _, near = self._risk_tree.query(x, k=k)
         return (self.risk[near] * levels[:, None, :]).max(axis=2).mean(axis=1)
+
+
+
+def _kdtree(points: np.ndarray):
+    """A k-d tree of ``points`` (scipy's: the nearest designs of thousands of queries at once
+    without the queries × training distance matrix)."""
+    from scipy.spatial import cKDTree
+
+    return cKDTree(points)

@@ -6,11 +6,15 @@ the contact area A(δ, q) on the travels × levels grid, and the inflated top H(
 V0(q) per level — is made dimensionless by the exact similarities of
 :mod:`spsc.models.surrogate.domain` (F / (μ t0 w), V / w³, A / w², H / w), standardised and
 compressed by a principal component analysis (the modes that hold all but 1e-6 of its
-variance). Each mode is then a Gaussian process of the design ratios (scikit-learn, a Matérn
-5/2 kernel with one length per ratio and a white-noise term for the mesh's own scatter between
-neighbouring designs): the leading ``own_kernels`` modes of a block each with hyperparameters
-of their own, the rest sharing those found on the first of them. Each mode's leave-one-out
-residuals at the training designs are kept: the model's error estimate reads its neighbours'.
+variance). Each mode is then a Gaussian process of the design ratios (a Matérn 5/2 kernel with one
+length per ratio and a white-noise term for the mesh's own scatter between neighbouring
+designs, its hyperparameters found by scikit-learn): by default every mode of every block shares
+the kernel found on the leading mode of the force (``shared="F"``: one kernel, one Cholesky
+factor, and at prediction one kernel row per design for all 300-odd modes); with
+``shared=None`` the leading ``own_kernels`` modes of each block have their own and the rest
+share the first's. The shared kernel was the better on the held-out wall curves (design
+decisions, "The surrogate") and 35 × less work to evaluate. Each mode's leave-one-out residuals
+at the training designs are kept: the model's error estimate reads its neighbours'.
 
 Designs the wall model could not mesh or press over the whole grid are left out and counted;
 designs that snap through stay in (their jump is the map's) and are kept as a flag the model
@@ -79,10 +83,10 @@ def _kernel_fit(X, y, seed, hyper_points: int):
 
 
 def fit_study(runs: list[dict], *, free: list[str], keep: float = 1e-6, seed: int = 0,
-              hyper_points: int = 400, own_kernels: int = 8) -> dict:
-    """The arrays of a FieldModel fitted to ``runs`` (:func:`.train.load_runs`)."""
-    from spsc.models.surrogate.gp import matern52
-
+              hyper_points: int = 400, shared: str | None = "F", own_kernels: int = 8) -> dict:
+    """The arrays of a FieldModel fitted to ``runs`` (:func:`.train.load_runs`): one kernel
+    for every mode, found on the leading mode of block ``shared``, or (``shared=None``) own
+    kernels for the ``own_kernels`` leading modes of each block."""
     usable = [(r, f) for r in runs if (f := fields_of(r)) is not None]
     X = unit_inputs(np.array([r["ratios"] for r, _ in usable]), free)
     out = {"free": np.array(free), "X": X, "excluded": np.array(len(runs) - len(usable))}
@@ -98,26 +102,46 @@ def fit_study(runs: list[dict], *, free: list[str], keep: float = 1e-6, seed: in
             risk[i, int(level)] = 1.0
     out["risk_X"] = unit_inputs(np.array([r["ratios"] for r in runs]), free)
     out["risk"] = risk
+    pcs = {b: _pca(np.array([f[b] for _, f in usable]), keep) for b in BLOCKS}
+    if shared is not None:
+        if shared not in BLOCKS:
+            raise ValueError(f"shared: one of {', '.join(BLOCKS)}, or None ({shared!r} here)")
+        common = _Factor(X, *_kernel_fit(X, pcs[shared][3][:, 0], seed, hyper_points))
     for b in BLOCKS:
-        Y = np.array([f[b] for _, f in usable])
-        mean, scale, modes, C = _pca(Y, keep)
+        mean, scale, modes, C = pcs[b]
         s = C.std(axis=0)
         out.update({f"{b}.mean": mean, f"{b}.scale": scale, f"{b}.modes": modes, f"{b}.s": s})
-        groups = [[k] for k in range(min(own_kernels, C.shape[1]))]
-        if C.shape[1] > own_kernels:
-            groups.append(list(range(own_kernels, C.shape[1])))
+        if shared is not None:
+            groups = [list(range(C.shape[1]))]
+        else:
+            groups = [[k] for k in range(min(own_kernels, C.shape[1]))]
+            if C.shape[1] > own_kernels:
+                groups.append(list(range(own_kernels, C.shape[1])))
         loo = np.empty_like(C)
         for g, cols in enumerate(groups):
-            ell, amp, noise = _kernel_fit(X, C[:, cols[0]], seed, hyper_points)
-            K = amp * matern52(X, X, ell) + noise * np.eye(len(X))
-            L = np.linalg.cholesky(K)
-            alpha = np.linalg.solve(L.T, np.linalg.solve(L, C[:, cols] / s[cols]))
-            # leave-one-out residuals in closed form: α_i / (K⁻¹)_ii (R&W 2006, eq. 5.12)
-            Linv = np.linalg.solve(L, np.eye(len(X)))
-            loo[:, cols] = alpha / (Linv**2).sum(axis=0)[:, None]
-            out.update({f"{b}.{g}.cols": np.array(cols), f"{b}.{g}.ell": ell,
-                        f"{b}.{g}.amp": np.array(amp), f"{b}.{g}.noise": np.array(noise),
+            f = common if shared is not None else _Factor(
+                X, *_kernel_fit(X, C[:, cols[0]], seed, hyper_points))
+            alpha, loo[:, cols] = f.solve(C[:, cols] / s[cols])
+            out.update({f"{b}.{g}.cols": np.array(cols), f"{b}.{g}.ell": f.ell,
+                        f"{b}.{g}.amp": np.array(f.amp), f"{b}.{g}.noise": np.array(f.noise),
                         f"{b}.{g}.alpha": alpha})
         out[f"{b}.groups"] = np.array(len(groups))
         out[f"{b}.loo"] = loo.astype(np.float32)
     return out
+
+
+class _Factor:
+    """The Cholesky factor of a kernel's matrix on the training designs, and its solves."""
+
+    def __init__(self, X, ell, amp, noise):
+        from spsc.models.surrogate.gp import matern52
+
+        self.ell, self.amp, self.noise = ell, amp, noise
+        self.L = np.linalg.cholesky(amp * matern52(X, X, ell) + noise * np.eye(len(X)))
+        # the diagonal of K⁻¹, for the leave-one-out residuals
+        self.kinv_diag = (np.linalg.solve(self.L, np.eye(len(X))) ** 2).sum(axis=0)
+
+    def solve(self, Y):
+        """(α = K⁻¹ Y, the leave-one-out residuals α_i / (K⁻¹)_ii, R&W 2006, eq. 5.12)."""
+        alpha = np.linalg.solve(self.L.T, np.linalg.solve(self.L, Y))
+        return alpha, alpha / self.kinv_diag[:, None]
