@@ -35,6 +35,31 @@ def test_closed_form_volumes():
     np.testing.assert_allclose(g.cavity_volume(), cap, rtol=1e-9)
 
 
+def test_the_closed_form_volume_is_the_quadrature_of_the_radius():
+    from scipy import integrate
+
+    from spsc.cad.geometry import cavity_volumes
+
+    rng = np.random.default_rng(5)
+    designs = [SPSCGeometry(11.0, 13.0, 3.0, 1.0, 2.0, 1.0, 0.3),  # a corner at the widest
+               SPSCGeometry(11.0, 13.0, 0.0, 1.0, 3.0, 4.0, 0.0)]
+    designs += [SPSCGeometry(float(rng.uniform(8, 14)), float(rng.uniform(8, 16)),
+                             float(rng.uniform(0, 6)), 1.0, float(rng.uniform(2, 3)),
+                             float(rng.uniform(1, 4)), float(rng.uniform(0, 0.6)))
+                for _ in range(8)]
+    for g in designs:
+        pts = [g.z_widest] if 0.0 < g.z_widest < g.h else None
+        opts = dict(points=pts, limit=200, epsabs=1e-10, epsrel=1e-12)
+        area = integrate.quad(lambda z: float(g.radius_at(z)) ** 2, 0.0, g.h, **opts)[0]
+        width = integrate.quad(lambda z: float(g.radius_at(z)), 0.0, g.h, **opts)[0]
+        # the quadrature's own tolerance is 1e-12 relative: round-off between the two
+        np.testing.assert_allclose(g.cavity_volume(), math.pi * area + 2 * g.l * width,
+                                   rtol=1e-10)
+    p = np.array([[g.w, g.h, g.l, g.n1, g.n2, g.cy] for g in designs]).T
+    np.testing.assert_allclose(cavity_volumes(*p), [g.cavity_volume() for g in designs],
+                               rtol=1e-14)
+
+
 @pytest.mark.parametrize("t", "ABCD")
 def test_profile_ends_and_radius(t):
     g = preset(t)

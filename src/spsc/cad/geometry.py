@@ -21,6 +21,7 @@ __all__ = [
     "TABLE1_VOLUME_CM3",
     "preset",
     "PARAMS",
+    "cavity_volumes",
 ]
 
 #: The seven parameters of a chamber (mm: w, h, l, t0; dimensionless: n1, n2, c_y), under
@@ -227,15 +228,10 @@ class SPSCGeometry:
 
         V = ∫₀ʰ [π r(z)² + 2 l r(z)] dz,
 
-        which reproduces Table 1 (A 4.96, B 4.09, C 3.04, D 6.50 cm³).
+        in closed form (:func:`cavity_volumes`), which reproduces Table 1 (A 4.96, B 4.09,
+        C 3.04, D 6.50 cm³).
         """
-        pts = [self.z_widest] if 0.0 < self.z_widest < self.h else None
-        opts = dict(points=pts, limit=200, epsabs=1e-10, epsrel=1e-12)
-        from scipy import integrate  # 0.24 s of every verb's start-up when at the top
-
-        area = integrate.quad(lambda z: float(self.radius_at(z)) ** 2, 0.0, self.h, **opts)[0]
-        width = integrate.quad(lambda z: float(self.radius_at(z)), 0.0, self.h, **opts)[0]
-        return math.pi * area + 2.0 * self.l * width
+        return float(cavity_volumes(self.w, self.h, self.l, self.n1, self.n2, self.cy))
 
     # -- polylines for the CAD --------------------------------------------------------------------
     def profile_points(self, n: int = 121) -> tuple[np.ndarray, np.ndarray]:
@@ -350,6 +346,28 @@ def _fan_corners(pts, nrm, max_turn=math.radians(3.0)):
         out_p.append(pts[k])
         out_n.append(nrm[k])
     return np.array(out_p), np.array(out_n)
+
+
+def cavity_volumes(w, h, l, n1, n2, cy):
+    """The cavity volume (mm³) of chambers given as arrays (or numbers) of their parameters,
+    V = ∫₀ʰ [π r(z)² + 2 l r(z)] dz with r(z) = w̄ (1 − |z/h̄ − c_y|^n2)^(1/n1) (eqs. 10–14),
+    exactly: with s = z/h̄ − c_y running from −c_y to 1, each integral is
+    ∫₀^S (1 − s^n2)^a ds = B(S^n2; 1/n2, a + 1) / n2, an incomplete beta function, taken on
+    both sides of the widest section (s = 0)."""
+    from scipy.special import beta, betainc  # at the top, every verb's start-up paid for it
+
+    w, h, l, n1, n2, cy = np.broadcast_arrays(*(np.asarray(v, float)
+                                                for v in (w, h, l, n1, n2, cy)))
+    h_bar = h / (1.0 + cy)
+    w_bar = w / (1.0 - cy**n2) ** (1.0 / n1)
+
+    def below(S, a):  # ∫₀^S (1 − s^n2)^a ds
+        return betainc(1.0 / n2, a + 1.0, S**n2) * beta(1.0 / n2, a + 1.0) / n2
+
+    def span(a):  # ∫ from s = −c_y to 1
+        return below(cy, a) + below(1.0, a)
+
+    return np.pi * h_bar * w_bar**2 * span(2.0 / n1) + 2.0 * l * h_bar * w_bar * span(1.0 / n1)
 
 
 def _dense_u(g: SPSCGeometry) -> np.ndarray:
