@@ -130,6 +130,16 @@ def test_overhang_of_a_sphere_cap_standing_on_its_base(cy, t0):
     assert any(r.startswith("overhang") for r in v.reasons) == (expected > 45.0)
 
 
+@pytest.mark.parametrize("cy", [3.46e-5, 1e-7])
+def test_overhang_of_a_barely_bulging_chamber_is_near_zero(cy):
+    """A bulge so slight that the offset of the lower branch never reaches the base plane (a
+    sweep's Latin hypercube drew c_y = 3.5e-5): the outer wall continues along its end
+    tangent, nearly vertical, instead of a root find without a sign change."""
+    g = SPSCGeometry(13.838, 15.72, 0.0, 1.451, 2.09, 3.639, cy)
+    v = printability(g, "fdm")
+    assert v.ok and 0.0 <= v.measures["overhang_deg"] < 0.5
+
+
 def test_overhang_against_each_process_limit():
     g = sphere_cap(0.8, 1.0)  # asin(8 / 11) = 46.7 deg: over FDM's 45, under SLA's 60
     fdm = printability(g, "fdm")

@@ -257,6 +257,10 @@ def _outer_overhang(g: SPSCGeometry) -> float:
         # n2 = 1: a corner at the widest section; its offset is an arc of radius t0 around it,
         # which meets z = 0 where sin(angle) = z_widest / t0
         return math.degrees(math.asin(min(1.0, g.z_widest / g.t0)))
+    if z_out(u1) >= 0.0:
+        # a bulge so slight (c_y → 0) that the offset of its whole lower branch stays above
+        # the base: the outer wall goes on along its end tangent, its normal that at the edge
+        return math.degrees(math.asin(min(1.0, max(0.0, down(u1)))))
     u = brentq(z_out, u0, u1, xtol=1e-12)
     return math.degrees(math.asin(min(1.0, down(u))))
 
