@@ -3,8 +3,8 @@ design (inputs, metrics, printability, status).
 
     spsc sweep [--type A,B,C,D] [--w 8:14:7] [--h ...] [--l ...] [--t0 0.8:1.5:4] [--n1 ...]
                [--n2 ...] [--cy ...] [--material tpu60a,elastic50a] [--pressure 10,40]
-               [--reservoir 0,40000] [--samples N --seed S] [--model membrane|wall|simplified]
-               [--process fdm|sla|molding] [--points N] [--stroke MM] --out FILE.parquet
+               [--reservoir 0,40000] [--samples N --seed S]
+               [--model membrane|wall|simplified|surrogate] [--process fdm|sla|molding] [--points N] [--stroke MM] --out FILE.parquet
                [--csv FILE] [--html DIR [--front M:max|min,M:max|min]]
                [--workers N | --scheduler ADDR] [--force] [--quiet]
 
@@ -58,7 +58,8 @@ def register(subparsers) -> None:
     g.add_argument("--seed", type=integer("seed"), default=0, metavar="S",
                    help="seed of the Latin hypercube (default 0: a re-run resumes)")
     g.add_argument("--force", action="store_true",
-                   help="run a sweep of more than 10,000 designs")
+                   help="run a sweep of more than 10,000 designs (1,000,000 with --model "
+                   "surrogate)")
     m = p.add_argument_group("evaluation")
     m.add_argument("--model", choices=SWEEP_MODELS, default="membrane",
                    help="the model of both modes (default membrane)")
@@ -66,7 +67,7 @@ def register(subparsers) -> None:
                    help="process whose printability limits are judged (default fdm)")
     m.add_argument("--points", type=integer("points"), default=None, metavar="N",
                    help="plate positions per curve (default the model's: membrane, simplified "
-                   "41; wall 25)")
+                   "41; wall, surrogate 25)")
     m.add_argument("--stroke", type=number("stroke", "mm"), default=6.0, metavar="MM",
                    help="plate travel of the metrics, mm (default 6, the paper's)")
     o = p.add_argument_group("outputs and where it runs (checked before any work)")
@@ -115,8 +116,13 @@ def prepare(args):
     if args.points is not None and not 2 <= args.points <= POINTS_MAX:
         raise ParameterError("points", args.points, f"an integer from 2 to {POINTS_MAX}")
     require("stroke", args.stroke, gt=0, unit="mm")
+    from spsc.sweep.evaluate import batched
+    from spsc.sweep.space import MAX_BATCHED_DESIGNS, MAX_DESIGNS
+
+    limit = MAX_BATCHED_DESIGNS if batched(args.model) else MAX_DESIGNS
     space = build_space({k: getattr(args, k) for k in INPUTS}, samples=args.samples,
-                        seed=args.seed, footprint=args.footprint, force=args.force)
+                        seed=args.seed, footprint=args.footprint, force=args.force,
+                        limit=limit)
     # a stroke no design of the space can take refuses the sweep (read from the axes: the
     # space is not walked twice)
     tallest = space.tallest_h

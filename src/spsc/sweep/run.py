@@ -21,7 +21,7 @@ import uuid
 from contextlib import ExitStack
 
 from spsc.study.executor import dask_client
-from spsc.sweep.evaluate import design_key, evaluate, failed_row
+from spsc.sweep.evaluate import batched, design_key, evaluate, evaluate_many, failed_row
 from spsc.sweep.store import SweepStore
 
 __all__ = ["run_sweep", "RETRIES", "IN_FLIGHT_PER_THREAD", "LOCAL_CLUSTER_CONFIG"]
@@ -39,12 +39,16 @@ IN_FLIGHT_PER_THREAD = 4
 LOCAL_CLUSTER_CONFIG = {"distributed.scheduler.worker-saturation": 1.0}
 #: Seconds between rewrites of the table from the journal during a sweep.
 CHECKPOINT_S = 120.0
+#: Designs per task of a batched model (:func:`~.evaluate.evaluate_many`): large enough that
+#: the model's batch dominates a task's overhead, small enough that the bar moves and a lost
+#: worker loses little.
+BATCH = 2000
 
 
 def run_sweep(designs, *, model: str, process: str, points: int | None,
               stroke_mm: float | None, out, workers: int | None = None,
               scheduler: str | None = None, progress: bool = True, csv=None,
-              task=evaluate, checkpoint_s: float = CHECKPOINT_S):
+              task=evaluate, checkpoint_s: float = CHECKPOINT_S, batch: int = BATCH):
     """Evaluate ``designs`` (an iterable of design dicts, iterated twice; see
     :mod:`.sweep_space`) with ``model`` and the printability of ``process``, ``points`` plate
     positions over ``stroke_mm`` (mm; None: the model's defaults), and write the table to
@@ -53,7 +57,8 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
 
     ``workers``/``scheduler``: see :func:`~.executor.dask_client`. ``progress``: a bar on
     stderr. ``task``: the function run per design, ``evaluate``'s signature (tests pass one
-    that kills its worker). Returns the table of the sweep's designs (one row per distinct
+    that kills its worker). ``batch``: designs per task of a batched model (the surrogate,
+    :func:`~.evaluate.evaluate_many`). Returns the table of the sweep's designs (one row per distinct
     design, in sweep order); ``df.attrs["sweep"]`` holds the run's counts (designs, skipped:
     done earlier, evaluated, retried_killed, workers) and seconds (start_s: the cluster,
     compute_s: first submission to last row, seconds: all).
@@ -80,7 +85,11 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
              "seconds": 0.0, "journal": str(store.journal)}
     t0 = time.perf_counter()
     try:
-        if todo:
+        if todo and task is evaluate and batched(model):
+            _run_batched(_pending(designs, settings, done), todo, store, settings, stats,
+                         workers=workers, scheduler=scheduler, progress=progress,
+                         checkpoint=(keys, checkpoint_s), batch=batch)
+        elif todo:
             _run(_pending(designs, settings, done), todo, store, settings, stats,
                  workers=workers, scheduler=scheduler, progress=progress, task=task,
                  checkpoint=(keys, checkpoint_s))
@@ -169,6 +178,66 @@ def _run(pending, total, store, settings, stats, *, workers, scheduler, progress
             flight.refill(pending)
             if suspects and not flight.designs:  # the rest is done: each suspect alone
                 flight.submit([suspects.pop(0)], attempt=1)
+            if time.perf_counter() - last > every:
+                store.write(keys)
+                last = time.perf_counter()
+        stats["compute_s"] = time.perf_counter() - t_start - stats["start_s"]
+
+
+def _run_batched(pending, total, store, settings, stats, *, workers, scheduler, progress,
+                 checkpoint, batch: int = BATCH):
+    """The sweep of a batched model: chunks of ``batch`` designs per task
+    (:func:`~.evaluate.evaluate_many`), two per worker thread in flight; a chunk whose task
+    did not return (its worker died twice, Dask's retries spent) is a chunk of failed rows
+    naming why, computed again by a re-run."""
+    import dask
+    import distributed  # noqa: F401  (see _run)
+    from distributed import as_completed
+
+    from spsc.core.progress import progress_bar
+
+    model, process, points, stroke_mm = settings
+    keys, every = checkpoint
+    t_start = time.perf_counter()
+    with ExitStack() as stack:
+        stack.enter_context(dask.config.set(LOCAL_CLUSTER_CONFIG))
+        client = stack.enter_context(dask_client(workers=workers, scheduler=scheduler))
+        bar = stack.enter_context(progress_bar(total=total, desc="spsc sweep", unit="design",
+                                               disable=not progress, file=sys.stderr,
+                                               dynamic_ncols=True))
+        threads = sum(client.nthreads().values())
+        stats.update(workers=len(client.nthreads()), start_s=time.perf_counter() - t_start)
+        run = uuid.uuid4().hex[:8]
+        chunks = iter(lambda: list(itertools.islice(pending, batch)), [])
+        flying, completed = {}, as_completed()
+
+        def submit(n):
+            for chunk in itertools.islice(chunks, n):
+                f = client.submit(evaluate_many, [d for _, d in chunk], model, process, points,
+                                  stroke_mm, key=f"spsc-sweep-batch-{chunk[0][0]}-{run}",
+                                  retries=RETRIES, pure=False)
+                flying[f.key] = chunk
+                completed.add(f)
+
+        submit(2 * max(1, threads))
+        failed, last = 0, time.perf_counter()
+        for f in completed:
+            chunk = flying.pop(f.key)
+            if f.status == "finished":
+                rows = f.result()
+                for (key, _), row in zip(chunk, rows):
+                    row["key"] = key
+            else:
+                why = _one_line(f.exception())
+                rows = [failed_row(d, why, key=key) for key, d in chunk]
+            f.release()
+            for row in rows:
+                store.append(row)
+            stats["evaluated"] += len(rows)
+            failed += sum(r["status"] == "failed" for r in rows)
+            bar.set_postfix(failed=failed, refresh=False)
+            bar.update(len(rows))
+            submit(1)
             if time.perf_counter() - last > every:
                 store.write(keys)
                 last = time.perf_counter()

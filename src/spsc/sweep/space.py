@@ -29,10 +29,13 @@ from spsc.core.loadcase import PRESSURE_MAX_KPA
 from spsc.cad.geometry import PARAMS
 from spsc.sweep.evaluate import INPUTS
 
-__all__ = ["Axis", "SweepSpace", "parse_axis", "build_space", "MAX_DESIGNS", "DEFAULTS"]
+__all__ = ["Axis", "SweepSpace", "parse_axis", "build_space", "MAX_DESIGNS",
+           "MAX_BATCHED_DESIGNS", "DEFAULTS"]
 
 #: Designs a sweep runs without ``--force`` (the count is printed when refused).
 MAX_DESIGNS = 10_000
+#: ... and with a batched model (the surrogate: about a minute per 100,000 designs)
+MAX_BATCHED_DESIGNS = 1_000_000
 #: Values of the axes the user leaves out (geometry: the type's preset).
 DEFAULTS = {"material": "tpu60a", "pressure": "40", "reservoir": "40000"}
 _CATEGORICAL = ("type", "material")

@@ -122,8 +122,45 @@ class SurrogateCurveModel(ModelBase):
         return Outcome(_to_curve(setup, sur, out, y, notes, bool(options.allow_extrapolation),
                                  time.perf_counter() - t0))
 
+    def curves_many(self, setups, options) -> list:
+        """The curves of many setups in one batched evaluation (the sweep's and the design
+        search's bulk path): the means of the learnt maps without the error estimate's
+        posterior draws (the snap flag kept, in each curve's notes). Each setup is checked as
+        :meth:`curve` checks it (ParameterError on the first refused)."""
+        from .predict import load
 
-def _to_curve(setup, sur, out, y, notes, allow, seconds):
+        t0 = time.perf_counter()
+        setups = list(setups)
+        if not setups:
+            return []
+        allow = bool(options.allow_extrapolation)
+        notes = [self.domain_notes(s, options) for s in setups]
+        sur = load(options.surrogate)
+        params = np.array([[s.body.w, s.body.h, s.body.l, s.body.t0, s.body.n1, s.body.n2,
+                            s.body.cy] for s in setups])
+        loads = [s.load for s in setups]
+        width = max(lc.points for lc in loads)
+        # rows of different lengths padded with their last travel (dropped again below)
+        y = np.array([np.pad(np.linspace(0.0, lc.stroke_mm, lc.points), (0, width - lc.points),
+                             mode="edge") for lc in loads])
+        out = sur.curves(params, np.array([s.material.shear_modulus for s in setups]), y,
+                         np.array([lc.pressure_kPa for lc in loads]),
+                         np.array([lc.reservoir_mm3 for lc in loads]),
+                         np.array([lc.polytropic_n for lc in loads]))
+        from spsc.cad.geometry import cavity_volumes
+
+        cavity = cavity_volumes(*np.delete(params, 3, axis=1).T)  # all at once
+        share = (time.perf_counter() - t0) / len(setups)
+        curves = []
+        for k, (s, lc) in enumerate(zip(setups, loads)):
+            one = {key: (v[k:k + 1, :lc.points] if np.ndim(v) == 2 else v[k:k + 1])
+                   for key, v in out.items()}
+            curves.append(_to_curve(s, sur, one, y[k, :lc.points], notes[k], allow, share,
+                                    cavity=float(cavity[k])))
+        return curves
+
+
+def _to_curve(setup, sur, out, y, notes, allow, seconds, cavity=None):
     from spsc.core.curve import Curve, SolveInfo
 
     g, lc = setup.body, setup.load
@@ -136,24 +173,27 @@ def _to_curve(setup, sur, out, y, notes, allow, seconds):
     msg = [m if s else "the gas law did not converge on the map" for m, s in zip(msg, solved)]
     conv = solved & (inside | allow)
     risk = float(out["snap_risk"][0])
+    snap = ""
     if risk >= RISK_FLAG:
-        notes = notes + [f"near designs that snap through or that the wall model could not "
-                         f"press at these pressures ({risk:.0%} of the nearest training "
-                         "designs): the surrogate smooths what the wall model resolves; "
-                         "--model wall for this chamber"]
+        snap = (f"near designs that snap through or that the wall model could not press at "
+                f"these pressures ({risk:.0%} of the nearest training designs): the "
+                "surrogate smooths what the wall model resolves; --model wall for this "
+                "chamber")  # said once, as the curve's instability
     if notes:
         msg = [m or notes[0] for m in msg]
     details = {"surrogate": sur.meta.get("name", ""), "trained": sur.meta.get("trained", ""),
                "training_designs": int(sur.fields.X.shape[0]),
-               "error_scale": sur.error_scale, "draws": DRAWS,
-               "force_err_N": out["force_err_N"][0].round(6).tolist(),
-               "pressure_err_kPa": out["pressure_err_kPa"][0].round(6).tolist(),
                "snap_risk": round(risk, 3), "snap_flag": risk >= RISK_FLAG,
                "inflated_height_note": "the outer top less t0 (the map holds the outer top)"}
+    if "force_err_N" in out:
+        details.update(error_scale=sur.error_scale, draws=DRAWS,
+                       force_err_N=out["force_err_N"][0].round(6).tolist(),
+                       pressure_err_kPa=out["pressure_err_kPa"][0].round(6).tolist())
     i = np.flatnonzero(conv)
     info = SolveInfo(converged=bool(conv.all()), message="converged" if conv.all() else
                      next(m for m in msg if m), y_reached_mm=float(y[i[-1]]) if i.size
-                     else float("nan"), seconds=seconds, notes=tuple(notes), details=details)
+                     else float("nan"), instability=snap, seconds=seconds, notes=tuple(notes),
+                     details=details)
     H, V0 = float(out["top_mm"][0]), float(out["inflated_volume_mm3"][0])
     nan = lambda a: np.where(conv, a, np.nan)  # noqa: E731
     setup_rec = {"p_i_kPa": lc.pressure_kPa, "reservoir_mm3": lc.reservoir_mm3,
@@ -162,6 +202,7 @@ def _to_curve(setup, sur, out, y, notes, allow, seconds):
                  nan(np.maximum(out["contact_area_mm2"][0], 0.0)),
                  nan(out["volume_change_mm3"][0]), model="surrogate",
                  geometry=g.as_dict(), material=setup.material.name, setup=setup_rec,
-                 nominal_volume_mm3=g.cavity_volume(), inflated_volume_mm3=V0,
+                 nominal_volume_mm3=g.cavity_volume() if cavity is None else cavity,
+                 inflated_volume_mm3=V0,
                  inflated_height_mm=H - g.t0, converged=conv, message=tuple(msg),
                  solver=info)
