@@ -407,3 +407,44 @@ def test_a_journal_that_cannot_be_read_is_one_line_naming_it(tmp_path, text):
 
     with pytest.raises(ParameterError, match=f"{JOURNAL} is a study spsc design wrote"):
         check_resumable(tmp_path, Problem())
+
+
+def test_a_surrogate_search_is_confirmed_by_the_wall_model(tmp_path, capsys):
+    """The surrogate screens; its best designs run again with the wall model, which decides
+    whether the goal is met and is the model of the re-run commands."""
+    import json
+
+    from spsc.cli.main import main
+    from spsc.design.confirm import CONFIRM
+    from spsc.sweep.evaluate import evaluate
+
+    out = tmp_path / "run"
+    rc = main(["design", "--model", "surrogate", "--target", "stiffness_high=5", "--l", "0",
+               "--type", "B,D", "--trials", "40", "--seed", "4", "--tol", "2", "--workers",
+               "2", "--verify", "none", "--no-build", "--out", str(out), "--quiet"])
+    printed = capsys.readouterr().out
+    doc = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    c = doc["confirmed"]
+    assert c["model"] == "wall" and 1 <= len(c["candidates"]) <= CONFIRM
+    assert "confirmed with the wall model" in printed
+    chosen = c["candidates"][c["chosen"]]
+    # the confirmation is the wall model's own row, and the goal is judged on it
+    row = evaluate(chosen["params"], "wall", "fdm", None, 6.0)
+    assert chosen["metrics"]["stiffness_high"] == pytest.approx(row["stiffness_high"],
+                                                                rel=1e-12)
+    assert chosen["miss"] == min(d["miss"] for d in c["candidates"] if d["miss"] is not None)
+    assert doc["met"] == (chosen["miss"] <= 0.02 + 1e-12) and rc == (0 if doc["met"] else 1)
+    assert doc["rerun"]["high"].startswith("spsc curve --model wall")
+    # the surrogate's screen and the wall model agree on these domes within its stated error
+    assert abs(chosen["metrics"]["stiffness_high"] - chosen["screened"]["stiffness_high"]) \
+        <= 0.03 * chosen["metrics"]["stiffness_high"]
+
+
+def test_a_screening_search_stops_at_half_the_tolerance():
+    from spsc.design.loop import stop_tol
+
+    assert stop_tol(_problem(tol=0.02)) == pytest.approx(0.02)
+    surrogate = _problem(tol=0.02)
+    surrogate = type(surrogate)(surrogate.goal, surrogate.space, "surrogate",
+                                surrogate.process, surrogate.points, surrogate.stroke_mm)
+    assert stop_tol(surrogate) == pytest.approx(0.01)

@@ -108,8 +108,9 @@ def _search_options(e) -> None:
                    "and simplified 41)")
     e.add_argument("--stroke", type=number("stroke", "mm"), default=6.0, metavar="MM",
                    help="plate travel of the metrics, mm (default 6)")
-    e.add_argument("--trials", type=integer("trials"), default=100, metavar="N",
-                   help="trials in the study, those of an earlier run included (default 100)")
+    e.add_argument("--trials", type=integer("trials"), default=None, metavar="N",
+                   help="trials in the study, those of an earlier run included (default 100; "
+                   "400 with the surrogate)")
     e.add_argument("--seed", type=integer("seed"), default=None, metavar="S",
                    help="sampler seed (default: drawn and recorded); with the worker count, "
                    "it reproduces the study")
@@ -147,6 +148,8 @@ def prepare(args):
     lowest_h = space["h"].low
     require("stroke", args.stroke, gt=0, lt=lowest_h,
             unit=f"mm, below the smallest h of the search space ({lowest_h:g} mm)")
+    if args.trials is None:
+        args.trials = 400 if args.model == "surrogate" else 100
     if not 1 <= args.trials <= _MAX_TRIALS:
         raise ParameterError("trials", args.trials, f"an integer from 1 to {_MAX_TRIALS:,}")
     if args.seed is not None and not 0 <= args.seed < 2**32:
@@ -187,6 +190,7 @@ def check_targets(goal):
 
 
 def run(args) -> int:
+    from spsc.design.confirm import confirm
     from spsc.design.loop import run_design
     from spsc.design.output import document, print_summary, write_document, write_tables
     from spsc.design.verify import build_part, mode_curve, verify_fem
@@ -206,22 +210,30 @@ def run(args) -> int:
                             client=client, progress=not args.quiet)
         best = result.best
         curves = None
+        # a surrogate's best designs run again with the model it learnt: what follows (the
+        # FEM check, the part, the re-run commands) is built on the confirmed design
+        confirmed = confirm(client, problem, result.rows, best)
+        model, points = problem.model, problem.points
+        if confirmed is not None and confirmed["chosen"] is not None:
+            model, points = confirmed["model"], None
+            best = dict(best, **confirmed["candidates"][confirmed["chosen"]]["params"])
         if best is not None:
             params = {k: best[k] for k in ("type",) + PARAMS + ("material", "pressure",
                                                                  "reservoir")}
             if args.verify == "fem":
-                verify = verify_fem(client, params, problem.goal, fast_model=problem.model,
-                                    points=problem.points, stroke_mm=problem.stroke_mm,
+                verify = verify_fem(client, params, problem.goal, fast_model=model,
+                                    points=points, stroke_mm=problem.stroke_mm,
                                     mesh_size_mm=args.mesh_size, out=out / "verify")
                 curves = verify["_curves"]
             else:
-                curves = {"fast": {m: mode_curve(params, problem.model, m, points=problem.points,
+                curves = {"fast": {m: mode_curve(params, model, m, points=points,
                                                  stroke_mm=problem.stroke_mm)
                                    for m in ("high", "low")}, "fem": {}}
             if not args.no_build:
                 build = build_part(params, problem.process, out / "part")
     result.facts["total_seconds"] = time.perf_counter() - t0
-    doc = document(problem, result, verify=verify, build=build, command=_command(args))
+    doc = document(problem, result, verify=verify, build=build, command=_command(args),
+                   confirmed=confirmed)
     write_document(doc, out, args.json)
     write_tables(result.rows, out, args.csv)
     page = _page(doc, result, curves, out)
@@ -248,6 +260,13 @@ def _exit(doc, args) -> int:
     why = []
     if doc["best"] is None:
         why.append("no feasible design in the study (more --trials, or a wider space)")
+    elif not doc["met"] and doc.get("confirmed"):
+        c = doc["confirmed"]
+        miss = None if c["chosen"] is None else c["candidates"][c["chosen"]]["miss"]
+        why.append(f"goal not met by the {c['model']} model: " + (
+            f"the confirmed design's miss is {100 * miss:.2f} % (> "
+            f"{100 * doc['goal']['tol']:g} %)" if miss is not None
+            else f"it computed none of the {len(c['candidates'])} best designs"))
     elif not doc["met"]:
         why.append(f"goal not met: the best miss is {100 * doc['best']['miss']:.2f} % "
                    f"(> {100 * doc['goal']['tol']:g} %)")

@@ -96,10 +96,20 @@ def _counted(study) -> int:
                if t.user_attrs.get("reason") != INTERRUPTED)
 
 
-def _goal_met_already(study, goal: Goal) -> bool:
-    if goal.multi:
+def stop_tol(problem: Problem) -> float:
+    """The miss that ends a single-objective search: the goal's tolerance, or a share of it
+    (:data:`~.confirm.SCREEN_TOL`) for a screening model whose best designs are confirmed by
+    another (the surrogate's own error would otherwise spend the margin)."""
+    from spsc.design.confirm import CONFIRMED_BY, SCREEN_TOL
+
+    return problem.goal.tol * (SCREEN_TOL if problem.model in CONFIRMED_BY else 1.0)
+
+
+def _goal_met_already(study, problem: Problem) -> bool:
+    if problem.goal.multi:
         return False
-    return any(t.state.name == "COMPLETE" and _feasible(t) and t.values[0] <= goal.tol + 1e-12
+    tol = stop_tol(problem)
+    return any(t.state.name == "COMPLETE" and _feasible(t) and t.values[0] <= tol + 1e-12
                for t in study.get_trials(deepcopy=False))
 
 
@@ -110,7 +120,7 @@ def _loop(study, problem: Problem, client, evaluate, trials: int, inflight: int,
     optuna = optuna_module()
     polish = Polish(problem)
     done = _counted(study)
-    stop = _goal_met_already(study, problem.goal)
+    stop = _goal_met_already(study, problem)
     pending: deque = deque()
     # the trials are a budget the search stops short of when the goal is met: no total, no
     # time left that would be wrong (issue 53: 100 trials and 2 h promised, 10 run)
@@ -213,7 +223,7 @@ def _tell(study, problem: Problem, trial, design: dict, row: dict) -> bool:
     miss = goal.miss(metrics)
     trial.set_user_attr("miss", miss)
     study.tell(trial, goal.values(metrics))
-    return (not goal.multi) and printable and miss <= goal.tol + 1e-12
+    return (not goal.multi) and printable and miss <= stop_tol(problem) + 1e-12
 
 
 def _feasible(t) -> bool:

@@ -64,8 +64,11 @@ def rerun_commands(params: dict, model: str, points: int | None, stroke_mm: floa
             for mode, v in (("high", 0.0), ("low", params["reservoir"]))}
 
 
-def document(problem, run, *, verify=None, build=None, command: str = "") -> dict:
-    """The ``design.json`` document of a finished run (module docstring)."""
+def document(problem, run, *, verify=None, build=None, command: str = "",
+             confirmed=None) -> dict:
+    """The ``design.json`` document of a finished run (module docstring); with
+    ``confirmed`` (:func:`~spsc.design.confirm.confirm`), the goal is met when the confirming
+    model meets it and the re-run commands are that model's for the confirmed design."""
     best = design_entry(run.best) if run.best else None
     doc = {"schema": SCHEMA, "schema_version": SCHEMA_VERSION, "best": best,
            "pareto": [design_entry(r) for r in run.pareto], "met": bool(run.met),
@@ -77,6 +80,12 @@ def document(problem, run, *, verify=None, build=None, command: str = "") -> dic
            "rerun": (rerun_commands(best["params"], problem.model, problem.points,
                                     problem.stroke_mm) if best else None),
            "command": command}
+    if confirmed is not None:
+        doc["confirmed"] = confirmed
+        doc["met"] = bool(confirmed["met"])
+        if confirmed["chosen"] is not None:
+            doc["rerun"] = rerun_commands(confirmed["candidates"][confirmed["chosen"]]["params"],
+                                          confirmed["model"], None, problem.stroke_mm)
     if best is None:
         closest = [r for r in run.rows if r["state"] == "COMPLETE"]
         if closest:
@@ -140,10 +149,13 @@ def print_summary(doc: dict, out: Path) -> None:
                   + _line(doc["closest"]))
         return
     miss = "" if best["miss"] is None else f", miss {100 * best['miss']:.2f} %"
-    state = "goal met" if doc["met"] else "goal NOT met"
+    state = (f"screened by the {doc['model']} model" if doc.get("confirmed")
+             else "goal met" if doc["met"] else "goal NOT met")
     print(f"best: trial {best['trial']}{miss} ({state}): " + _line(best))
     if doc["goal"]["multi_objective"]:
         print(f"Pareto front: {len(doc['pareto'])} feasible non-dominated designs")
+    if doc.get("confirmed"):
+        _print_confirmed(doc["confirmed"], doc["model"], doc["goal"]["tol"])
     v = doc.get("verify")
     if v:
         _print_verify(v)
@@ -155,6 +167,24 @@ def print_summary(doc: dict, out: Path) -> None:
     print("re-run the best design (high, low mode):")
     for mode in ("high", "low"):
         print("  " + doc["rerun"][mode])
+
+
+def _print_confirmed(c: dict, screened_by: str, tol: float) -> None:
+    print(f"confirmed with the {c['model']} model ({len(c['candidates'])} best designs, "
+          f"{c['seconds']:.1f} s): miss {screened_by} -> {c['model']}")
+    for i, d in enumerate(c["candidates"]):
+        miss = "—" if d["miss"] is None else f"{100 * d['miss']:.2f} %"
+        note = "" if d["status"] == "ok" else f" ({d['status']}: {d['message']})"
+        mark = "  <- confirmed" if i == c["chosen"] else ""
+        print(f"  trial {d['trial']:>4}  {_g(100 * d['screened_miss'])} % -> {miss}"
+              f"{note}{mark}")
+    if c["chosen"] is None:
+        print(f"  the {c['model']} model computed none of them: nothing confirmed")
+    else:
+        d = c["candidates"][c["chosen"]]
+        met = "met" if c["met"] else "NOT met"
+        print(f"  goal {met} by the {c['model']} model (tolerance {100 * tol:g} %): " + ", ".join(
+            f"{k} {_g(d['metrics'][k])}" for k in METRIC_NAMES))
 
 
 def _print_verify(v: dict) -> None:
