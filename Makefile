@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-long test-all docs bench bench-mold bench-compare bench-wall bench-speed bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap clean
+.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-long test-all docs bench bench-mold bench-compare bench-wall bench-speed bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap bench-surrogate surrogate-check clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -146,6 +146,14 @@ bench-sense: $(STAMP)
 # shown by make report; MATERIAL_ROW=FIT.json adds the row of your material fit
 bench-gap: $(STAMP)
 	$(BIN)/spsc bench-gap --out build/bench-gap $(if $(MATERIAL_ROW),--material-row $(MATERIAL_ROW))
+
+# the shipped surrogate against the wall model on 200 fresh domes (about a minute), shown
+# by make report; bench-surrogate: its speed (quiet machine)
+surrogate-check: $(STAMP)
+	$(BIN)/spsc surrogate check --samples 200 --out build/surrogate-check
+
+bench-surrogate: $(STAMP)
+	$(BIN)/python bench/bench_surrogate.py $(if $(FULL),--sweep --design)
 
 # the plate's friction: increments, work, wall against 3D FEM, the Table 1 means with
 # mu = 0, 0.3, 0.6 and stick (the Coulomb curves are slow: about an hour on 2 cores)

@@ -1,12 +1,14 @@
 """The surrogate's speed and size (issue 48). Time it on a quiet machine.
 
-    python bench/bench_surrogate.py
+    python bench/bench_surrogate.py [--sweep] [--design]     (make bench-surrogate [FULL=1])
 
 Prints: the shipped file's size and load time (a fresh process), one 25-point curve warm
 inside Python (with and without the error estimate), curve points per second batched on one
 core (designs × 25 points, mean only), and ``spsc curve --model surrogate`` as a whole process
 beside ``spsc curve --model membrane`` and ``--model wall`` on the same dome (Type B profile,
-l = 0), as medians of five runs.
+l = 0), as medians of five runs. ``--sweep``: ``spsc sweep --model surrogate --samples 100000``
+over the domes (two workers, printability judged) as a process; ``--design``: ``spsc design
+--model surrogate`` with two targets, its wall confirmation included, as a process.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ import statistics
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -91,8 +94,58 @@ def processes() -> None:
           f"wall / surrogate = {out['wall'] / out['surrogate']:.2f}")
 
 
+DOMES = ["--w", "8:14", "--h", "11:16", "--l", "0", "--t0", "0.6:1.5", "--n1", "2:3",
+         "--n2", "1:4", "--cy", "0:0.6", "--pressure", "10:40"]
+
+
+def _timed(argv: list[str]) -> tuple[float, str]:
+    t = time.perf_counter()
+    done = subprocess.run([sys.executable, "-m", "spsc.cli.main", *argv], capture_output=True,
+                          text=True)
+    return time.perf_counter() - t, done.stdout
+
+
+def sweep(samples: int = 100_000) -> None:
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as d:
+        seconds, out = _timed(["sweep", "--model", "surrogate", "--samples", str(samples),
+                               *DOMES, "--workers", "2", "--quiet", "--out",
+                               f"{d}/s.parquet"])
+        import pandas as pd
+
+        df = pd.read_parquet(f"{d}/s.parquet")
+    print(f"spsc sweep --model surrogate --samples {samples:,} (domes, 2 workers, fdm "
+          f"printability judged) as a process: {seconds:.1f} s; per design "
+          f"{1000 * df['seconds'].mean():.2f} ms of worker time; "
+          + ", ".join(f"{k} {v}" for k, v in df["status"].value_counts().items()))
+
+
+def design() -> None:
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as d:
+        seconds, out = _timed(["design", "--model", "surrogate", "--target",
+                               "stiffness_high=5", "--target", "sensitivity_high=3", "--l", "0",
+                               "--seed", "1", "--workers", "2", "--verify", "none",
+                               "--no-build", "--quiet", "--out", f"{d}/run"])
+        import json
+
+        doc = json.loads((Path(d) / "run" / "design.json").read_text())
+    c = doc["confirmed"]
+    print(f"spsc design --model surrogate, two targets (stiffness_high=5, sensitivity_high=3), "
+          f"as a process: {seconds:.1f} s ({doc['trials']} trials in "
+          f"{doc['run']['loop_seconds']:.1f} s, the wall confirmation of "
+          f"{len(c['candidates'])} designs {c['seconds']:.1f} s); goal "
+          f"{'met' if doc['met'] else 'NOT met'} by the wall model")
+
+
 if __name__ == "__main__":
     file_figures()
     one_curve()
     batched()
     processes()
+    if "--sweep" in sys.argv:
+        sweep()
+    if "--design" in sys.argv:
+        design()

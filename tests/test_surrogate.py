@@ -170,3 +170,29 @@ def test_a_chamber_near_snapping_designs_is_flagged_and_a_plain_one_is_not(capsy
                  str(j)]) == 0
     assert not json.loads(j.read_text())["solver"]["details"]["snap_flag"]
     assert "snap" not in capsys.readouterr().err
+
+
+def test_the_check_writes_what_the_report_section_shows(tmp_path, capsys):
+    """``spsc surrogate check --out`` on a few fresh designs: the table, the summary, both
+    figures; the report's section renders its numbers (and says how to make it without)."""
+    import json
+
+    from spsc.cli.main import main
+    from spsc.report.render import environment
+    from spsc.report.surrogate import surrogate_section
+
+    study = tmp_path / "check"
+    assert main(["surrogate", "check", "--samples", "3", "--workers", "1", "--quiet",
+                 "--out", str(study)]) == 0
+    s = json.loads((study / "summary.json").read_text())
+    assert s["samples"] == 3 and s["curves"] == 6 and len(s["worst"]) == 4
+    assert s["surrogate"]["designs"] == load().meta["designs"]
+    sec = surrogate_section(study, tmp_path / "report")
+    assert (tmp_path / "report" / sec["check"]).is_file()
+    assert (tmp_path / "report" / sec["worst_figure"]).is_file()
+    render = environment().from_string('{% import "macros.html.j2" as m with context %}'
+                                       '{% include "surrogate_section.html.j2" %}').render
+    html = render(surrogate=sec)
+    assert 'id="surrogate"' in html and f"{100 * s['force']['p95']:.2f} %" in html
+    assert "on 3 fresh domes" in " ".join(html.split())
+    assert "make surrogate-check" in render(surrogate=None)

@@ -3,6 +3,7 @@
     spsc report [--quick] [--out DIR] [--cache DIR] [--no-fem] [--no-sweep] [--types ABCD]
                 [--quiet] [--workers N | --scheduler ADDRESS] [--allow-dirty]
                 [--fingertip DIR] [--haptic DIR] [--time DIR] [--bench-gap DIR]
+                [--surrogate-check DIR]
 
 Default: the full study into ``reports/validation/``; ``--quick`` (coarse FEM mesh, fewer
 points and pressures; CI) into ``build/report-quick/``. Runs are cached under
@@ -68,6 +69,9 @@ def register(subparsers) -> None:
     p.add_argument("--bench-gap", metavar="DIR", default=None,
                    help="the bench-gap study to show (make bench-gap's build/bench-gap, the "
                    "default when it exists)")
+    p.add_argument("--surrogate-check", metavar="DIR", default=None,
+                   help="the surrogate's check to show (make surrogate-check's "
+                   "build/surrogate-check, the default when it exists)")
     p.add_argument("--types", help="subset of the types, e.g. BD (default ABCD)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     d = p.add_argument_group("where the runs are computed (Dask; no cluster is started when "
@@ -134,7 +138,8 @@ def run(args) -> int:
                         wall_seconds=time.perf_counter() - t0, bench=bench,
                         executor=executor, sweep=sweep, fingertip=_fingertip(args),
                         molds=tuple(study.types), haptic=_haptic(args),
-                        time_study=_time(args), gap=_gap(args))
+                        time_study=_time(args), gap=_gap(args),
+                        surrogate=_surrogate(args))
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
@@ -156,7 +161,9 @@ _STUDIES = (("fingertip", "a fingertip study's summary.json (spsc fingertip --fe
             ("time", "the time-domain study's summary.json (make time-study writes "
              "build/time-study)"),
             ("bench_gap", "the bench-gap study's summary.json (make bench-gap "
-             "writes build/bench-gap)"))
+             "writes build/bench-gap)"),
+            ("surrogate_check", "the surrogate check's summary.json (make surrogate-check "
+             "writes build/surrogate-check)"))
 
 
 def _check_studies(args) -> None:
@@ -183,6 +190,12 @@ def _gap(args):
     from spsc.report.gap import DEFAULT_DIR
 
     return DEFAULT_DIR if args.bench_gap is None else args.bench_gap
+
+
+def _surrogate(args):
+    from spsc.report.surrogate import DEFAULT_DIR
+
+    return DEFAULT_DIR if args.surrogate_check is None else args.surrogate_check
 
 
 def _fingertip(args):

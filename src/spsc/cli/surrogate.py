@@ -174,7 +174,7 @@ def _check(args) -> int:
               + "; ".join(f"{k} {100 * u[k]['median']:.2f} / {100 * u[k]['p95']:.2f} / "
                           f"{100 * u[k]['max']:.2f} %" for k in u))
     if args.out is not None:
-        from spsc.report.surrogate_figures import check_figure
+        from spsc.report.surrogate_figures import check_figure, worst_figure
 
         import pandas as pd
         from pathlib import Path
@@ -182,8 +182,13 @@ def _check(args) -> int:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
         pd.DataFrame(result["rows"]).to_csv(out / "check.csv", index=False)
-        (out / "summary.json").write_text(json.dumps(s, indent=1))
         check_figure(result, out / "check.png")
+        worst = worst_figure(sur, results, result["rows"], out / "worst.png")
+        s.update(samples=args.samples, seed=args.seed, worst=worst,
+                 surrogate={k: sur.meta.get(k) for k in ("name", "trained", "designs",
+                                                         "excluded", "worker_seconds",
+                                                         "commit", "error_scale")})
+        (out / "summary.json").write_text(json.dumps(s, indent=1))
     return 0
 
 

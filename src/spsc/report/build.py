@@ -27,6 +27,7 @@ from spsc.report.fingertip import fingertip_section
 from spsc.report.haptic import haptic_section
 from spsc.report.time import time_section
 from spsc.report.gap import gap_section
+from spsc.report.surrogate import surrogate_section
 from spsc.report.mold import mold_section
 from spsc.report.sweep import sweep_section
 from spsc.report.sections import (FigureOutput, Results, comparison_section, convergence_section,
@@ -40,7 +41,7 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
                  wall_seconds: float | None = None, render: bool = True, fig_cache=None,
                  source: Provenance | None = None, bench=None, executor: str = "",
                  sweep=None, fingertip=None, molds=(), haptic=None, time_study=None,
-                 gap=None) -> Path:
+                 gap=None, surrogate=None) -> Path:
     """Write ``out_dir/index.html`` with ``figures/``, ``data/`` and ``summary.json`` beside
     it; returns the HTML path. ``outcomes`` is :func:`~.runner.run_all`'s result;
     ``fig_cache``: a directory where figures are kept by a hash of what they show (None:
@@ -56,11 +57,12 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
     gated and rendered (:mod:`.report_mold`; empty: no such section); ``haptic``: the folder
     of the haptic chamber's study (:mod:`.report_haptic`; as ``fingertip``); ``time_study``:
     the folder of the time-domain study (:mod:`.time`; as ``fingertip``); ``gap``: the folder
-    of the bench-gap study (:mod:`.gap`; as ``fingertip``)."""
+    of the bench-gap study (:mod:`.gap`; as ``fingertip``); ``surrogate``: the folder of the
+    surrogate's check (:mod:`.surrogate`; as ``fingertip``)."""
     out = Path(out_dir)
     figs, data = out / "figures", out / "data"
     for d in (figs, data, out / "sweep", out / "mold", out / "haptic", out / "time",
-              out / "gap"):
+              out / "gap", out / "surrogate"):
         if d.exists():
             shutil.rmtree(d)
     for d in (figs, data):
@@ -85,7 +87,8 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
            "mold": mold_section(out, molds, render=render) if molds else None,
            "haptic": haptic_section(haptic, out) if haptic is not None else None,
            "time": time_section(time_study, out) if time_study is not None else None,
-           "gap": gap_section(gap, out) if gap is not None else None}
+           "gap": gap_section(gap, out) if gap is not None else None,
+           "surrogate": surrogate_section(surrogate, out) if surrogate is not None else None}
     ctx["overview"] = overview_section(study, ctx["headline"], ctx["comparison"],
                                        ctx["convergence"], ctx["paper"])
     drawn, ctx["figure_notes"] = draw_figures(
