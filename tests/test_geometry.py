@@ -38,7 +38,7 @@ def test_closed_form_volumes():
 def test_the_closed_form_volume_is_the_quadrature_of_the_radius():
     from scipy import integrate
 
-    from spsc.cad.geometry import cavity_volumes
+    from spsc.cad.cavity import cavity_volumes
 
     rng = np.random.default_rng(5)
     designs = [SPSCGeometry(11.0, 13.0, 3.0, 1.0, 2.0, 1.0, 0.3),  # a corner at the widest

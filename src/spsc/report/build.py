@@ -37,6 +37,10 @@ from spsc.study.runs import Study, code_version
 __all__ = ["build_report", "write_run_data"]
 
 
+#: the sections' own folders in a report (emptied before it is written)
+SECTION_DIRS = ("sweep", "mold", "haptic", "time", "gap", "surrogate")
+
+
 def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
                  wall_seconds: float | None = None, render: bool = True, fig_cache=None,
                  source: Provenance | None = None, bench=None, executor: str = "",
@@ -57,12 +61,11 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
     gated and rendered (:mod:`.report_mold`; empty: no such section); ``haptic``: the folder
     of the haptic chamber's study (:mod:`.report_haptic`; as ``fingertip``); ``time_study``:
     the folder of the time-domain study (:mod:`.time`; as ``fingertip``); ``gap``: the folder
-    of the bench-gap study (:mod:`.gap`; as ``fingertip``); ``surrogate``: the folder of the
-    surrogate's check (:mod:`.surrogate`; as ``fingertip``)."""
+    of the bench-gap study (:mod:`.gap`), ``surrogate`` the surrogate's check
+    (:mod:`.surrogate`): as ``fingertip``."""
     out = Path(out_dir)
     figs, data = out / "figures", out / "data"
-    for d in (figs, data, out / "sweep", out / "mold", out / "haptic", out / "time",
-              out / "gap", out / "surrogate"):
+    for d in [figs, data] + [out / k for k in SECTION_DIRS]:
         if d.exists():
             shutil.rmtree(d)
     for d in (figs, data):

@@ -147,7 +147,7 @@ class SurrogateCurveModel(ModelBase):
                          np.array([lc.pressure_kPa for lc in loads]),
                          np.array([lc.reservoir_mm3 for lc in loads]),
                          np.array([lc.polytropic_n for lc in loads]))
-        from spsc.cad.geometry import cavity_volumes
+        from spsc.cad.cavity import cavity_volumes
 
         cavity = cavity_volumes(*np.delete(params, 3, axis=1).T)  # all at once
         share = (time.perf_counter() - t0) / len(setups)
