@@ -32,11 +32,13 @@ class SplineGrid:
         i = np.clip(np.searchsorted(x, t) - 1, 0, x.size - 2)
         h = x[i + 1] - x[i]
         a, b = (x[i + 1] - t) / h, (t - x[i]) / h
-        W = (((a**3 - a) * h * h / 6)[..., None] * M[i]
-             + ((b**3 - b) * h * h / 6)[..., None] * M[i + 1])
-        D = ((-(3 * a * a - 1) * h / 6)[..., None] * M[i]
-             + ((3 * b * b - 1) * h / 6)[..., None] * M[i + 1])
-        eye = np.eye(x.size)
-        W += a[..., None] * eye[i] + b[..., None] * eye[i + 1]
-        D += (eye[i + 1] - eye[i]) / h[..., None]
+        Mi, Mj = M[i], M[i + 1]
+        W = ((a**3 - a) * h * h / 6)[..., None] * Mi + ((b**3 - b) * h * h / 6)[..., None] * Mj
+        D = (-(3 * a * a - 1) * h / 6)[..., None] * Mi + ((3 * b * b - 1) * h / 6)[..., None] * Mj
+        # the linear part: a at node i and b at node i + 1 (flat indices, no n × n identity)
+        at = np.arange(i.size) * x.size + i.ravel()
+        for out, lo, hi in ((W, a, b), (D, -1.0 / h, 1.0 / h)):
+            flat = out.reshape(-1)
+            flat[at] += np.ravel(lo)
+            flat[at + 1] += np.ravel(hi)
         return W, D
