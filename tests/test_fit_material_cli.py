@@ -238,7 +238,8 @@ def test_list_catalogue_shows_law_constants_and_provenance(capsys):
 
 @pytest.mark.parametrize("argv,names", [
     (["membrane", "--type", "B", "--material", "{missing}"], "material"),
-    (["curve", "--model", "wall", "--type", "B", "--material", "{ogden}"], "--law yeoh"),
+    (["curve", "--model", "surrogate", "--type", "B", "--l", "0", "--material", "{ogden}"],
+     "neo-Hookean"),
     (["bladder", "--type", "B", "--material", "{ogden}"], "material file carries no process"),
     (["fit-material", "{data}", "--range", "5:6"], "--range"),
     (["fit-material", "{data}", "--law", "ogden", "--ogden-terms", "3"], "data points"),
@@ -248,7 +249,7 @@ def test_one_line_errors(tmp_path, capsys, argv, names):
     from spsc.materials.file import material_record
 
     ogden = tmp_path / "og.json"
-    write_json(ogden, material_record("og", "ogden", {"mu": [0.5], "alpha": [2.0]}))
+    write_json(ogden, material_record("og", "ogden", {"mu": [0.5, 0.01], "alpha": [2.0, 4.0]}))
     data = _csv(tmp_path, "d.csv", "stretch,stress_MPa\n1,0\n1.5,0.2\n2,0.4\n")
     fill = {"{missing}": str(tmp_path / "missing.json"), "{ogden}": str(ogden),
             "{data}": data}
@@ -256,16 +257,17 @@ def test_one_line_errors(tmp_path, capsys, argv, names):
     assert rc == 2 and len(err.strip().splitlines()) == 1 and names in err, err
 
 
-def test_one_test_plots_predictions_and_ogden_file_is_a_record(tmp_path, capsys):
+def test_one_test_plots_predictions_and_an_ogden_file_is_a_model_law(tmp_path, capsys):
     """Uniaxial data only: the figure still has the equibiaxial and planar panels (the laws'
-    predictions); --law ogden writes its record and says a model will not take it."""
+    predictions); --law ogden writes a material file the models solve."""
     rc, out, _ = _run(["fit-material", TRELOAR[0], "--range", ":5", "--png",
                        tmp_path / "u.png", "--law", "ogden", "--out", tmp_path / "og.json"],
                       capsys)
     assert rc == 0 and (tmp_path / "u.png").stat().st_size > 10_000
-    assert "a record of the fit: the models take" in out
-    rc, _, err = _run(["membrane", "--type", "B", "--material", tmp_path / "og.json"], capsys)
-    assert rc == 2 and "--law all" in err
+    assert f"use it as --material {tmp_path / 'og.json'}" in out
+    rc, out, _ = _run(["membrane", "--type", "B", "--pressure", "5", "--points", "5",
+                       "--material", tmp_path / "og.json"], capsys)
+    assert rc == 0 and "material og" in out
 
 
 # -- the law the material file takes --------------------------------------------------------

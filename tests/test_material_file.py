@@ -63,7 +63,7 @@ def _error(tmp_path, **changes):
     ({"provenance": "rumour"}, "provenance"),
     ({"bulk_ratio": -3}, "bulk_ratio"),
     ({"bulk_ratio": 500}, "2000"),
-    ({"law": "ogden", "constants": {"mu": [0.5], "alpha": [2.0]}}, "--law yeoh"),
+    ({"law": "ogden", "constants": {"mu": [0.5], "alpha": [-2.0]}}, "initial shear modulus"),
     ({"law": "ogden", "constants": {"mu": [0.5], "alpha": [0.0]}}, "alpha[0]"),
     ({"law": "ogden", "constants": {"mu": [0.5, 1.0], "alpha": [2.0]}}, "equal length"),
 ])
@@ -87,13 +87,15 @@ def test_missing_unreadable_and_foreign_files(tmp_path):
         material(str(curve))
 
 
-def test_an_ogden_file_is_a_record_not_a_model_law(tmp_path):
-    """The file reads as a record (its fit is kept) but a model refuses it, pointing to the
-    invariant-based laws."""
+def test_an_ogden_file_is_the_ogden_law_the_models_solve(tmp_path):
+    """The file reads as a record (its fit is kept) and loads as the Ogden law (issue 47)."""
+    from spsc.materials import Ogden
+
     path = _write(tmp_path, law="ogden", constants={"mu": [0.5, -0.01], "alpha": [1.5, -2.0]})
     assert read_material_file(path)["constants"]["alpha"] == [1.5, -2.0]
-    with pytest.raises(ParameterError, match="not a polynomial in I1, I2.*--law all"):
-        material(str(path))
+    law = material(str(path))
+    assert isinstance(law, Ogden) and law.alpha == (1.5, -2.0)
+    assert law.shear_modulus == pytest.approx(0.5 * (0.5 * 1.5 + 0.01 * 2.0))
 
 
 def test_unknown_names_list_the_catalogue_and_files():

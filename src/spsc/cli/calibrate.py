@@ -140,8 +140,12 @@ def _write_material(args, cal, mat) -> None:
     from spsc.core.jsonio import write_json
     from spsc.materials.file import LAW_CONSTANTS, material_record
 
-    names = {ij: name for name, ij in LAW_CONSTANTS[cal.material.law].items()}
-    constants = {names[(i, j)]: c for i, j, c in cal.material.coefficients}
+    m = cal.material
+    if m.law == "ogden":
+        constants = {"mu": list(m.mu), "alpha": list(m.alpha)}
+    else:
+        names = {ij: name for name, ij in LAW_CONSTANTS[m.law].items()}
+        constants = {names[(i, j)]: c for i, j, c in m.coefficients}
     digest = hashlib.sha256(Path(args.bench).read_bytes()).hexdigest()
     fit = {"calibration": {"start_material": mat.name, "scale": cal.scale,
                            "model": "wall", "pressure_kPa": args.pressure,
@@ -194,8 +198,10 @@ def _write_json(path, cal, mat, preds, idents) -> None:
     m = cal.material
     write_json(path, {
         "schema": "spsc.calibration", "schema_version": 1,
-        "material": {"name": m.name, "law": m.law, "source": m.source,
-                     "coefficients": [{"i": i, "j": j, "C_MPa": c} for i, j, c in m.coefficients],
+        "material": {"name": m.name, "law": m.law, "source": m.source, **(
+                     {"constants": m.identity()} if m.law == "ogden" else
+                     {"coefficients": [{"i": i, "j": j, "C_MPa": c}
+                                       for i, j, c in m.coefficients]}),
                      "shear_modulus_MPa": m.shear_modulus},
         "start_material": mat.name, "scale": cal.scale, "evaluations": cal.evaluations,
         "residual": {"force_rms_N": cal.force_rms_N, "pressure_rise_rms_kPa": cal.pressure_rms_kPa,

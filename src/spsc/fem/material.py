@@ -20,6 +20,8 @@ import numpy as np
 from spsc.core.errors import ParameterError, require
 from spsc.materials import Material
 
+from .principal import energy as principal_energy, stress as principal_stress, \
+    stress_tangent as principal_stress_tangent
 from .material_kernel import AVAILABLE as COMPILED, invariants as compiled_invariants, \
     stress as compiled_stress, stress_tangent as compiled_stress_tangent
 
@@ -71,8 +73,9 @@ class NearlyIncompressible:
     bulk_ratio: float = 2000.0
 
     def __post_init__(self):
-        if not isinstance(self.material, Material):
-            raise ParameterError("material", self.material, "a spsc.materials.Material")
+        if getattr(self.material, "kind", None) not in ("invariants", "stretches"):
+            raise ParameterError("material", self.material, "a law of spsc.materials (W(I1, "
+                                 "I2) or in the principal stretches)")
         object.__setattr__(self, "bulk_ratio", require("bulk_ratio", self.bulk_ratio, gt=0))
 
     @property
@@ -85,15 +88,25 @@ class NearlyIncompressible:
         """Bulk modulus κ = bulk_ratio · μ0 (MPa)."""
         return self.bulk_ratio * self.mu
 
+    @property
+    def _stretches(self) -> bool:
+        """The law is written in the principal stretches (:mod:`.principal`)."""
+        return self.material.kind == "stretches"
+
     def energy(self, F, p):
         """Ψ(F, p) in MPa for arrays F (..., 3, 3) and p (...)."""
+        if self._stretches:
+            return principal_energy(self.material, F, p, self.kappa)
         I1, I2, J = invariants(F)
         W = self.material.energy(J ** (-2 / 3) * I1, J ** (-4 / 3) * I2)
         return W + p * (J - 1.0) - p**2 / (2.0 * self.kappa)
 
     def stress(self, F, p):
         """First Piola–Kirchhoff stress P = ∂Ψ/∂F (MPa), shape (..., 3, 3): compiled
-        (:mod:`.material_kernel`) where Numba is installed, else :meth:`stress_numpy`."""
+        (:mod:`.material_kernel`) where Numba is installed, else :meth:`stress_numpy`; a law
+        in the principal stretches by :mod:`.principal`."""
+        if self._stretches:
+            return principal_stress(self.material, F, p)
         if not COMPILED:
             return self.stress_numpy(F, p)
         return compiled_stress(F, p, *self.material.dW(*_isochoric_invariants(F)))
@@ -120,7 +133,9 @@ class NearlyIncompressible:
     def stress_tangent(self, F, p):
         """P (..., 3, 3) and 𝔸 = ∂P/∂F (..., 3, 3, 3, 3) with index order [i, J, k, L]:
         compiled (:mod:`.material_kernel`) where Numba is installed, else
-        :meth:`stress_tangent_numpy`."""
+        :meth:`stress_tangent_numpy`; a law in the principal stretches by :mod:`.principal`."""
+        if self._stretches:
+            return principal_stress_tangent(self.material, F, p)
         if not COMPILED:
             return self.stress_tangent_numpy(F, p)
         Ib1, Ib2 = _isochoric_invariants(F)

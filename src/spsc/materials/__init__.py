@@ -1,4 +1,5 @@
-"""Materials: the hyperelastic laws W(I1, I2) every model solves with, the catalogue with the
+"""Materials: the hyperelastic laws every model solves with (W(I1, I2), and Ogden's in the
+principal stretches), the catalogue with the
 source of each constant, the material file ``spsc fit-material`` writes, tension-test data,
 the fitting of laws to it and their Drucker stability.
 
@@ -6,7 +7,8 @@ Below both ``membrane`` and ``fem``: a law is written once and every solver uses
 (:mod:`.fit`, :mod:`.fit_laws`, :mod:`.data`, :mod:`.drucker`) is imported on demand.
 """
 
-from .catalogue import CATALOGUE, PRONY, material, viscosity
+from .catalogue import CATALOGUE, LAW_KINDS, PRONY, material, viscosity
+from .ogden import Ogden
 from .file import LAW_CONSTANTS, load_material, material_record, read_material_file
 from .law import (PROVENANCES, Material, mooney_rivlin, neo_hookean, polynomial_d2W,
                   polynomial_dW, polynomial_energy, yeoh)
@@ -14,7 +16,9 @@ from .law import (PROVENANCES, Material, mooney_rivlin, neo_hookean, polynomial_
 __all__ = [
     "CATALOGUE",
     "LAW_CONSTANTS",
+    "LAW_KINDS",
     "Material",
+    "Ogden",
     "PRONY",
     "PROVENANCES",
     "load_material",

@@ -38,10 +38,18 @@ CATALOGUE: dict[str, Material] = {
 }
 
 
+#: how a solving law is read (its ``kind``): W(I1, I2) (:class:`~.law.Material`) or the
+#: principal stretches (:class:`~.ogden.Ogden`)
+LAW_KINDS = ("invariants", "stretches")
+
+
 def material(name) -> Material:
-    """The catalogue material ``name`` (case-insensitive), or the material file ``name`` (a
-    path ending in ``.json``, :func:`.file.load_material`); else a one-line error
+    """The catalogue material ``name`` (case-insensitive), the material file ``name`` (a
+    path ending in ``.json``, :func:`.file.load_material`), or ``name`` itself when it is
+    already a solving law (its ``kind`` one of :data:`LAW_KINDS`); else a one-line error
     listing the catalogue."""
+    if getattr(name, "kind", None) in LAW_KINDS:
+        return name
     text = str(name).strip()
     if text.lower().endswith(".json"):
         return load_material(text)

@@ -11,8 +11,9 @@ The file (``schema`` ``spsc.material``, ``schema_version`` 1)::
 Constants are in MPa: ``C10`` (neo-Hookean), ``C10, C01`` (Mooney–Rivlin), ``C10, C20, C30``
 (Yeoh), or ``mu`` and ``alpha`` lists (Ogden, W = Σ μk/αk (λ1^αk + λ2^αk + λ3^αk − 3)).
 ``bulk_ratio`` (κ/μ0) or ``bulk_modulus_MPa`` records the compressibility the models should
-use; the incompressible fit cannot measure it. The models compute with W(I1, I2), so an Ogden
-file is a record of its fit: loading it into a model is refused with a one-line error.
+use; the incompressible fit cannot measure it. An Ogden file loads as the
+:class:`~.ogden.Ogden` law, which the wall model, the 3D FEM and the membranes solve in the
+principal stretches.
 """
 
 from __future__ import annotations
@@ -145,24 +146,24 @@ def _check_bulk(fname: str, record: dict, mu0: float) -> None:
                                  "the models yet)")
 
 
-def material_from_record(record: dict, path: str = "") -> Material:
-    """The :class:`Material` W(I1, I2) of a checked record; an Ogden record is refused (the
-    models take neo-Hookean, Mooney–Rivlin or Yeoh)."""
+def material_from_record(record: dict, path: str = ""):
+    """The solving law of a checked record: a :class:`Material` W(I1, I2) (neo-Hookean,
+    Mooney–Rivlin, Yeoh) or an :class:`~.ogden.Ogden` law."""
     law = record["law"]
-    if law not in LAW_CONSTANTS:
-        raise ParameterError("material", path or record.get("name"),
-                             "a neo-Hookean, Mooney-Rivlin or Yeoh material file: the models "
-                             f"compute with W(I1, I2) and {law} is not a polynomial in I1, I2 "
-                             "(refit with --law yeoh, or --law all, which writes the best "
-                             "invariant-based law as the material file)")
+    name = str(record.get("name") or Path(path).stem)
+    source = record.get("source") or f"material file {path}"
+    if law == "ogden":
+        from .ogden import Ogden
+
+        c = record["constants"]
+        return Ogden(name, tuple(c["mu"]), tuple(c["alpha"]), source,
+                     record.get("provenance", "user-fit"))
     constants = record["constants"]
     coefficients = tuple((i, j, float(constants[n])) for n, (i, j) in LAW_CONSTANTS[law].items())
-    source = record.get("source") or f"material file {path}"
-    return Material(str(record.get("name") or Path(path).stem), law, coefficients, source,
-                    record.get("provenance", "user-fit"))
+    return Material(name, law, coefficients, source, record.get("provenance", "user-fit"))
 
 
-def load_material(path) -> Material:
-    """The :class:`Material` of the material file ``path`` (one-line ParameterError naming
-    ``material`` on any problem)."""
+def load_material(path):
+    """The solving law of the material file ``path`` (:func:`material_from_record`; one-line
+    ParameterError naming ``material`` on any problem)."""
     return material_from_record(read_material_file(path), str(path))

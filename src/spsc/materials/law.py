@@ -16,6 +16,7 @@ a name or a material file are in :mod:`.catalogue`.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
@@ -113,6 +114,8 @@ class Material:
     coefficients: tuple[tuple[int, int, float], ...]
     source: str = ""
     provenance: str = "assumed"
+    #: how the solvers read it: W(I1, I2) and its derivatives (:mod:`.ogden`: "stretches")
+    kind: ClassVar[str] = "invariants"
 
     def __post_init__(self):
         if self.provenance not in PROVENANCES:
@@ -126,6 +129,21 @@ class Material:
     def assumed(self) -> bool:
         """True when the constants are an estimate, not from a measurement of the material."""
         return self.provenance == "assumed"
+
+    @property
+    def neo_hookean(self) -> bool:
+        """W = C10 (I1 − 3) alone."""
+        return [(i, j) for i, j, c in self.coefficients if c != 0] == [(1, 0)]
+
+    def identity(self) -> dict:
+        """What the law is, for cache keys and records: its name and coefficients."""
+        return {"law": self.law, "coefficients": [list(c) for c in self.coefficients]}
+
+    def scaled(self, s: float) -> "Material":
+        """The law with W → s W (every coefficient × s)."""
+        from dataclasses import replace
+
+        return replace(self, coefficients=tuple((i, j, c * s) for i, j, c in self.coefficients))
 
     def _c(self, i: int, j: int) -> float:
         return sum(c for a, b, c in self.coefficients if (a, b) == (i, j))

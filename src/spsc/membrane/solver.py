@@ -127,7 +127,7 @@ class Inflation:
 
 
 def _material(mat) -> Material:
-    return mat if isinstance(mat, Material) else catalogue_material(mat)
+    return catalogue_material(mat)  # a law passes through, a name or file is looked up
 
 
 def _stress_guess(bs: BoxScheme, p_mpa: float) -> np.ndarray:

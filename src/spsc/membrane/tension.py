@@ -22,6 +22,8 @@ def invariants(l1, l2):
 
 def strain_energy_density(material: Material, l1, l2):
     """W(λ1, λ2) in MPa (per unit reference volume)."""
+    if material.kind == "stretches":
+        return material.stretch_energy(l1, l2, 1.0 / (l1 * l2))
     return material.energy(*invariants(l1, l2))
 
 
@@ -29,7 +31,15 @@ def tensions(material: Material, t0: float, l1, l2):
     """(T1, T2) in N/mm, eqs. 22–23, for wall thickness t0 (mm) and stretches λ1, λ2.
 
     T1 = 2 t0 (λ1/λ2 − 1/(λ1³λ2³)) (W1 + λ2² W2),  T2 = 2 t0 (λ2/λ1 − 1/(λ1³λ2³)) (W1 + λ1² W2).
+
+    A law in the principal stretches (Ogden's): T1 = t0 (τ1 − τ3)/(λ1 λ2), T2 likewise, with
+    τa = λa ∂W/∂λa less their mean (:meth:`~spsc.materials.ogden.Ogden.kirchhoff`).
     """
+    if material.kind == "stretches":
+        l1, l2 = np.broadcast_arrays(np.asarray(l1, float), np.asarray(l2, float))
+        tau = material.kirchhoff(np.stack([l1, l2, 1.0 / (l1 * l2)], axis=-1))
+        scale = t0 / (l1 * l2)
+        return scale * (tau[..., 0] - tau[..., 2]), scale * (tau[..., 1] - tau[..., 2])
     W1, W2 = material.dW(*invariants(l1, l2))
     c = 1.0 / (l1 * l2) ** 3
     T1 = 2.0 * t0 * (l1 / l2 - c) * (W1 + l2 * l2 * W2)

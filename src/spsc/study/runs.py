@@ -94,8 +94,7 @@ class Run:
 
         mat = material(self.material)
         return {**asdict(self), "geometry": self.geometry().as_dict(),
-                "material_law": {"law": mat.law, "coefficients": [list(c) for c in
-                                                                  mat.coefficients]}}
+                "material_law": mat.identity()}
 
     def key(self) -> str:
         """sha256 of the inputs, the code version of the model and the payload version."""

@@ -46,9 +46,8 @@ SCALE_RANGE = (0.05, 20.0)
 def scaled(material: Material, s: float, *, note: str = "") -> Material:
     """``material`` with every constant multiplied by ``s`` (W → s W), its provenance
     ``user-fit`` (calibrated on the user's own test)."""
-    coeffs = tuple((i, j, c * s) for i, j, c in material.coefficients)
     source = f"{material.source}; stiffness x {s:.4g}" + (f" ({note})" if note else "")
-    return dataclasses.replace(material, coefficients=coeffs, source=source,
+    return dataclasses.replace(material.scaled(s), source=source,
                                name=f"{material.name}-calibrated", provenance="user-fit")
 
 

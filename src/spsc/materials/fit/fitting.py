@@ -260,7 +260,7 @@ def choose(fits: dict, resolution: dict | None = None) -> tuple[LawFit | None, s
             others = ", ".join(f.name for f in pool if f is not best)
             why += f" (also: {others})" if others else ""
             if "ogden" in fits and fits["ogden"] is not None:
-                why += "; ogden is reported, not written: the models take W(I1, I2)"
+                why += "; ogden is reported, not chosen (--law ogden writes it)"
             return best, why
     return None, "no candidate"
 

@@ -81,9 +81,8 @@ def write_outputs(args, tests, fits, chosen, why, rng, notes, prony=None) -> Non
         record = material_file_record(chosen, tests, name=name, rng=rng,
                                       weighting=args.weighting, why=why)
         write_json(args.out, record if prony is None else dict(record, prony=prony))
-        use = (f"use it as --material {args.out}" if chosen.name != "ogden" else
-               "a record of the fit: the models take neo-hookean, mooney-rivlin or yeoh")
-        print(f"material file {args.out} ({chosen.name}, name {name!r}): {use}")
+        print(f"material file {args.out} ({chosen.name}, name {name!r}): use it as "
+              f"--material {args.out}")
     if args.json is not None:
         write_json(args.json, fit_report(fits, tests, chosen=chosen, why=why, rng=rng,
                                          weighting=args.weighting, notes=notes,
