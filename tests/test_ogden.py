@@ -136,3 +136,69 @@ def test_bad_ogden_constants_are_one_line_errors():
         with pytest.raises(ParameterError, match=name):
             Ogden("bad", mu, alpha)
     assert TRELOAR.scaled(2.0).shear_modulus == pytest.approx(2 * TRELOAR.shear_modulus)
+
+
+def test_a_new_law_is_one_class_and_one_registry_line(tmp_path, monkeypatch):
+    """Gent's law, W = −(μ Jm/2) ln(1 − (I1 − 3)/Jm), added here as a class and a
+    register_law line (not shipped): a material file names it, and the wall model and the
+    membrane solve it; with a very large Jm it is the neo-Hookean law."""
+    from dataclasses import dataclass
+    from typing import ClassVar
+
+    from spsc.core.curve import Curve
+    from spsc.cli.main import main
+    from spsc.materials import file as material_file
+
+    @dataclass(frozen=True)
+    class Gent:
+        name: str
+        mu: float
+        jm: float
+        source: str = ""
+        provenance: str = "assumed"
+        law: str = "gent"
+        kind: ClassVar[str] = "invariants"
+        neo_hookean: ClassVar[bool] = False
+        shear_modulus = property(lambda self: self.mu)
+
+        def identity(self):
+            return {"law": self.law, "mu": self.mu, "jm": self.jm}
+
+        def energy(self, I1, I2):
+            return -0.5 * self.mu * self.jm * np.log1p(-(I1 - 3.0) / self.jm)
+
+        def dW(self, I1, I2):
+            return 0.5 * self.mu / (1.0 - (I1 - 3.0) / self.jm), 0.0 * I2
+
+        def d2W(self, I1, I2):
+            w11 = 0.5 * self.mu / self.jm / (1.0 - (I1 - 3.0) / self.jm) ** 2
+            return w11, 0.0 * I1, 0.0 * I2
+
+    monkeypatch.setitem(material_file.LAWS, "gent", None)  # restored after the test
+    material_file.register_law("gent", lambda name, c, source, prov: Gent(
+        name, float(c["mu"]), float(c["jm"]), source, prov))
+    base = {"schema": "spsc.material", "schema_version": 1, "law": "gent",
+            "bulk_ratio": 2000, "provenance": "assumed", "source": "a test"}
+    curves = {}
+    for model in ("membrane", "wall"):
+        for name, constants in (("gent", {"mu": 5 / 3, "jm": 1e9}), ("tpu60a", None)):
+            mat = "tpu60a"
+            if constants:
+                mat = tmp_path / "gent.json"
+                mat.write_text(json.dumps(dict(base, name=name, constants=constants)))
+            out = tmp_path / f"{model}-{name}.json"
+            assert main(["curve", "--model", model, "--type", "B", "--l", "0", "--points", "7",
+                         "--material", str(mat), "--json", str(out), "--quiet"]) == 0
+            curves[model, name] = Curve.from_json(out)
+        a, b = curves[model, "tpu60a"], curves[model, "gent"]
+        assert b.material == "gent"
+        # Jm = 1e9: W differs from neo-Hookean by (I1 - 3)/Jm of itself
+        assert_allclose(b.force_N, a.force_N, rtol=1e-6, atol=1e-9)
+    # and the law is what the solver reads: Jm = 2 stiffens the wall where I1 − 3 nears it
+    mat = tmp_path / "gent.json"
+    mat.write_text(json.dumps(dict(base, name="gent2", constants={"mu": 5 / 3, "jm": 2.0})))
+    out = tmp_path / "wall-gent2.json"
+    assert main(["curve", "--model", "wall", "--type", "B", "--l", "0", "--points", "7",
+                 "--material", str(mat), "--json", str(out), "--quiet"]) == 0
+    stiff = Curve.from_json(out)
+    assert stiff.force_N[-1] > 1.005 * curves["wall", "tpu60a"].force_N[-1]

@@ -141,8 +141,8 @@ def _write_material(args, cal, mat) -> None:
     from spsc.materials.file import LAW_CONSTANTS, material_record
 
     m = cal.material
-    if m.law == "ogden":
-        constants = {"mu": list(m.mu), "alpha": list(m.alpha)}
+    if m.law not in LAW_CONSTANTS:  # Ogden's or a registered law: its own constants
+        constants = {k: v for k, v in m.identity().items() if k != "law"}
     else:
         names = {ij: name for name, ij in LAW_CONSTANTS[m.law].items()}
         constants = {names[(i, j)]: c for i, j, c in m.coefficients}
@@ -194,12 +194,13 @@ def _summary(args, cal, mat, preds) -> None:
 
 def _write_json(path, cal, mat, preds, idents) -> None:
     from spsc.core.jsonio import write_json
+    from spsc.materials.file import LAW_CONSTANTS
 
     m = cal.material
     write_json(path, {
         "schema": "spsc.calibration", "schema_version": 1,
         "material": {"name": m.name, "law": m.law, "source": m.source, **(
-                     {"constants": m.identity()} if m.law == "ogden" else
+                     {"constants": m.identity()} if m.law not in LAW_CONSTANTS else
                      {"coefficients": [{"i": i, "j": j, "C_MPa": c}
                                        for i, j, c in m.coefficients]}),
                      "shear_modulus_MPa": m.shear_modulus},

@@ -25,8 +25,8 @@ from pathlib import Path
 from spsc.core.errors import ParameterError
 from .law import PROVENANCES, Material
 
-__all__ = ["SCHEMA", "SCHEMA_VERSION", "INVARIANT_LAWS", "LAW_CONSTANTS", "material_record",
-           "read_material_file", "load_material", "material_from_record"]
+__all__ = ["SCHEMA", "SCHEMA_VERSION", "INVARIANT_LAWS", "LAW_CONSTANTS", "LAWS", "register_law",
+           "material_record", "read_material_file", "load_material", "material_from_record"]
 
 SCHEMA = "spsc.material"
 SCHEMA_VERSION = 1
@@ -40,7 +40,29 @@ LAW_CONSTANTS = {
     "yeoh": {"C10": (1, 0), "C20": (2, 0), "C30": (3, 0)},
 }
 INVARIANT_LAWS = tuple(LAW_CONSTANTS)
-_LAWS = INVARIANT_LAWS + ("ogden",)
+
+
+def _ogden(name: str, constants: dict, source: str, provenance: str):
+    from .ogden import Ogden
+
+    return Ogden(name, tuple(constants["mu"]), tuple(constants["alpha"]), source, provenance)
+
+
+#: The other laws a material file may name: law -> build(name, constants, source,
+#: provenance), the solving law (a class with ``kind`` "invariants" or "stretches", its
+#: constants checked by its constructor in one line). A new law is its class and one
+#: :func:`register_law` line.
+LAWS = {"ogden": _ogden}
+
+
+def register_law(name: str, build) -> None:
+    """Let material files name the law ``name`` (lower case), built by ``build`` (see
+    :data:`LAWS`)."""
+    LAWS[str(name).strip().lower()] = build
+
+
+def _law_names() -> tuple[str, ...]:
+    return INVARIANT_LAWS + tuple(LAWS)
 
 
 def material_record(name: str, law: str, constants: dict, *, source: str = "",
@@ -78,9 +100,9 @@ def read_material_file(path) -> dict:
         _refuse(path, f"schema_version {SCHEMA_VERSION} (this file has "
                 f"{record.get('schema_version')!r}: written by another spsc version?)")
     law = str(record.get("law", "")).strip().lower()
-    if law not in _LAWS:
+    if law not in _law_names():
         raise ParameterError(f"material {p.name}: law", record.get("law"),
-                             "one of " + ", ".join(_LAWS))
+                             "one of " + ", ".join(_law_names()))
     record = dict(record, law=law)
     mu0 = _check_constants(p.name, law, record.get("constants"))
     _check_bulk(p.name, record, mu0)
@@ -113,6 +135,8 @@ def _check_constants(fname: str, law: str, constants) -> float:
             if _finite(f"material {fname}: alpha[{k}]", a) == 0.0:
                 raise ParameterError(f"material {fname}: alpha[{k}]", a, "a non-zero number")
         mu0 = 0.5 * sum(m * a for m, a in zip(mu, alpha))
+    elif law in LAWS:  # a registered law checks its own constants
+        mu0 = LAWS[law](fname, constants, "", "user-fit").shear_modulus
     else:
         names = LAW_CONSTANTS[law]
         missing = [n for n in names if n not in constants]
@@ -148,16 +172,12 @@ def _check_bulk(fname: str, record: dict, mu0: float) -> None:
 
 def material_from_record(record: dict, path: str = ""):
     """The solving law of a checked record: a :class:`Material` W(I1, I2) (neo-Hookean,
-    Mooney–Rivlin, Yeoh) or an :class:`~.ogden.Ogden` law."""
+    Mooney–Rivlin, Yeoh) or a law of :data:`LAWS` (Ogden's, or one registered)."""
     law = record["law"]
     name = str(record.get("name") or Path(path).stem)
     source = record.get("source") or f"material file {path}"
-    if law == "ogden":
-        from .ogden import Ogden
-
-        c = record["constants"]
-        return Ogden(name, tuple(c["mu"]), tuple(c["alpha"]), source,
-                     record.get("provenance", "user-fit"))
+    if law in LAWS:
+        return LAWS[law](name, record["constants"], source, record.get("provenance", "user-fit"))
     constants = record["constants"]
     coefficients = tuple((i, j, float(constants[n])) for n, (i, j) in LAW_CONSTANTS[law].items())
     return Material(name, law, coefficients, source, record.get("provenance", "user-fit"))
