@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.cad.geometry import preset
-from spsc.cli.curve import _mark_jumps, title
+from spsc.cli.figure import _mark_jumps, title
 from spsc.core.curve import Curve
 from spsc.fem.solid.chamber import chamber_run, run_chamber
 from spsc.fem.wall import wall_curve

@@ -23,6 +23,8 @@ from spsc.core.errors import ParameterError
 from spsc.models import MODELS, cli_options, options_from
 from spsc.models.meshed import ContactOptions
 
+from spsc.cli.figure import contact_words, plot, title  # noqa: F401  (spsc fem, the tests)
+from spsc.cli.band import add_tolerance_options, band_summary, check_tolerance, run_band
 from spsc.cli.options import (PLOT_SUFFIXES, add_geometry_options, add_output_options,
                               output_cache_dir,
                       add_quiet_option, add_setup_options, check_output_dir,
@@ -117,6 +119,8 @@ def add_curve_parser(subparsers, verb: str, *, models: tuple[str, ...], help: st
     else:
         p.set_defaults(model=models[0])
     add_model_options(p, models)
+    if verb == "curve":
+        add_tolerance_options(p)
     add_output_options(p, png="write a plot of F, p, A, dV and the stiffness here "
                        "(" + ", ".join(s.lstrip(".") for s in PLOT_SUFFIXES[:3]) + " ...)")
     add_quiet_option(p)
@@ -181,6 +185,7 @@ def prepare(args) -> Job:
                      allow_zero_stroke=model.zero_stroke,
                      **_contact(args))
     model.check(setup, options, verb=args.command, quiet=bool(args.quiet))
+    check_tolerance(args, setup)
     return Job(model, setup, options)
 
 
@@ -219,13 +224,20 @@ def run(args) -> int:
         warn(verb, msg)
     out = solve(job, verb=verb, quiet=bool(args.quiet), cache_dir=output_cache_dir(args))
     curve = out.curve
-    if args.json:
+    record = run_band(args, job) if getattr(args, "tolerance", None) is not None else None
+    if args.json and record is None:
         curve.to_json(args.json, extra=out.extra or None)
+    elif args.json:  # the band beside the nominal curve
+        from spsc.core.jsonio import write_json
+
+        write_json(args.json, dict(curve.to_dict(out.extra or None), band=record))
     if args.csv:
         curve.to_csv(args.csv)
     if args.png:
-        plot(curve, out.state, args.png)
+        plot(curve, out.state, args.png, band=record)
     summary(curve)
+    if record is not None:
+        band_summary(record)
     noted = [m for m, c in zip(curve.message, curve.converged) if c and m]
     if noted:
         warn(verb, noted[-1] + (f" (and at {len(noted) - 1} other positions)"
@@ -272,118 +284,3 @@ def summary(curve) -> None:
         print(f"solved in {info.seconds:.3g} s ({info.iterations} Newton iterations)")
     else:
         print(f"computed in {info.seconds:.3g} s")
-
-
-def plot(curve, result, path) -> None:
-    """F, p, A, ΔV and dF/dy against y; the membrane's deformed meridians (inflated and last
-    position) when ``result`` has them."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(2, 3, figsize=(12, 6.5), constrained_layout=True)
-    y = curve.y_mm
-    xlabel = travel_label(curve.setup)
-    for a, (val, lab) in zip(ax.flat, ((curve.force_N, "force (N)"),
-                                       (curve.pressure_kPa, "gauge pressure (kPa)"),
-                                       (curve.contact_area_mm2, "contact area (mm²)"),
-                                       (curve.volume_change_mm3, "volume change (mm³)"),
-                                       (curve.stiffness(), "stiffness dF/dy (N/mm)"))):
-        a.plot(y, val, "o-", ms=2.5)
-        a.set_xlabel(xlabel)
-        a.set_ylabel(lab)
-        a.grid(alpha=0.3)
-    own = curve.series.get("indenter_travel_mm")
-    if own is not None:  # on a spring the indenter's own travel is not the far end's
-        ax.flat[0].plot(own, curve.force_N, "s--", ms=2.5, color="C1",
-                        label="against the indenter's own travel")
-        ax.flat[0].legend(fontsize=8, loc="upper left")
-    _mark_jumps(curve, ax.flat[0], ax.flat[1])
-    a = ax.flat[5]
-    if result is not None and getattr(result, "inflated", None) is not None:
-        sh = result.inflated
-        a.plot(sh.x, sh.y, "k:", label="nominal")
-        a.plot(sh.rho, sh.eta, "b-", label="inflated")
-        k = max(i for i, s in enumerate(result.shapes) if s is not None)
-        last = result.shapes[k]
-        if k > 0:
-            _, rho, eta = last.meridian()
-            a.plot(rho, eta, "r-", label=f"y = {curve.y_mm[k]:.2f} mm")
-            a.axhline(last.eta[last.gamma_index], color="0.5", lw=0.8)
-        a.set_aspect("equal")
-        a.set_xlabel("radius (mm)")
-        a.set_ylabel("height (mm)")
-        a.legend(fontsize=8)
-    else:
-        a.axis("off")
-    fig.suptitle(title(curve))
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
-def _mark_jumps(curve, force_ax, pressure_ax) -> None:
-    """Each snap-through the solver followed (``solver.details["jumps"]``): the jump at its
-    plate travel from the state before to the state after, with the energy it released."""
-    details = curve.solver.details if curve.solver is not None else None
-    jumps = (details or {}).get("jumps") or []
-    for k, j in enumerate(jumps):
-        label = "snap-through (followed)" if k == 0 else None
-        for a, key in ((force_ax, "force"), (pressure_ax, "pressure")):
-            unit = "N" if key == "force" else "kPa"
-            before, after = j[f"{key}_before_{unit}"], j[f"{key}_after_{unit}"]
-            a.plot([j["y_mm"]] * 2, [before, after], "r--", lw=1.2, label=label)
-            a.plot([j["y_mm"]], [after], "rv", ms=5)
-        force_ax.annotate(f"{j['energy_released_mJ']:.2g} mJ", (j["y_mm"], j["force_after_N"]),
-                          textcoords="offset points", xytext=(6, -12), fontsize=8, color="r")
-    if jumps:
-        force_ax.legend(fontsize=8, loc="upper left")
-
-
-def title(curve) -> str:
-    """The figure's title: the model, the chamber (its seven parameters, lengths in mm, or the
-    part file), the material, the load case (p_i kPa gauge, V_r mm³, polytropic n) and what
-    pressed it when it is not the paper's frictionless rigid plate."""
-    g, s = curve.geometry, curve.setup
-    part = s.get("part")
-    lengths = ", ".join(f"{k}={g[k]:g}" for k in ("w", "h", "l", "t0") if _is_number(g.get(k)))
-    shape = ", ".join(f"{k}={g[k]:g}" for k in ("n1", "n2", "cy") if _is_number(g.get(k)))
-    dims = "; ".join(x for x in ((f"{lengths} mm" if lengths else ""), shape) if x)
-    what = (f"{part['file']} (fix {part['fix']})" if isinstance(part, dict) else
-            dims if dims else "no geometry")
-    load = [f"{label}={s[key]:g}{unit}" for key, label, unit in
-            (("p_i_kPa", "p_i", " kPa"), ("reservoir_mm3", "V_r", " mm³"),
-             ("polytropic_n", "n", "")) if _is_number(s.get(key))]
-    return f"{curve.model}: {what}; {curve.material}, " + ", ".join(load + contact_words(s))
-
-
-def contact_words(setup) -> list[str]:
-    """What pressed the chamber, in words, where it is not the paper's frictionless rigid
-    plate: the body, the friction, the object's spring."""
-    from spsc.core.setup import SetupRecord
-
-    r = SetupRecord.of(setup)
-    out = [] if r.indenter == "plate" else [f"pressed by {r.indenter}"]
-    if r.friction == "stick":
-        out.append("sticking")
-    elif r.friction != "0":
-        out.append(f"μ = {r.friction}")
-    if r.object_stiffness_N_per_mm is not None:
-        out.append(f"object on a {r.object_stiffness_N_per_mm:g} N/mm spring")
-    return out
-
-
-def travel_label(setup) -> str:
-    """The x axis: whose travel y is (the plate's, a curved body's tip, or the far end of
-    the object's spring)."""
-    from spsc.core.setup import SetupRecord
-
-    r = SetupRecord.of(setup)
-    if r.object_stiffness_N_per_mm is not None:
-        return "travel of the spring's far end y (mm)"
-    if r.indenter == "plate":
-        return "plate travel y (mm)"
-    return f"{r.indenter.split(':')[0]} tip travel y (mm)"
-
-
-def _is_number(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool)
