@@ -142,3 +142,62 @@ def test_the_surrogate_band_is_the_wall_models():
         for key in ("stiffness_N_per_mm", "sensitivity_kPa_per_mm"):
             for q in ("p5", "p50", "p95"):
                 assert s[key][q] == pytest.approx(w[key][q], rel=0.03), (reservoir, key, q)
+
+
+def test_a_robust_row_is_the_quantile_of_its_prints_misses():
+    from spsc.design.goal import parse_goal
+    from spsc.design.robust import robust_row, sample_misses
+    from spsc.models import get
+
+    goal = parse_goal(["stiffness_high=4.5"], [], [], 0.05)
+    tol = parse_tolerance({"t0": {"dist": "normal", "sd": 0.05},
+                           "material": {"dist": "lognormal", "cv": 0.05}})
+    design = {"type": "B", "l": 0.0, "material": "tpu60a", "pressure": 40.0,
+              "reservoir": 40000.0}
+    row = robust_row(design, "surrogate", "fdm", None, 6.0, tolerance=tol, goal=goal,
+                     confidence=0.9, n=16, seed=2)
+    misses = sample_misses(_setup(reservoir=40000.0), "surrogate", get("surrogate").Options(),
+                           goal, tol, 16, 2)
+    assert row["status"] == "ok" and row["robust_samples"] == misses.size == 64
+    assert row["robust_miss"] == pytest.approx(np.quantile(misses, 0.9, method="higher"),
+                                               rel=1e-6)
+    assert row["p_met"] == pytest.approx(np.mean(misses <= 0.05))
+    assert 0 < row["p_met"] < 1  # the nominal design meets it, not every print
+
+
+def test_a_robust_design_is_refused_without_the_surrogate_or_with_objectives(tmp_path,
+                                                                             capsys):
+    from spsc.cli.main import main
+
+    tol = tmp_path / "t.toml"
+    tol.write_text('[t0]\ndist = "normal"\nsd = 0.05\n')
+    base = ["design", "--target", "stiffness_high=5", "--out", str(tmp_path / "d"),
+            "--verify", "none", "--no-build"]
+    for extra, says in ((["--tolerance", str(tol), "--model", "wall"], "--model surrogate"),
+                        (["--confidence", "0.9", "--model", "surrogate"], "only with"),
+                        (["--tolerance", str(tol), "--model", "surrogate", "--maximize",
+                          "sensitivity_high"], "targets only"),
+                        (["--tolerance", str(tol), "--model", "surrogate", "--confidence",
+                          "1.5"], "confidence")):
+        assert main(base + extra) == 2
+        assert says in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_a_robust_design_is_confirmed_by_the_wall_models_prints(tmp_path, capsys, monkeypatch):
+    from spsc.cli.main import main
+    from spsc.design import robust
+
+    monkeypatch.setattr(robust, "ROBUST_SAMPLES", 8)
+    tol = tmp_path / "t.toml"
+    tol.write_text('[t0]\ndist = "normal"\nsd = 0.05\n[material]\ndist = "lognormal"\n'
+                   'cv = 0.05\n')
+    out = tmp_path / "d"
+    main(["design", "--model", "surrogate", "--target", "stiffness_high=5", "--l", "0",
+          "--tol", "10", "--tolerance", str(tol), "--trials", "30", "--seed", "1",
+          "--verify", "none", "--no-build", "--out", str(out), "--quiet"])
+    doc = json.loads((out / "design.json").read_text())
+    r = doc["robust"]
+    assert r["wall"]["samples"] == 8 * 4 and 0.0 <= r["wall"]["p_met"] <= 1.0
+    assert doc["met"] == (r["wall"]["p_met"] >= 0.9)
+    assert "robust:" in capsys.readouterr().out

@@ -65,7 +65,7 @@ def rerun_commands(params: dict, model: str, points: int | None, stroke_mm: floa
 
 
 def document(problem, run, *, verify=None, build=None, command: str = "",
-             confirmed=None) -> dict:
+             confirmed=None, robust=None) -> dict:
     """The ``design.json`` document of a finished run (module docstring); with
     ``confirmed`` (:func:`~spsc.design.confirm.confirm`), the goal is met when the confirming
     model meets it and the re-run commands are that model's for the confirmed design."""
@@ -80,6 +80,9 @@ def document(problem, run, *, verify=None, build=None, command: str = "",
            "rerun": (rerun_commands(best["params"], problem.model, problem.points,
                                     problem.stroke_mm) if best else None),
            "command": command}
+    if robust is not None:  # met when the wall model's prints meet it at the confidence
+        doc["robust"] = robust
+        doc["met"] = bool(robust["wall"]["p_met"] >= robust["confidence"] - 1e-12)
     if confirmed is not None:
         doc["confirmed"] = confirmed
         doc["met"] = bool(confirmed["met"])
@@ -150,12 +153,14 @@ def print_summary(doc: dict, out: Path) -> None:
         return
     miss = "" if best["miss"] is None else f", miss {100 * best['miss']:.2f} %"
     state = (f"screened by the {doc['model']} model" if doc.get("confirmed")
-             else "goal met" if doc["met"] else "goal NOT met")
+             or doc.get("robust") else "goal met" if doc["met"] else "goal NOT met")
     print(f"best: trial {best['trial']}{miss} ({state}): " + _line(best))
     if doc["goal"]["multi_objective"]:
         print(f"Pareto front: {len(doc['pareto'])} feasible non-dominated designs")
     if doc.get("confirmed"):
         _print_confirmed(doc["confirmed"], doc["model"], doc["goal"]["tol"])
+    if doc.get("robust"):
+        _print_robust(doc["robust"], doc["goal"]["tol"])
     v = doc.get("verify")
     if v:
         _print_verify(v)
@@ -185,6 +190,22 @@ def _print_confirmed(c: dict, screened_by: str, tol: float) -> None:
         met = "met" if c["met"] else "NOT met"
         print(f"  goal {met} by the {c['model']} model (tolerance {100 * tol:g} %): " + ", ".join(
             f"{k} {_g(d['metrics'][k])}" for k in METRIC_NAMES))
+
+
+def _print_robust(r: dict, tol: float) -> None:
+    c, w = r["chosen"], r["wall"]
+    need = 100 * r["confidence"]
+    print(f"robust: {100 * c['p_met']:.0f} % of the chosen design's prints meet the targets "
+          f"within {100 * tol:g} % by the surrogate ({need:g} % asked; the {need:g} % quantile "
+          f"of their misses {100 * c['quantile_miss']:.2f} %)")
+    print(f"  by the {w['model']} model's {w['samples']} fresh samples ({w['seconds']:.0f} s): "
+          f"{100 * w['p_met']:.0f} % meet them (quantile miss {100 * w['quantile_miss']:.2f} %)"
+          f" — {'confirmed' if w['p_met'] >= r['confidence'] - 1e-12 else 'NOT confirmed'}")
+    n = r.get("nominal_best")
+    if n:
+        print(f"  the nominal best (trial {n['trial']}, nominal miss "
+              f"{100 * n['nominal_miss']:.2f} %): {100 * n['p_met']:.0f} % of its prints meet "
+              "them")
 
 
 def _print_verify(v: dict) -> None:

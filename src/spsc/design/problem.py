@@ -22,7 +22,15 @@ class Problem:
     process: str
     points: int | None
     stroke_mm: float
+    #: a robust search (:mod:`spsc.design.robust`): {"tolerance": Tolerance, "confidence":
+    #: float, "samples": int}; None: the nominal search
+    robust: dict | None = None
 
     def to_dict(self) -> dict:
-        return {"goal": self.goal.to_dict(), "space": self.space.to_dict(), "model": self.model,
-                "process": self.process, "points": self.points, "stroke_mm": self.stroke_mm}
+        out = {"goal": self.goal.to_dict(), "space": self.space.to_dict(), "model": self.model,
+               "process": self.process, "points": self.points, "stroke_mm": self.stroke_mm}
+        if self.robust is not None:  # a robust study continues only with the same tolerance
+            out["robust"] = {"tolerance": self.robust["tolerance"].to_dict()["inputs"],
+                             "confidence": self.robust["confidence"],
+                             "samples": self.robust["samples"]}
+        return out

@@ -1,0 +1,138 @@
+"""Robust design (issue 49): a design judged by how its prints land, not by its nominal curve.
+
+Each trial's design is evaluated as usual (:func:`~spsc.sweep.evaluate.evaluate`: the nominal
+metrics, the printability verdict) and then under the tolerance: ``n`` base samples of SALib's
+Sobol sequence (:func:`~spsc.study.band.sample_setups`, N (D + 2) setups), both modes of every
+sample in one batched call of the model (the surrogate), the goal's miss of every sample. The
+trial's objective is the miss its prints stay under with the asked ``confidence`` — the
+``confidence`` quantile of the samples' misses (a sample that makes no chamber or that the
+model refuses counts as missing everything) — so the search's own stopping rule (that miss
+within the tolerance) is "at least ``confidence`` of the prints meet the targets", and the row
+says the share that does (``p_met``).
+
+The chosen design is then confirmed by the wall model's samples on Dask
+(:func:`confirm_robust`).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict
+
+import numpy as np
+
+__all__ = ["robust_row", "sample_misses", "confirm_robust", "ROBUST_SAMPLES"]
+
+#: base samples per trial (N (D + 2) setups, both modes of each)
+ROBUST_SAMPLES = 32
+#: the robust miss of a design whose quantile sample made no chamber (1000 %)
+MISS_CAP = 10.0
+
+
+def sample_misses(low_setup, model: str, options, goal, tolerance, n: int, seed: int,
+                  curves=None) -> np.ndarray:
+    """The goal's miss of every sample of the design whose low-mode setup is ``low_setup``
+    (inf where the sample makes no chamber, the model refuses it or a metric is undefined).
+    ``curves(setups) -> [Curve]``: how the model computes them (default: its
+    ``curves_many``)."""
+    from spsc.core.errors import ParameterError
+    from spsc.models import get
+    from spsc.study.band import sample_setups
+    from spsc.study.metrics import design_metrics
+
+    entry = get(model)
+    _, _, setups = sample_setups(low_setup, tolerance, n, seed)
+    ok = []
+    for k, s in enumerate(setups):
+        if isinstance(s, str):
+            continue
+        try:
+            entry.check(s, options, verb="design", quiet=True)
+            ok.append(k)
+        except ParameterError:
+            pass
+    pairs = [x for k in ok for x in (setups[k].with_load(reservoir_mm3=0.0), setups[k])]
+    solved = (curves or (lambda ss: entry.curves_many(ss, options)))(pairs) if pairs else []
+    misses = np.full(len(setups), np.inf)
+    for j, k in enumerate(ok):
+        m = asdict(design_metrics([solved[2 * j]], [solved[2 * j + 1]]))
+        miss = goal.miss(m)
+        misses[k] = miss if math.isfinite(miss) else np.inf
+    return misses
+
+
+def robust_row(design: dict, model: str, process: str, points=None, stroke_mm=None, *,
+               tolerance, goal, confidence: float, n: int = ROBUST_SAMPLES,
+               seed: int = 0) -> dict:
+    """The row of :func:`~spsc.sweep.evaluate.evaluate` with ``robust_miss`` (the
+    ``confidence`` quantile of the samples' misses), ``p_met`` (the share of samples within
+    the goal's tolerance) and ``robust_samples``. Never raises (a failure is the row's)."""
+    from spsc.core.loadcase import check_load
+    from spsc.core.setup import Setup
+    from spsc.models import get
+    from spsc.sweep.evaluate import evaluate, resolve_design
+
+    t0 = time.perf_counter()
+    row = evaluate(design, model, process, points, stroke_mm)
+    if row["status"] != "ok":
+        return row
+    try:
+        entry = get(model)
+        geometry, mat, setup = resolve_design(design)
+        load = check_load(geometry, pressure_kPa=setup["p_i_kPa"],
+                          reservoir_mm3=setup["reservoir_mm3"],
+                          stroke_mm=entry.stroke_mm if stroke_mm is None else stroke_mm,
+                          points=entry.points if points is None else points,
+                          polytropic_n=setup["polytropic_n"])
+        misses = sample_misses(Setup(geometry, mat, load), model, entry.Options(), goal,
+                               tolerance, n, seed)
+    except Exception as exc:  # a row that says so, as evaluate's
+        row["status"], row["message"] = "failed", f"{type(exc).__name__}: {exc}"
+        return row
+    # a quantile past the chambers that were made is "misses everything": a finite cap
+    # (1000 %) that Optuna's samplers can rank
+    q = min(float(np.quantile(misses, confidence, method="higher")), MISS_CAP)
+    row.update(robust_miss=q, p_met=float(np.mean(misses <= goal.tol + 1e-12)),
+               robust_samples=int(misses.size))
+    row["seconds"] = time.perf_counter() - t0
+    return row
+
+
+def confirm_robust(client, problem, params: dict, *, model: str = "wall",
+                   n: int | None = None, seed: int = 1) -> dict:
+    """The chosen design's samples (``n`` base samples, default the search's; a seed the
+    search did not use) run by ``model`` on the Dask workers: ``p_met``, the ``confidence``
+    quantile of the misses, the samples and the time."""
+    n = problem.robust["samples"] if n is None else n
+    from spsc.core.setup import Setup
+    from spsc.materials import material
+    from spsc.models import get
+    from spsc.cad.geometry import PARAMS, SPSCGeometry
+
+    t0 = time.perf_counter()
+    entry = get(model)
+    geometry = SPSCGeometry(**{k: float(params[k]) for k in PARAMS})
+    low = Setup.of(geometry, material(params["material"]), pressure_kPa=params["pressure"],
+                   reservoir_mm3=params["reservoir"], stroke_mm=problem.stroke_mm,
+                   points=entry.points, polytropic_n=1.0)
+    options = entry.Options()
+
+    def curves(setups):
+        futures = client.map(_curve, setups, model=model, options=options, pure=False)
+        return client.gather(futures)
+
+    r = problem.robust
+    misses = sample_misses(low, model, options, problem.goal, r["tolerance"], n, seed,
+                           curves=curves)
+    return {"model": model, "samples": int(misses.size), "seed": seed,
+            "p_met": float(np.mean(misses <= problem.goal.tol + 1e-12)),
+            "quantile_miss": min(float(np.quantile(misses, r["confidence"], method="higher")),
+                                 MISS_CAP),
+            "seconds": time.perf_counter() - t0}
+
+
+def _curve(setup, *, model, options):
+    from spsc.models import get
+
+    return get(model).curve(setup, options).curve
