@@ -3,6 +3,8 @@ fit-material``) and random valid designs for the gate's property test and the ba
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from .fuzz_base import Case, not_dask_address, out_dirs, outputs
 from .fuzz_fixtures import TENSION_BAD
 
@@ -263,3 +265,45 @@ def surrogate_cases(f, tmp) -> list[Case]:
         Case(curve + ("--stroke", "7.5"), "a stroke beyond the map", "stroke", "range"),
         Case(curve + ("--friction", "0.3"), "friction with the surrogate", "friction",
              "combination")]
+
+
+def tolerance_cases(f, tmp) -> list[Case]:
+    """spsc curve --tolerance and spsc design --tolerance/--confidence (issue 49): bad files,
+    options without the file, a robust design outside what it takes."""
+    tmp = Path(tmp)
+    files = {"unknown.toml": '[x]\ndist = "normal"\nsd = 1\n',
+             "dist.toml": '[t0]\ndist = "gauss"\nsd = 0.1\n',
+             "nosd.toml": '[t0]\ndist = "normal"\n',
+             "quoted.toml": '[t0]\ndist = "normal"\nsd = "0.1"\n',
+             "range.toml": '[w]\ndist = "uniform"\nlow = 11.1\nhigh = 10.9\n',
+             "wide.toml": '[t0]\ndist = "normal"\nsd = 0.5\n',
+             "friction.toml": '[friction]\ndist = "uniform"\nlow = 0\nhigh = 0.5\n',
+             "broken.toml": "[t0\n", "empty.toml": ""}
+    for name, text in files.items():
+        (tmp / name).write_text(text, encoding="utf-8")
+    good = tmp / "good.toml"
+    good.write_text('[t0]\ndist = "normal"\nsd = 0.05\n', encoding="utf-8")
+    curve = ("curve", "--model", "surrogate", "--type", "B", "--l", "0", "--quiet")
+    cases = [Case(curve + ("--tolerance", str(tmp / name)), f"tolerance file {name}",
+                  "tolerance", "input file") for name in files]
+    cases += [Case(curve + ("--tolerance", str(tmp / "missing.toml")), "missing tolerance "
+                   "file", "tolerance", "input file"),
+              Case(curve + ("--samples", "64"), "--samples without --tolerance", "samples",
+                   "combination"),
+              Case(curve + ("--seed", "3"), "--seed without --tolerance", "seed",
+                   "combination"),
+              Case(curve + ("--tolerance", str(good), "--samples", "2"), "too few samples",
+                   "samples", "range"),
+              Case(curve + ("--tolerance", str(good), "--samples", "abc"), "samples as text",
+                   "samples", "number")]
+    design = ("design", "--target", "stiffness_high=5", "--out", str(tmp / "robust"),
+              "--verify", "none", "--no-build", "--quiet")
+    cases += [Case(design + ("--tolerance", str(good)), "a robust design with the wall model",
+                   "tolerance", "combination"),
+              Case(design + ("--model", "surrogate", "--confidence", "0.9"),
+                   "--confidence without --tolerance", "confidence", "combination"),
+              Case(design + ("--model", "surrogate", "--tolerance", str(good),
+                             "--confidence", "1"), "a confidence of 1", "confidence", "range"),
+              Case(design + ("--model", "surrogate", "--tolerance", str(tmp / "dist.toml")),
+                   "a bad tolerance file in design", "tolerance", "input file")]
+    return cases
