@@ -200,4 +200,10 @@ def test_a_robust_design_is_confirmed_by_the_wall_models_prints(tmp_path, capsys
     r = doc["robust"]
     assert r["wall"]["samples"] == 8 * 4 and 0.0 <= r["wall"]["p_met"] <= 1.0
     assert doc["met"] == (r["wall"]["p_met"] >= 0.9)
-    assert "robust:" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "robust:" in printed and "which tolerance to tighten first" in printed
+    # the stiffness scales with the material and the wall: one of them is tightened first
+    assert r["band"]["tighten"]["stiffness_high"][0][0] in ("material", "t0")
+    q = r["band"]["modes"]["high"]["stiffness_N_per_mm"]
+    assert q["p5"] < q["p50"] < q["p95"]
+    assert "Its prints" in (out / "index.html").read_text()

@@ -284,13 +284,14 @@ def _confirm_robust(client, problem, result, best) -> dict:
     """The chosen design's prints by the wall model (fresh samples) and, for comparison, the
     trial with the lowest nominal miss (the design a nominal search would pick) with its
     share of prints that met the targets."""
-    from spsc.design.robust import confirm_robust
+    from spsc.design.robust import chosen_band, confirm_robust
 
     params = {k: best[k] for k in ("type",) + PARAMS + ("material", "pressure", "reservoir")}
     out = {"confidence": problem.robust["confidence"],
            "chosen": {"trial": best["trial"], "p_met": best.get("p_met"),
                       "quantile_miss": best["miss"]},
-           "wall": confirm_robust(client, problem, params)}
+           "wall": confirm_robust(client, problem, params),
+           "band": chosen_band(problem, params)}
     done = [r for r in result.rows if r.get("nominal_miss") is not None
             and r.get("printable")]
     if done:

@@ -206,6 +206,9 @@ def _print_robust(r: dict, tol: float) -> None:
         print(f"  the nominal best (trial {n['trial']}, nominal miss "
               f"{100 * n['nominal_miss']:.2f} %): {100 * n['p_met']:.0f} % of its prints meet "
               "them")
+    for metric, order in (r.get("band") or {}).get("tighten", {}).items():
+        print(f"  which tolerance to tighten first for {metric}: " + ", then ".join(
+            f"{k} (total Sobol index {v:.2f})" for k, v in order[:2]))
 
 
 def _print_verify(v: dict) -> None:

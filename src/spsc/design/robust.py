@@ -22,7 +22,7 @@ from dataclasses import asdict
 
 import numpy as np
 
-__all__ = ["robust_row", "sample_misses", "confirm_robust", "ROBUST_SAMPLES"]
+__all__ = ["robust_row", "sample_misses", "confirm_robust", "chosen_band", "ROBUST_SAMPLES"]
 
 #: base samples per trial (N (D + 2) setups, both modes of each)
 ROBUST_SAMPLES = 32
@@ -136,3 +136,33 @@ def _curve(setup, *, model, options):
     from spsc.models import get
 
     return get(model).curve(setup, options).curve
+
+
+def chosen_band(problem, params: dict, *, n: int = 256, seed: int = 2) -> dict:
+    """The chosen design's band in both modes by the search's model
+    (:func:`spsc.study.band.band`) and, per goal metric of a mode (stiffness and sensitivity,
+    high and low), its Sobol total indices and the input to tighten first (the largest)."""
+    from spsc.cad.geometry import PARAMS, SPSCGeometry
+    from spsc.core.setup import Setup
+    from spsc.materials import material
+    from spsc.models import get
+    from spsc.study.band import band
+
+    entry = get(problem.model)
+    geometry = SPSCGeometry(**{k: float(params[k]) for k in PARAMS})
+    out = {"modes": {}, "tighten": {}}
+    for mode, reservoir in (("high", 0.0), ("low", float(params["reservoir"]))):
+        setup = Setup.of(geometry, material(params["material"]),
+                         pressure_kPa=params["pressure"], reservoir_mm3=reservoir,
+                         stroke_mm=problem.stroke_mm, points=entry.points, polytropic_n=1.0)
+        r = band(setup, entry.Options(), problem.model, problem.robust["tolerance"], n=n,
+                 seed=seed)
+        out["modes"][mode] = {k: r[k] for k in ("samples", "refused", "stiffness_N_per_mm",
+                                                "sensitivity_kPa_per_mm", "sobol")}
+    for metric in problem.goal.needed:
+        name, _, mode = metric.partition("_")
+        si = out["modes"].get(mode, {}).get("sobol", {}).get(name, {})
+        if "ST" in si:
+            order = sorted(si["ST"], key=lambda k: -si["ST"][k])
+            out["tighten"][metric] = [(k, si["ST"][k]) for k in order]
+    return out
