@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.core.errors import ParameterError, require
+from .geometry import PARAMS
 
 __all__ = ["design_path_for", "load_design", "parse_design"]
 
@@ -96,7 +97,7 @@ def _geometry(g):
 
     if isinstance(g, SPSCGeometry):
         return g
-    keys = ("w", "h", "l", "t0", "n1", "n2", "cy")
+    keys = PARAMS
     if not isinstance(g, dict) or set(g) != set(keys):
         raise ParameterError("geometry", g, "a dict of the seven parameters " + ", ".join(keys))
     try:

@@ -157,7 +157,7 @@ class SPSCGeometry:
         return replace(self, **changes)
 
     def as_dict(self) -> dict[str, float]:
-        return {k: getattr(self, k) for k in ("w", "h", "l", "t0", "n1", "n2", "cy")}
+        return {k: getattr(self, k) for k in PARAMS}
 
     def design_space_warnings(self) -> list[str]:
         """Messages for each ratio outside the verified design space (empty if inside)."""

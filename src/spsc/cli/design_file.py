@@ -9,10 +9,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from spsc.core.errors import ParameterError
+from spsc.cad.geometry import PARAMS as _PARAMS
 
 __all__ = ["DesignChamber", "design_chamber"]
 
-_PARAMS = ("w", "h", "l", "t0", "n1", "n2", "cy")
 _WHAT = "a bladder's .design.json (spsc bladder) or a design.json with a best design (spsc design)"
 
 

@@ -260,9 +260,9 @@ def _postfix(study, goal: Goal) -> str:
 def full_params(design: dict) -> dict:
     """A design's inputs with the seven parameters resolved (the type's preset where the
     design leaves n1, n2, c_y out), under the CLI's names: what ``spsc curve`` takes."""
-    from spsc.cad.geometry import SPSCGeometry, preset
+    from spsc.cad.geometry import PARAMS, SPSCGeometry, preset
 
-    given = {k: design[k] for k in ("w", "h", "l", "t0", "n1", "n2", "cy")
+    given = {k: design[k] for k in PARAMS
              if design.get(k) is not None}
     geom = preset(design["type"], **given) if design.get("type") else SPSCGeometry(**given)
     out = {k: design.get(k) for k in INPUTS}

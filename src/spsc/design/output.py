@@ -27,6 +27,7 @@ from spsc.core.jsonio import to_jsonable, write_json
 
 from spsc.design.goal import METRIC_NAMES
 from spsc.design.space import INPUTS, fmt
+from spsc.cad.geometry import PARAMS
 
 __all__ = ["SCHEMA", "SCHEMA_VERSION", "document", "design_entry", "rerun_commands",
            "write_tables", "write_document", "print_summary", "TABLE_COLUMNS"]
@@ -56,7 +57,7 @@ def rerun_commands(params: dict, model: str, points: int | None, stroke_mm: floa
     head = ["spsc", "curve", "--model", model]
     if params.get("type"):
         head += ["--type", str(params["type"])]
-    for k in ("w", "h", "l", "t0", "n1", "n2", "cy"):
+    for k in PARAMS:
         head += [f"--{k}", fmt(params[k])]
     head += ["--material", str(params["material"]), "--pressure", fmt(params["pressure"])]
     tail = ["--stroke", fmt(stroke_mm), "--points", str(n)]
@@ -129,7 +130,7 @@ def write_tables(rows: list[dict], out: Path, csv_path=None) -> Path:
 
 def _line(entry: dict) -> str:
     p, m = entry["params"], entry["metrics"]
-    geom = " ".join(f"{k}={fmt(p[k])}" for k in ("w", "h", "l", "t0", "n1", "n2", "cy"))
+    geom = " ".join(f"{k}={fmt(p[k])}" for k in PARAMS)
     mets = ", ".join(f"{k} {to_jsonable(m[k]) if m[k] is None else format(m[k], '.4g')}"
                      for k in METRIC_NAMES)
     return (f"type {p.get('type') or '-'} {geom} mm, {p['material']}, {fmt(p['pressure'])} kPa, "

@@ -16,6 +16,7 @@ import time
 from pathlib import Path
 
 from spsc.design.goal import METRIC_NAMES, Goal
+from spsc.cad.geometry import PARAMS as _PARAMS
 
 __all__ = ["VERIFY_TOLERANCE_PCT", "FEM_STEP_MM", "mode_curve", "check_mode", "metrics_of", "verify_fem",
            "build_part", "fem_points"]
@@ -24,7 +25,6 @@ __all__ = ["VERIFY_TOLERANCE_PCT", "FEM_STEP_MM", "mode_curve", "check_mode", "m
 VERIFY_TOLERANCE_PCT = 5.0
 #: Plate travel between the FEM's positions (mm).
 FEM_STEP_MM = 0.5
-_PARAMS = ("w", "h", "l", "t0", "n1", "n2", "cy")
 
 
 def fem_points(stroke_mm: float) -> int:

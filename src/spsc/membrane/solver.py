@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from spsc.core.constants import to_MPa
 from spsc.core.loadcase import check_load
 from spsc.core.errors import ParameterError, require
 from spsc.cad.geometry import SPSCGeometry
@@ -149,7 +150,7 @@ def inflate(geometry: SPSCGeometry, material, pressure_kPa: float, *,
     replaces the clamped edge by a symmetry plane (φ = π/2, η = 0), for the sphere check."""
     settings = settings or SolverSettings()
     mat = _material(material)
-    p = require("pressure", pressure_kPa, ge=0, unit="kPa gauge") * 1e-3
+    p = to_MPa(require("pressure", pressure_kPa, ge=0, unit="kPa gauge"))
     mer = Meridian(geometry)
     bs = BoxScheme(mer, mat, 0, settings.inflation_intervals, edge=edge,
                    wrinkling=settings.wrinkling)
@@ -236,7 +237,7 @@ def solve(geometry: SPSCGeometry, material, *, pressure_kPa: float, reservoir_mm
         raise ParameterError("stroke", stroke_mm,
                              f"< inflated chamber height {apex:.4g} mm (the plate would reach "
                              "the base)")
-    press = StrokeContinuation(geometry, mat, infl, settings, p_i * 1e-3, v_r, n_poly)
+    press = StrokeContinuation(geometry, mat, infl, settings, to_MPa(p_i), v_r, n_poly)
     F, P, A, DV, conv, msgs, shapes, stop = _press(press, geometry, infl, y, p_i)
     notes = []
     wr = infl.T2 <= 0.0

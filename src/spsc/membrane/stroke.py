@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from spsc.core.constants import P_AMB
+from spsc.core.constants import P_AMB, to_MPa
 from spsc.core.gaslaw import GasLaw
 
 from .bvp import BoxScheme
@@ -51,7 +51,7 @@ class StrokeContinuation:
         # geometric intersection of the inflated shape with the plate (η decreasing in s)
         k = int(np.argmax(inf.eta < H))
         sg = float(np.interp(H, [inf.eta[k], inf.eta[k - 1]], [inf.s[k], inf.s[k - 1]]))
-        return self._on_grid(self.schemes[False], inf, sg, 0.0, H, inf.pressure_kPa * 1e-3)
+        return self._on_grid(self.schemes[False], inf, sg, 0.0, H, to_MPa(inf.pressure_kPa))
 
     @staticmethod
     def _on_grid(bs: BoxScheme, sh: Shape, sg, s0, H, p_mpa) -> np.ndarray:

@@ -9,6 +9,7 @@ plate's height.
 
 from __future__ import annotations
 
+from spsc.core.constants import to_MPa
 from dataclasses import dataclass
 
 from spsc.core.gaslaw import GasLaw
@@ -152,7 +153,7 @@ def load_steps(load, inflate_increments: int = 4, *, stick: bool = False,
     (p = 0) is pressed alone."""
     out = []
     if load.pressure_kPa > 0:
-        out += [Inflate(load.pressure_kPa * 1e-3, inflate_increments),
+        out += [Inflate(to_MPa(load.pressure_kPa), inflate_increments),
                 CloseValve(load.reservoir_mm3, load.polytropic_n)]
     return out + [Press(load.stroke_mm, int(load.points) - 1, stick=stick, spring=spring,
                         mu=mu, indenter=indenter)]
