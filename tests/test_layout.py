@@ -17,6 +17,7 @@ SRC = ROOT / "src" / "spsc"
 #: The layers, lowest first: a package may import only the packages before it (and itself).
 #: ``testing`` (what tests and benchmarks share) sits on top and nothing in spsc imports it.
 LAYERS = ("core", "cad", "materials", "membrane", "fem", "models", "study", "dynamics", "sensing",
+          "virtual",
           "sweep",
           "design", "studies", "report", "cli", "testing")
 MAX_MODULE_LINES = 400
