@@ -28,9 +28,9 @@ def main() -> None:
     print(f"the map (surrogate) and its table: {time.perf_counter() - t:.2f} s")
     for n in (1, 100, 1000):
         for gas, name in ((Gas(1.0), "isothermal"), (Gas(1.4, 0.5), "air")):
-            for valve in (False, True):
+            for valve, substep in ((False, 1e-4), (True, 1e-4), (True, 1e-3)):
                 v = VirtualChambers(m, Circuit(40.0, 40_000.0, Valve(0.06), gas), count=n,
-                                    table=table, y0_mm=0.0)
+                                    table=table, y0_mm=0.0, substep_s=substep)
                 y = np.linspace(0.0, 3.0, n)
                 times = []
                 for k in range(300):
@@ -38,7 +38,8 @@ def main() -> None:
                     v.step(y * k / 300, valve, 1e-3)
                     times.append(time.perf_counter() - t)
                 step = float(np.median(times))
-                print(f"{n:5d} chambers, {name:10s}, valve {'open  ' if valve else 'closed'}: "
+                what = (f"open, {1e3 * substep:g} ms substeps" if valve else "closed")
+                print(f"{n:5d} chambers, {name:10s}, valve {what:22s}: "
                       f"{1e3 * step:.3f} ms a 1 ms step (median of 300; real time x "
                       f"{1e-3 / step:.2f}; {n / step:,.0f} chamber-steps/s)")
 
