@@ -37,7 +37,7 @@ $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	mkdir -p $(PIP_TMP)
 	$(PIP) --upgrade pip
-	$(PIP) -e ".[test,docs]"
+	$(PIP) -e ".[test,docs,sim]"
 	rm -rf $(PIP_TMP)
 	touch $(STAMP)
 

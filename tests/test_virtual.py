@@ -99,3 +99,39 @@ def test_the_sensor_reads_at_its_rate_and_a_travel_off_the_map_is_refused(chambe
     assert readings[-1][0] != readings[-1][1]
     with pytest.raises(ValueError, match="outside the map"):
         v.step(99.0, False, 1e-3)
+
+
+def test_the_pad_in_mujoco_holds_the_plate_where_its_curve_says(chamber_map):
+    """MuJoCo's plate pushed down with 8 N onto the pad (isothermal gas), the valve opened at
+    0.6 s: the plate settles where the pad carries 8 N — the closed chamber's static curve's
+    travel for 8 N, then, the valve open, the 40 cm³ low mode's (each from the same map's
+    gas law, within 0.02 mm) — and the pad's force balances the actuator's."""
+    pytest.importorskip("mujoco", reason="the sim extra (make installs it)")
+    from spsc.virtual.plate import press_plate
+
+    c = Circuit(40.0, 40_000.0, Valve(0.06), Gas(1.0))
+    pad = VirtualChambers(chamber_map, c, y0_mm=chamber_map.y_range[0], substep_s=1e-3)
+    tr = press_plate(pad, 8.0, 1.2, valve_events=((0.6, True),))
+
+    def travel_for(force, reservoir):
+        probe = VirtualChambers(chamber_map, Circuit(40.0, reservoir, Valve(0.06), Gas(1.0)),
+                                table=pad.table, y0_mm=0.0, valve_open=reservoir > 0)
+        ys = np.linspace(0.0, 4.5, 451)
+        fs = [probe.step(y, reservoir > 0, 1e-3)["force_N"][0] for y in ys]
+        return float(np.interp(force, fs, ys))
+
+    before, after = np.searchsorted(tr["t_s"], 0.59), -1
+    assert_allclose(tr["force_N"][[before, after]], 8.0, rtol=2e-3)
+    assert_allclose(tr["y_mm"][before], travel_for(8.0, 0.0), atol=0.02)
+    assert_allclose(tr["y_mm"][after], travel_for(8.0, 40_000.0), atol=0.02)
+    assert tr["y_mm"][after] > tr["y_mm"][before] + 0.05  # the soft mode gives way
+    assert tr["pressure_kPa"][after] < tr["pressure_kPa"][before]
+
+
+def test_the_core_never_imports_mujoco():
+    import subprocess
+    import sys
+
+    code = ("import sys, spsc.virtual.chambers, spsc.virtual.plate, spsc.cli.main; "
+            "assert 'mujoco' not in sys.modules, 'mujoco imported'")
+    subprocess.run([sys.executable, "-c", code], check=True)
