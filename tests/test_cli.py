@@ -76,6 +76,7 @@ def test_footprint_selects_the_preset_size(tmp_path):
 
 #: Options each verb's help must show (besides every option its parser declares).
 KEY_OPTIONS = {
+    "virtual": ["--out", "--quiet"],
     "bladder": ["--type", "--footprint", "--material", "--out", "--flange-holes"],
     "fingertip": ["--angle", "--process", "--out"],
     "mold": ["--type", "--process", "--material", "--shrinkage", "--clearance", "--wall",

@@ -135,3 +135,34 @@ def test_the_core_never_imports_mujoco():
     code = ("import sys, spsc.virtual.chambers, spsc.virtual.plate, spsc.cli.main; "
             "assert 'mujoco' not in sys.modules, 'mujoco imported'")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_spsc_virtual_runs_the_example_scene_and_refuses_what_it_cannot(tmp_path, capsys):
+    from pathlib import Path
+
+    from spsc.cli.main import main
+
+    pytest.importorskip("mujoco", reason="the sim extra (make installs it)")
+    example = Path(__file__).resolve().parents[1] / "examples" / "scenes" / "plate-pad.toml"
+    out = tmp_path / "v"
+    assert main(["virtual", str(example), "--out", str(out), "--quiet"]) == 0
+    import pandas as pd
+
+    df = pd.read_csv(out / "trace.csv")
+    assert (out / "trace.png").stat().st_size > 20_000
+    before, after = df[df.t_s < 0.99].iloc[-1], df.iloc[-1]
+    assert after.valve_open and not before.valve_open
+    assert after.force_N == pytest.approx(8.0, rel=2e-3)
+    assert after.y_mm > before.y_mm and after.pressure_kPa < before.pressure_kPa
+    text = example.read_text()
+    for change, says in ((text.replace('[scene]\nkind = "plate"\n', ""), "[scene]"),
+                         (text.replace('kind = "plate"', 'kind = "gripper"'), "scene.kind"),
+                         (text.replace("force = [[0, 0], [0.3, 8], [2, 8]]",
+                                       "profile = [[0, 0], [1, 3], [2, 3]]"), "force"),
+                         (text + "\n[scene2]\n", "scene2")):
+        bad = tmp_path / "bad.toml"
+        bad.write_text(change)
+        assert main(["virtual", str(bad), "--out", str(tmp_path / "w")]) == 2
+        err = capsys.readouterr().err
+        assert says in err and len(err.strip().splitlines()) == 1
+        assert not (tmp_path / "w").exists()

@@ -40,6 +40,7 @@ COMMANDS = {
     "sense": "sense",
     "bench-gap": "bench_gap",
     "surrogate": "surrogate",
+    "virtual": "virtual",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

@@ -16,7 +16,8 @@ from .fuzz_base import (GEOMETRY, KINDS, SETUP, Case, not_dask_address, numbers,
                         outputs)
 from .fuzz_fixtures import bases, fixtures
 from .fuzz_studies import (bench_gap_cases, design_argv, design_cases, fit_material_cases,
-                           random_design, surrogate_cases, sweep_cases, tolerance_cases)
+                           random_design, surrogate_cases, sweep_cases, tolerance_cases,
+                           virtual_cases)
 from .fuzz_sense import sense_cases
 from .fuzz_time import simulate_cases
 from .fuzz_contact import contact_cases
@@ -42,6 +43,7 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += bench_gap_cases(f, b)
     cases += surrogate_cases(f, tmp)
     cases += tolerance_cases(f, tmp)
+    cases += virtual_cases(f, tmp)
     cases += contact_cases(f, b)
     cases += sense_cases(f, tmp)
     cases += [replace(c, kind="argparse") for c in _argparse_cases(f, b, tmp)]

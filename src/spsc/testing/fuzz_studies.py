@@ -307,3 +307,29 @@ def tolerance_cases(f, tmp) -> list[Case]:
               Case(design + ("--model", "surrogate", "--tolerance", str(tmp / "dist.toml")),
                    "a bad tolerance file in design", "tolerance", "input file")]
     return cases
+
+
+def virtual_cases(f, tmp) -> list[Case]:
+    """spsc virtual (issue 50): scene files without a scene, with an unknown one, with a press
+    the plate cannot take, unreadable; --out an existing file."""
+    tmp = Path(tmp)
+    base = ('[chamber]\ntype = "B"\nl = 0\nmodel = "surrogate"\n[circuit]\nsetup_kPa = 40\n'
+            'reservoir_mm3 = 40000\nvalve = { C = 0.06 }\n')
+    force = '[press]\nforce = [[0, 0], [0.3, 8], [1, 8]]\n'
+    files = {"noscene.toml": base + force,
+             "kind.toml": base + force + '[scene]\nkind = "gripper"\n',
+             "extra.toml": base + force + '[scene]\nkind = "plate"\nmass = 1\n',
+             "profile.toml": base + '[press]\nprofile = [[0, 0], [1, 3]]\n[scene]\n'
+                             'kind = "plate"\n',
+             "broken.toml": "[scene\n"}
+    for name, text in files.items():
+        (tmp / f"scene-{name}").write_text(text, encoding="utf-8")
+    good = tmp / "scene-good.toml"
+    good.write_text(base + force + '[scene]\nkind = "plate"\n', encoding="utf-8")
+    cases = [Case(("virtual", str(tmp / f"scene-{name}"), "--out", str(tmp / "virtual")),
+                  f"scene file {name}", "scene", "input file") for name in files]
+    cases += [Case(("virtual", str(tmp / "missing.toml"), "--out", str(tmp / "virtual")),
+                   "missing scene file", "scene", "input file"),
+              Case(("virtual", str(good), "--out", str(f["file"])), "--out an existing file",
+                   "out", "output folder")]
+    return cases
