@@ -107,8 +107,8 @@ def add_curve_parser(subparsers, verb: str, *, models: tuple[str, ...], help: st
     add_geometry_options(p)
     strokes = {MODELS[m].stroke_mm for m in models}
     points = {MODELS[m].points for m in models}
-    note = "the model's: " + ", ".join(f"{m} {MODELS[m].stroke_mm:g} mm, {MODELS[m].points}"
-                                       for m in models)
+    note = ("the model's: " + ", ".join(f"{m} {MODELS[m].stroke_mm:g}" for m in models),
+            "the model's: " + ", ".join(f"{m} {MODELS[m].points}" for m in models))
     add_setup_options(p, stroke=strokes.pop() if len(strokes) == 1 else None,
                       points=points.pop() if len(points) == 1 else None,
                       defaults_note=note)

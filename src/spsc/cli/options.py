@@ -192,19 +192,22 @@ def add_gas_options(parser, *, pressure_required: bool = False,
 
 
 def add_setup_options(parser: argparse.ArgumentParser, *, stroke: float | None,
-                      points: int | None, defaults_note: str = "") -> None:
+                      points: int | None, defaults_note=("", "")) -> None:
     """The setup shared by the models: material, setup pressure, reservoir (mode), stroke,
     plate positions and polytropic index (same names and units in every verb). ``stroke`` or
-    ``points`` None: the default is the model's (``defaults_note`` says which)."""
+    ``points`` None: the default is the model's (``defaults_note``, the stroke's and the
+    points' notes, says which)."""
     g = parser.add_argument_group("setup")
     g.add_argument("--material", default="tpu60a", metavar="NAME|FILE.json",
                    help="catalogue material (tpu60a, elastic50a, silicone40a, as40; default "
                    "tpu60a) or a material file from spsc fit-material")
     add_gas_options(g)
-    s = f"default {stroke:g}" if stroke is not None else defaults_note
+    stroke_note, points_note = ((defaults_note, defaults_note) if isinstance(defaults_note, str)
+                                else defaults_note)
+    s = f"default {stroke:g}" if stroke is not None else stroke_note
     g.add_argument("--stroke", type=number("stroke", "mm"), default=stroke, metavar="MM",
                    help=f"plate travel from first contact, mm ({s})")
-    n = f"default {points}" if points is not None else defaults_note
+    n = f"default {points}" if points is not None else points_note
     g.add_argument("--points", type=integer("points"), default=points, metavar="N",
                    help=f"plate positions including y = 0 ({n})")
 

@@ -51,7 +51,9 @@ def register(subparsers) -> None:
     g.add_argument("--pressure", type=number("pressure", "kPa gauge"), default=None,
                    metavar="KPA", help="setup pressure, kPa gauge (default 40)")
     g.add_argument("--reservoir", type=number("reservoir", "mm³"), default=40000.0,
-                   metavar="MM3", help="reservoir volume, mm³ (default 40000, the paper's)")
+                   metavar="MM3", help="reservoir volume, mm³ (default 40000, the paper's: a "
+                   "sensing chamber switches to its reservoir, where spsc curve's default 0 is "
+                   "the closed chamber)")
     g.add_argument("--stroke", type=number("stroke", "mm"), default=4.0, metavar="MM",
                    help="deepest plate travel the map covers, mm (default 4)")
     g.add_argument("--mesh-size", type=number("mesh size", "mm"), default=None, metavar="MM",
