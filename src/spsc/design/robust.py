@@ -68,10 +68,8 @@ def robust_row(design: dict, model: str, process: str, points=None, stroke_mm=No
     """The row of :func:`~spsc.sweep.evaluate.evaluate` with ``robust_miss`` (the
     ``confidence`` quantile of the samples' misses), ``p_met`` (the share of samples within
     the goal's tolerance) and ``robust_samples``. Never raises (a failure is the row's)."""
-    from spsc.core.loadcase import check_load
-    from spsc.core.setup import Setup
     from spsc.models import get
-    from spsc.sweep.evaluate import evaluate, resolve_design
+    from spsc.sweep.evaluate import design_setup, evaluate, resolve_design
 
     t0 = time.perf_counter()
     row = evaluate(design, model, process, points, stroke_mm)
@@ -79,14 +77,8 @@ def robust_row(design: dict, model: str, process: str, points=None, stroke_mm=No
         return row
     try:
         entry = get(model)
-        geometry, mat, setup = resolve_design(design)
-        load = check_load(geometry, pressure_kPa=setup["p_i_kPa"],
-                          reservoir_mm3=setup["reservoir_mm3"],
-                          stroke_mm=entry.stroke_mm if stroke_mm is None else stroke_mm,
-                          points=entry.points if points is None else points,
-                          polytropic_n=setup["polytropic_n"])
-        misses = sample_misses(Setup(geometry, mat, load), model, entry.Options(), goal,
-                               tolerance, n, seed)
+        low = design_setup(entry, *resolve_design(design), points, stroke_mm)
+        misses = sample_misses(low, model, entry.Options(), goal, tolerance, n, seed)
     except Exception as exc:  # a row that says so, as evaluate's
         row["status"], row["message"] = "failed", f"{type(exc).__name__}: {exc}"
         return row
@@ -104,23 +96,18 @@ def confirm_robust(client, problem, params: dict, *, model: str = "wall",
     """The chosen design's samples (``n`` base samples, default the search's; a seed the
     search did not use) run by ``model`` on the Dask workers: ``p_met``, the ``confidence``
     quantile of the misses, the samples and the time."""
-    n = problem.robust["samples"] if n is None else n
-    from spsc.core.setup import Setup
-    from spsc.materials import material
     from spsc.models import get
-    from spsc.cad.geometry import PARAMS, SPSCGeometry
+    from spsc.study.band import curve_of
 
+    n = problem.robust["samples"] if n is None else n
     t0 = time.perf_counter()
     entry = get(model)
-    geometry = SPSCGeometry(**{k: float(params[k]) for k in PARAMS})
-    low = Setup.of(geometry, material(params["material"]), pressure_kPa=params["pressure"],
-                   reservoir_mm3=params["reservoir"], stroke_mm=problem.stroke_mm,
-                   points=entry.points, polytropic_n=1.0)
+    low = _low_setup(entry, params, problem)
     options = entry.Options()
 
     def curves(setups):
-        futures = client.map(_curve, setups, model=model, options=options, pure=False)
-        return client.gather(futures)
+        return client.gather(client.map(curve_of, setups, model=model, options=options,
+                                        pure=False))
 
     r = problem.robust
     misses = sample_misses(low, model, options, problem.goal, r["tolerance"], n, seed,
@@ -132,29 +119,25 @@ def confirm_robust(client, problem, params: dict, *, model: str = "wall",
             "seconds": time.perf_counter() - t0}
 
 
-def _curve(setup, *, model, options):
-    from spsc.models import get
+def _low_setup(entry, params: dict, problem):
+    """The low-mode setup of a study's design ``params`` for ``entry`` (the search's stroke,
+    the model's points)."""
+    from spsc.sweep.evaluate import design_setup, resolve_design
 
-    return get(model).curve(setup, options).curve
+    return design_setup(entry, *resolve_design(params), None, problem.stroke_mm)
 
 
 def chosen_band(problem, params: dict, *, n: int = 256, seed: int = 2) -> dict:
     """The chosen design's band in both modes by the search's model
     (:func:`spsc.study.band.band`) and, per goal metric of a mode (stiffness and sensitivity,
     high and low), its Sobol total indices and the input to tighten first (the largest)."""
-    from spsc.cad.geometry import PARAMS, SPSCGeometry
-    from spsc.core.setup import Setup
-    from spsc.materials import material
     from spsc.models import get
     from spsc.study.band import band
 
     entry = get(problem.model)
-    geometry = SPSCGeometry(**{k: float(params[k]) for k in PARAMS})
+    low = _low_setup(entry, params, problem)
     out = {"modes": {}, "tighten": {}}
-    for mode, reservoir in (("high", 0.0), ("low", float(params["reservoir"]))):
-        setup = Setup.of(geometry, material(params["material"]),
-                         pressure_kPa=params["pressure"], reservoir_mm3=reservoir,
-                         stroke_mm=problem.stroke_mm, points=entry.points, polytropic_n=1.0)
+    for mode, setup in (("high", low.with_load(reservoir_mm3=0.0)), ("low", low)):
         r = band(setup, entry.Options(), problem.model, problem.robust["tolerance"], n=n,
                  seed=seed)
         out["modes"][mode] = {k: r[k] for k in ("samples", "refused", "stiffness_N_per_mm",

@@ -24,7 +24,7 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 
-__all__ = ["COLUMNS", "QUANTILES", "sample_setups", "band", "DEFAULT_SAMPLES"]
+__all__ = ["COLUMNS", "QUANTILES", "sample_setups", "band", "curve_of", "DEFAULT_SAMPLES"]
 
 COLUMNS = ("force_N", "pressure_kPa", "contact_area_mm2", "volume_change_mm3")
 QUANTILES = (5, 50, 95)
@@ -123,7 +123,7 @@ def _curves(entry, setups, options, workers, scheduler, progress) -> list:
     from spsc.study.executor import dask_client
 
     with dask_client(workers, scheduler) as client:
-        futures = client.map(_one, setups, options=options, model=entry.name, pure=False)
+        futures = client.map(curve_of, setups, options=options, model=entry.name, pure=False)
         index = {f.key: k for k, f in enumerate(futures)}
         out = [None] * len(setups)
         for done, f in enumerate(as_completed(futures), 1):
@@ -133,7 +133,8 @@ def _curves(entry, setups, options, workers, scheduler, progress) -> list:
     return out
 
 
-def _one(setup, *, options, model):
+def curve_of(setup, *, options, model: str):
+    """The curve of one setup with ``model`` (a Dask task)."""
     from spsc.models import get
 
     return get(model).curve(setup, options).curve

@@ -33,8 +33,8 @@ from spsc.study.metrics import DesignMetrics, design_metrics
 from spsc.cad.geometry import PARAMS
 
 __all__ = ["INPUTS", "METRICS", "COLUMNS", "STATUSES", "DONE", "resolve_design",
-           "design_curves", "evaluate", "evaluate_many", "batched", "failed_row", "design_key",
-           "printability_columns"]
+           "design_setup", "design_curves", "evaluate", "evaluate_many", "batched",
+           "failed_row", "design_key", "printability_columns"]
 
 #: The inputs of a design, under the CLI's parameter names.
 INPUTS = ("type",) + PARAMS + ("material", "pressure", "reservoir")
@@ -78,6 +78,19 @@ def resolve_design(design: dict):
     return geometry, mat, setup
 
 
+def design_setup(entry, geometry, mat, setup: dict, points=None, stroke_mm=None) -> Setup:
+    """The checked :class:`Setup` of a resolved design (:func:`resolve_design`) in its low
+    mode (its reservoir) for the model ``entry``: its default stroke and points where
+    ``stroke_mm``, ``points`` are None. ParameterError when the load case is refused (the
+    model's own limits are its ``check``'s)."""
+    load = check_load(geometry, pressure_kPa=setup["p_i_kPa"],
+                      reservoir_mm3=setup["reservoir_mm3"],
+                      stroke_mm=entry.stroke_mm if stroke_mm is None else stroke_mm,
+                      points=entry.points if points is None else points,
+                      polytropic_n=setup["polytropic_n"])
+    return Setup(geometry, mat, load)
+
+
 def design_curves(design: dict, model: str, modes=("high", "low"), *, points=None,
                   stroke_mm=None) -> dict:
     """``{mode: Curve}`` of a design with ``model`` (membrane, simplified, wall, fem): ``high``
@@ -89,19 +102,13 @@ def design_curves(design: dict, model: str, modes=("high", "low"), *, points=Non
     ParameterError when the design, the load case or the model's own limits refuse it (before
     any solve)."""
     entry = get(model)
-    geometry, mat, setup = resolve_design(design)
-    load = check_load(geometry, pressure_kPa=setup["p_i_kPa"],
-                      reservoir_mm3=setup["reservoir_mm3"],
-                      stroke_mm=entry.stroke_mm if stroke_mm is None else stroke_mm,
-                      points=entry.points if points is None else points,
-                      polytropic_n=setup["polytropic_n"])
+    setup = design_setup(entry, *resolve_design(design), points, stroke_mm)
     unknown = [m for m in modes if m not in ("high", "low")]
     if unknown:
         raise ParameterError("mode", unknown[0], "high or low")
     options = entry.Options()
-    setup = Setup(geometry, mat, load)
     entry.check(setup, options, verb=_VERB, quiet=True)
-    reservoirs = {"high": 0.0, "low": load.reservoir_mm3}
+    reservoirs = {"high": 0.0, "low": setup.load.reservoir_mm3}
     volumes = list(dict.fromkeys(reservoirs[mode] for mode in modes))
     if hasattr(entry, "curves"):  # the modes share their inflation (the wall model)
         solved = entry.curves(setup, volumes, options)
@@ -173,12 +180,7 @@ def evaluate_many(designs: list, model: str, process: str, points: int | None = 
             geometry, mat, setup = resolve_design(design)
             row["cavity_mm3"] = geometry.cavity_volume()
             row["printable"], row["printability"] = printability_columns(geometry, process)
-            load = check_load(geometry, pressure_kPa=setup["p_i_kPa"],
-                              reservoir_mm3=setup["reservoir_mm3"],
-                              stroke_mm=entry.stroke_mm if stroke_mm is None else stroke_mm,
-                              points=entry.points if points is None else points,
-                              polytropic_n=setup["polytropic_n"])
-            low = Setup(geometry, mat, load)
+            low = design_setup(entry, geometry, mat, setup, points, stroke_mm)
             entry.check(low, options, verb=_VERB, quiet=True)
             jobs.append((row, low.with_load(reservoir_mm3=0.0), low))
         except ParameterError as exc:

@@ -18,7 +18,7 @@ import itertools
 import sys
 import time
 import uuid
-from contextlib import ExitStack
+from contextlib import ExitStack, contextmanager
 
 from spsc.study.executor import dask_client
 from spsc.sweep.evaluate import batched, design_key, evaluate, evaluate_many, failed_row
@@ -141,13 +141,14 @@ class _Flight:
         self.submit(list(itertools.islice(pending, max(0, self.limit - len(self.designs)))))
 
 
-def _run(pending, total, store, settings, stats, *, workers, scheduler, progress, task,
-         checkpoint):
+@contextmanager
+def _cluster(total, stats, *, workers, scheduler, progress):
+    """(client, progress bar, its worker threads) for a sweep's run, the start-up's time and
+    the worker count in ``stats``."""
     import dask
     import distributed  # noqa: F401  (its config defaults first: a set() on a missing section
     from spsc.core.progress import progress_bar  # would delete the whole section on exit)
 
-    keys, every = checkpoint
     t_start = time.perf_counter()
     with ExitStack() as stack:
         stack.enter_context(dask.config.set(LOCAL_CLUSTER_CONFIG))
@@ -157,6 +158,15 @@ def _run(pending, total, store, settings, stats, *, workers, scheduler, progress
                                                dynamic_ncols=True))
         threads = sum(client.nthreads().values())
         stats.update(workers=len(client.nthreads()), start_s=time.perf_counter() - t_start)
+        yield client, bar, threads
+        stats["compute_s"] = time.perf_counter() - t_start - stats["start_s"]
+
+
+def _run(pending, total, store, settings, stats, *, workers, scheduler, progress, task,
+         checkpoint):
+    keys, every = checkpoint
+    with _cluster(total, stats, workers=workers, scheduler=scheduler,
+                  progress=progress) as (client, bar, threads):
         flight = _Flight(client, task, settings, IN_FLIGHT_PER_THREAD * max(1, threads))
         flight.refill(pending)
         failed, last, suspects = 0, time.perf_counter(), []
@@ -181,7 +191,6 @@ def _run(pending, total, store, settings, stats, *, workers, scheduler, progress
             if time.perf_counter() - last > every:
                 store.write(keys)
                 last = time.perf_counter()
-        stats["compute_s"] = time.perf_counter() - t_start - stats["start_s"]
 
 
 def _run_batched(pending, total, store, settings, stats, *, workers, scheduler, progress,
@@ -190,23 +199,12 @@ def _run_batched(pending, total, store, settings, stats, *, workers, scheduler, 
     (:func:`~.evaluate.evaluate_many`), two per worker thread in flight; a chunk whose task
     did not return (its worker died twice, Dask's retries spent) is a chunk of failed rows
     naming why, computed again by a re-run."""
-    import dask
-    import distributed  # noqa: F401  (see _run)
     from distributed import as_completed
-
-    from spsc.core.progress import progress_bar
 
     model, process, points, stroke_mm = settings
     keys, every = checkpoint
-    t_start = time.perf_counter()
-    with ExitStack() as stack:
-        stack.enter_context(dask.config.set(LOCAL_CLUSTER_CONFIG))
-        client = stack.enter_context(dask_client(workers=workers, scheduler=scheduler))
-        bar = stack.enter_context(progress_bar(total=total, desc="spsc sweep", unit="design",
-                                               disable=not progress, file=sys.stderr,
-                                               dynamic_ncols=True))
-        threads = sum(client.nthreads().values())
-        stats.update(workers=len(client.nthreads()), start_s=time.perf_counter() - t_start)
+    with _cluster(total, stats, workers=workers, scheduler=scheduler,
+                  progress=progress) as (client, bar, threads):
         run = uuid.uuid4().hex[:8]
         chunks = iter(lambda: list(itertools.islice(pending, batch)), [])
         flying, completed = {}, as_completed()
@@ -241,7 +239,6 @@ def _run_batched(pending, total, store, settings, stats, *, workers, scheduler, 
             if time.perf_counter() - last > every:
                 store.write(keys)
                 last = time.perf_counter()
-        stats["compute_s"] = time.perf_counter() - t_start - stats["start_s"]
 
 
 def _row(future, key, design):
