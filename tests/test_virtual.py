@@ -166,3 +166,14 @@ def test_spsc_virtual_runs_the_example_scene_and_refuses_what_it_cannot(tmp_path
         err = capsys.readouterr().err
         assert says in err and len(err.strip().splitlines()) == 1
         assert not (tmp_path / "w").exists()
+
+
+def test_the_valves_array_flow_is_its_scalar_flow():
+    valve = Valve(0.06, b=0.3, m=0.6)
+    rng = np.random.default_rng(1)
+    pa, pb = rng.uniform(50e3, 300e3, (2, 200))
+    pb[:10] = pa[:10]  # equal pressures: no flow
+    pb[10:20] = pa[10:20] * 0.9995  # the laminar end
+    ta, tb = rng.uniform(250, 350, (2, 200))
+    scalar = [valve.mass_flow(*args) for args in zip(pa, pb, ta, tb)]
+    assert_allclose(valve.mass_flows(pa, pb, ta, tb), scalar, rtol=1e-14, atol=0)

@@ -123,22 +123,10 @@ class VirtualChambers:
 
     def _flow(self, pc_pa, pr_pa):
         """ISO 6358 mass flow (kg/s) reservoir → chamber, per chamber (0 where shut)."""
-        valve = self.circuit.valve
-        if self.vr <= 0 or valve is None:
+        if self.vr <= 0 or self.circuit.valve is None:
             return np.zeros(self.count)
-        from spsc.dynamics.valve import LAMINAR_RATIO, RHO0, T0, _C_SI
-
-        up = np.maximum(pc_pa, pr_pa)
-        down = np.minimum(pc_pa, pr_pa)
-        t_up = np.where(pr_pa >= pc_pa, self.tr, self.tc)
-        r = down / up
-        b, m = valve.b, valve.m
-        phi = np.where(r <= b, 1.0, np.where(
-            r <= LAMINAR_RATIO,
-            np.abs(1.0 - ((np.minimum(r, LAMINAR_RATIO) - b) / (1.0 - b)) ** 2) ** m,
-            valve._phi_l * (1.0 - r) / (1.0 - LAMINAR_RATIO)))
-        q = valve.C * _C_SI * RHO0 * up * np.sqrt(T0 / t_up) * phi
-        return np.where(self.valve, np.where(pr_pa >= pc_pa, q, -q), 0.0)
+        q = self.circuit.valve.mass_flows(pr_pa, pc_pa, self.tr, self.tc)
+        return np.where(self.valve, q, 0.0)
 
     def _substep(self, y_new, h):
         """One substep of ``h`` (s) to the travels ``y_new``: the valve's flow explicit, the
