@@ -88,6 +88,11 @@ class ChamberMap:
         return Slice(self.pressure_kPa, np.column_stack(
             [self._v(y), self._dv(y), self._f(y), self._a(y), self._df(y)]))
 
+    def levels_at(self, y):
+        """(V mm³, F N) at the travels ``y`` (mm, an array) and every pressure level of the
+        map, each (len(y), levels): the map's own interpolation along y, for a table of it."""
+        return self._v(y), self._f(y)
+
     def as_arrays(self) -> dict:
         return {"y_mm": self.y_mm, "pressure_kPa": self.pressure_kPa,
                 "volume_mm3": self.volume_mm3, "force_N": self.force_N,

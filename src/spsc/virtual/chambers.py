@@ -50,11 +50,9 @@ class MapTable:
         self.y = np.arange(y_lo, y_hi + 0.5 * dy_mm, dy_mm)
         self.p = np.linspace(p_lo, p_hi, levels)
         coarse_p = chamber_map.pressure_kPa
-        tables = []
-        for interp in (chamber_map._v, chamber_map._f):  # PCHIP in y at each level
-            along_y = interp(self.y)  # (ny, levels of the map)
-            tables.append(CubicSpline(coarse_p, along_y, axis=1)(self.p))
-        self.V, self.F = tables
+        # the map's own PCHIP along y at each level, then its cubic spline along P
+        self.V, self.F = (CubicSpline(coarse_p, along_y, axis=1)(self.p)
+                          for along_y in chamber_map.levels_at(self.y))
         self.F = np.maximum(self.F, 0.0)
         self.dy, self.dp = self.y[1] - self.y[0], self.p[1] - self.p[0]
         self.y_range, self.p_range = (float(self.y[0]), float(self.y[-1])), (p_lo, p_hi)
