@@ -75,6 +75,8 @@ class Discretisation(Protocol):
     #: trial state of the line search
     recoverable: tuple
     inadmissible: tuple
+    #: a rate-dependent material's history (:mod:`spsc.fem.viscous`), None for an elastic one
+    viscous: Any
 
     def default_settings(self) -> Settings:
         """The engine settings this discretisation is solved with unless told otherwise."""
@@ -91,6 +93,9 @@ class Discretisation(Protocol):
 
     def volume(self, x) -> float:
         """The gas volume (mm³) at x."""
+
+    def commit(self, x, load: Load) -> None:
+        """Close a converged load: a rate-dependent material keeps its history at x."""
 
     def system_residual(self, ev: Evaluation) -> np.ndarray:
         """The right-hand side's residual of the Newton system (m): r, or r with the

@@ -5,16 +5,51 @@ then on the pressure follows the cavity volume, P·(V + V_r)ⁿ = const, eqs. 2,
 paper) and :class:`Press` lowers a rigid frictionless plate from first contact. A
 :class:`Load` is what one Newton solve holds fixed: the pressure (or the gas law) and the
 plate's height.
+
+A step is any object with ``increments`` (its recorded points), ``begin(load, volume)`` (the
+load it starts from) and ``path(load, contact_height, settings)`` (a :class:`Path`, or None
+for a step that records nothing): the walk asks nothing else of it.
 """
 
 from __future__ import annotations
 
-from spsc.core.constants import to_MPa
 from dataclasses import dataclass
+from typing import Callable
 
+import numpy as np
+
+from spsc.core.constants import to_MPa
+from spsc.core.errors import ParameterError
 from spsc.core.gaslaw import GasLaw
 
-__all__ = ["Inflate", "CloseValve", "Press", "Cycle", "Load", "load_steps"]
+__all__ = ["Inflate", "CloseValve", "Press", "Cycle", "Load", "Path", "load_steps"]
+
+
+@dataclass(frozen=True)
+class Path:
+    """How a step loads the model from the walk's state: what the walk needs to ramp it.
+
+    ``load_at(t)``: the load at the step's parameter t; ``targets``: the recorded t;
+    ``kind``: ``"inflate"`` or ``"press"`` (the records' kind); ``travel_at(t)``: the plate's
+    travel (mm from first contact; None for an inflation); ``at_travel(y)``: the load with the
+    indenter at travel y (a spring balances it there); ``spring`` (N/mm) and ``mu``: the
+    press's compliant object and Coulomb coefficient (None: a rigid object, no slip);
+    ``span``: the largest increment of t (None: the targets' own spacing)."""
+
+    load_at: Callable
+    kind: str
+    targets: list
+    travel_at: Callable | None = None
+    at_travel: Callable | None = None
+    spring: float | None = None
+    mu: float | None = None
+    span: float | None = None
+
+    @property
+    def follows_snaps(self) -> bool:
+        """A press on a rigid object without slip follows its snap-throughs (the spring's
+        balance and the Coulomb loop do not)."""
+        return self.kind == "press" and self.spring is None and self.mu is None
 
 
 @dataclass(frozen=True)
@@ -29,6 +64,15 @@ class Inflate:
         nominal = 1.0 / self.increments
         return [(i + 1) * nominal for i in range(self.increments)]
 
+    def begin(self, load: Load, volume: Callable) -> Load:
+        return load
+
+    def path(self, load: Load, contact_height: Callable, settings) -> Path:
+        """The pressure ramped from the current one to this step's, the plate kept."""
+        start, end = load.pressure, float(self.pressure)
+        return Path(lambda t: Load(pressure=start + t * (end - start), plate=load.plate,
+                                   indenter=load.indenter), "inflate", self.targets())
+
 
 @dataclass(frozen=True)
 class CloseValve:
@@ -36,6 +80,16 @@ class CloseValve:
 
     reservoir: float = 0.0
     polytropic_n: float = 1.0
+    increments = 0  # no recorded point: the walk only changes its load
+
+    def begin(self, load: Load, volume: Callable) -> Load:
+        """The load from here on: the gas at the current pressure and cavity volume
+        (``volume()``, mm³) trapped with the reservoir."""
+        gas = GasLaw(load.pressure, volume(), self.reservoir, self.polytropic_n)
+        return Load(gas=gas, plate=load.plate, indenter=load.indenter)
+
+    def path(self, load: Load, contact_height: Callable, settings) -> None:
+        return None
 
 
 @dataclass(frozen=True)
@@ -63,8 +117,6 @@ class Press:
         if self.indenter is not None and not self.indenter.curved:
             object.__setattr__(self, "indenter", None)
         if self.indenter is not None and (self.stick or self.mu is not None):
-            from spsc.core.errors import ParameterError
-
             raise ParameterError("friction", "stick" if self.mu is None else self.mu,
                                  f"0 with the indenter {self.indenter.spec} (friction on a "
                                  "curved body is not built yet)")
@@ -91,6 +143,28 @@ class Press:
         """The load parameter's change over a plate travel of ``travel_mm``."""
         return travel_mm if self.travel is not None else travel_mm / self.stroke
 
+    def begin(self, load: Load, volume: Callable) -> Load:
+        return load
+
+    def path(self, load: Load, contact_height: Callable, settings) -> Path:
+        """The indenter lowered from first contact (``contact_height(indenter)``: its tip's
+        height there, mm; the plate's height if it already touches) by the step's travel;
+        a sticking plate's increments at most ``settings.stick_increment`` of travel (its
+        touch-downs are interpolated per increment)."""
+        z0 = contact_height(self.indenter) if load.plate is None else load.plate
+        if not np.isfinite(z0):
+            raise ParameterError("indenter", self.indenter.spec, "a body that meets the "
+                                 "model's outer surface (no contact node lies under it: "
+                                 "place it with --plate-at, or a larger body)")
+
+        def at_travel(y):
+            return Load(load.pressure, load.gas, z0 - y, stick=self.stick,
+                        indenter=self.indenter)
+
+        return Path(lambda t: at_travel(self.travel_at(t)), "press", self.targets(),
+                    self.travel_at, at_travel, self.spring, self.mu,
+                    self.parameter_span(settings.stick_increment) if self.stick else None)
+
 
 @dataclass(frozen=True)
 class Cycle:
@@ -104,8 +178,6 @@ class Cycle:
     stick: bool = False
 
     def __post_init__(self):
-        from spsc.core.errors import ParameterError
-
         t = tuple(float(v) for v in self.times)
         if len(t) < 2 or len(t) != len(self.travels) or t[0] != 0.0 or \
                 any(b <= a for a, b in zip(t, t[1:])):
@@ -122,9 +194,16 @@ class Cycle:
         return list(self.times[1:])
 
     def travel_at(self, t: float) -> float:
-        import numpy as np
-
         return float(np.interp(t, self.times, self.travels))
+
+    def begin(self, load: Load, volume: Callable) -> Load:
+        return load
+
+    def path(self, load: Load, contact_height: Callable, settings) -> Path:
+        """The plate moved in time from first contact (the plate's height if it touches)."""
+        z0 = contact_height(None) if load.plate is None else load.plate
+        return Path(lambda t: Load(load.pressure, load.gas, z0 - self.travel_at(t), t,
+                                   self.stick), "press", self.targets(), self.travel_at)
 
 
 @dataclass(frozen=True)

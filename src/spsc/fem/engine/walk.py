@@ -3,7 +3,9 @@
 Steps (:mod:`.steps`): :class:`Inflate` (prescribed cavity pressure ramp), :class:`CloseValve`
 (from here on the cavity is a closed gas volume with a reservoir, P·(V + V_r)ⁿ = const) and
 :class:`Press` (a rigid frictionless plate, displacement controlled, from first contact down by
-the stroke). Each increment is solved by Newton's method (:func:`.newton.newton`); a failed
+the stroke). Each step carries its own path (``begin`` changes the load between steps, ``path``
+says how the load moves with the step's parameter, :class:`~.steps.Path`): the walk knows no
+step by its class, so a new kind of step is one class. Each increment is solved by Newton's method (:func:`.newton.newton`); a failed
 increment is cut in half until ``min_fraction`` of the nominal one, and a recorded equilibrium
 whose tangent has a negative eigenvalue stops the walk (it is unstable: no point past it is a
 result). With ``settings.snap_through`` a press follows the jump instead: from an unstable state
@@ -22,8 +24,6 @@ import time
 
 import numpy as np
 
-from spsc.core.gaslaw import GasLaw
-
 from .active_set import first_contact, plate_force
 from .coulomb import coulomb
 from .friction import Grip, tractions
@@ -31,7 +31,7 @@ from .spring import balance, solver as spring_solver
 from .newton import Converged, newton
 from .result import NewtonFailure, Record, Result, Stop
 from .snap import PUSH_MM, Jump, relax, unstable_mode
-from .steps import CloseValve, Cycle, Inflate, Load, Press
+from .steps import Load
 
 __all__ = ["solve", "record"]
 
@@ -77,7 +77,7 @@ class _Walk:
         self.warm = None  # the last load's factorisation (:class:`~.newton.Warm`)
         #: a spring-borne indenter's last two (travel mm, force N), and the trial's
         self.indenter, self.balanced = [(0.0, 0.0)], None
-        self.total = sum(s.increments for s in steps if not isinstance(s, CloseValve))
+        self.total = sum(s.increments for s in steps)
         self.done, self.last_force, self.instability, self.iterations = 0, 0.0, "", 0
         self.jumps: list[Jump] = []
 
@@ -88,7 +88,7 @@ class _Walk:
         last = start.records[-1]
         if not start.converged or start.load is None or start.load.plate is not None \
                 or self.model.tie is not None \
-                or getattr(self.model, "viscous", None) is not None:  # its history is its own
+                or self.model.viscous is not None:  # its history is its own
             raise ValueError("start: a converged walk that ended with no plate, of a model "
                              "without a tie or a rate-dependent material")
         self.x, self.load = last.x.copy(), start.load
@@ -96,37 +96,9 @@ class _Walk:
         self.jumps, self.instability = list(start.jumps), start.instability
         self.t_start -= start.seconds
 
-    def close_valve(self, step: CloseValve) -> None:
-        gas = GasLaw(self.load.pressure, self.model.volume(self.x), step.reservoir,
-                     step.polytropic_n)
-        self.load = Load(gas=gas, plate=self.load.plate, indenter=self.load.indenter)
-
-    def path(self, step):
-        """(t -> Load, kind, targets t) of an Inflate or Press step from the current state:
-        the pressure ramp, or the plate lowered from first contact by the step's travel."""
-        load = self.load
-        if isinstance(step, Inflate):
-            start, end = load.pressure, float(step.pressure)
-            return (lambda t: Load(pressure=start + t * (end - start), plate=load.plate,
-                                   indenter=load.indenter),
-                    "inflate", step.targets())
-        if isinstance(step, Press):
-            z0 = first_contact(self.model, self.x, step.indenter) if load.plate is None \
-                else load.plate
-            if not np.isfinite(z0):
-                from spsc.core.errors import ParameterError
-
-                raise ParameterError("indenter", step.indenter.spec, "a body that meets the "
-                                     "model's outer surface (no contact node lies under it: "
-                                     "place it with --plate-at, or a larger body)")
-            self.at_travel = lambda y: Load(load.pressure, load.gas, z0 - y, stick=step.stick,
-                                            indenter=step.indenter)
-            return (lambda t: self.at_travel(step.travel_at(t)), "press", step.targets())
-        if isinstance(step, Cycle):
-            z0 = first_contact(self.model, self.x) if load.plate is None else load.plate
-            return (lambda t: Load(load.pressure, load.gas, z0 - step.travel_at(t), t,
-                                   step.stick), "press", step.targets())
-        raise TypeError(f"unknown step {step!r}")
+    def contact_height(self, indenter=None) -> float:
+        """The indenter's tip height at first contact with the current state (mm)."""
+        return first_contact(self.model, self.x, indenter)
 
     def solve_one(self, trial, t_new, history):
         """Newton for the trial load from the secant prediction (``settings.predictor``,
@@ -145,31 +117,31 @@ class _Walk:
                 raise
             return newton(model, x, trial, self.s, self.active, self.engaged, grip)
 
-    def solve(self, step, trial, t_new, history):
-        """(solution, its load) of the trial load ``trial`` at ``t_new`` of a press: the
-        indenter's spring balanced (:mod:`.spring`), the Coulomb friction mapped
-        (:mod:`.coulomb`) or one Newton solve."""
-        if getattr(step, "spring", None):
-            return self.solve_spring(step, t_new)
-        if getattr(step, "mu", None) is not None:
+    def solve(self, path, trial, t_new, history):
+        """(solution, its load) of the trial load ``trial`` at ``t_new`` of a step's
+        ``path``: the indenter's spring balanced (:mod:`.spring`), the Coulomb friction
+        mapped (:mod:`.coulomb`) or one Newton solve."""
+        if path.spring:
+            return self.solve_spring(path, t_new)
+        if path.mu is not None:
             return coulomb(self.model, self.x, trial, self.s, self.active, self.engaged,
-                           self.gripped(trial), step.mu), trial
+                           self.gripped(trial), path.mu), trial
         return self.solve_one(trial, t_new, history), trial
 
-    def solve_spring(self, step, t_new):
+    def solve_spring(self, path, t_new):
         """(solution, its load) of the spring-borne indenter at the far-end travel of
         ``t_new`` (:mod:`.spring`); its (travel, force) kept in ``balanced``."""
         (y0, f0), (y1, f1) = self.indenter[-2:] if len(self.indenter) > 1 \
             else self.indenter * 2
         slope = (f1 - f0) / (y1 - y0) if y1 > y0 else 0.0
-        solve_at = spring_solver(self.model, self.s, self.at_travel, self.x, self.active,
-                                 self.engaged, self.gripped(self.at_travel(y1)))
-        tol = self.s.rtol * 10 * max(f1, step.spring * step.travel_at(t_new),
+        solve_at = spring_solver(self.model, self.s, path.at_travel, self.x, self.active,
+                                 self.engaged, self.gripped(path.at_travel(y1)))
+        tol = self.s.rtol * 10 * max(f1, path.spring * path.travel_at(t_new),
                                      self.model.force_floor)
-        sol, y_p, force = balance(solve_at, step.travel_at(t_new), step.spring, y1, f1, slope,
+        sol, y_p, force = balance(solve_at, path.travel_at(t_new), path.spring, y1, f1, slope,
                                   tol)
         self.balanced = (y_p, force)
-        return sol, self.at_travel(y_p)
+        return sol, path.at_travel(y_p)
 
     def gripped(self, trial):
         """The anchors a sticking ``trial`` load starts from (None for a frictionless
@@ -181,33 +153,30 @@ class _Walk:
     def ramp(self, k, step) -> Stop | None:
         """Walk one Inflate or Press step through its targets with step halving; the
         :class:`Stop` where it failed or met an unstable equilibrium, else None."""
-        onset = isinstance(step, (Press, Cycle)) and self.load.plate is None  # first contact
-        load_at, kind, targets = self.path(step)
-        nominal = targets[0]
-        if isinstance(step, Press) and step.stick:  # touch-downs interpolated per increment
-            nominal = min(nominal, step.parameter_span(self.s.stick_increment))
-        #: snap-throughs are followed on a plain press only (not on a spring, not with Coulomb)
-        plain = getattr(step, "spring", None) is None and getattr(step, "mu", None) is None
+        path = step.path(self.load, self.contact_height, self.s)
+        load_at, kind, targets = path.load_at, path.kind, path.targets
+        onset = kind == "press" and self.load.plate is None  # first contact
+        nominal = targets[0] if path.span is None else min(targets[0], path.span)
         t, dt, ti, history = 0.0, nominal * (self.s.onset_fraction if onset else 1.0), 0, []
         calm = self.s.regrow_after  # increments solved since the last cut
         while ti < len(targets):
             t_new = min(t + dt, targets[ti])
             trial = load_at(t_new)
-            follow = kind == "press" and self.s.snap_through and plain \
+            follow = path.follows_snaps and self.s.snap_through \
                 and len(self.jumps) < _MAX_JUMPS
             try:
-                sol, trial = self.solve(step, trial, t_new, history)
+                sol, trial = self.solve(path, trial, t_new, history)
             except self.model.recoverable as exc:
                 _log.debug("cut %s t=%.4g dt=%.3g: %s", kind, t_new, dt, exc)
                 dt, calm = 0.5 * dt, 0
                 if dt >= self.s.min_fraction * nominal:
                     continue
-                sol = self.cross(step, load_at, t, t_new) if follow else None
+                sol = self.cross(path, t, t_new) if follow else None
                 if sol is None:
                     return Stop(k, kind, t_new, step, trial, str(exc))
                 history = []  # no secant across the jump
             if sol.unstable_modes and follow:
-                jumped = self.snap(step, load_at, t, t_new, sol)
+                jumped = self.snap(path, t, t_new, sol)
                 if jumped is not None:
                     t_new, sol = jumped
                     trial, history = load_at(t_new), []  # no secant across the jump
@@ -216,8 +185,7 @@ class _Walk:
             self.grip, self.warm = sol.grip, getattr(sol, "warm", None)
             if self.balanced is not None:  # a spring's balance is accepted as found
                 self.indenter, self.balanced = self.indenter[-1:] + [self.balanced], None
-            if hasattr(self.model, "commit"):  # a rate-dependent material closes its step
-                self.model.commit(sol.x, trial)
+            self.model.commit(sol.x, trial)
             self.iterations += sol.iterations
             history.append((t, sol.x))
             calm += 1
@@ -225,20 +193,20 @@ class _Walk:
                 dt = min(nominal, 2 * dt)
             if math.isclose(t, targets[ti], rel_tol=1e-12, abs_tol=1e-14):
                 rec = record(self.model, k, kind, self.load, sol)
-                if getattr(step, "spring", None):
+                if path.spring:
                     rec = dataclasses.replace(rec, indenter=self.indenter[-1][0])
                 if rec.unstable_modes:
                     return Stop(k, kind, t, step, trial, "", rec)
-                self.keep(rec, kind, t, step)
+                self.keep(rec, path, t)
                 ti += 1
         return None
 
-    def snap(self, step, load_at, t0, t1, sol1):
+    def snap(self, path, t0, t1, sol1):
         """Follow a snap-through found between the stable state at ``t0`` (the walk's) and
         the unstable converged ``sol1`` at ``t1``: its onset located by halving, then the
         descent to the stable state at the same plate (:mod:`.snap`). (t, stable solution)
         at the jump, or None if no stable state was found (the walk then stops there)."""
-        m, s = self.model, self.s
+        m, s, load_at = self.model, self.s, path.load_at
         x0, a0, e0 = self.x, self.active, self.engaged
         g0 = self.gripped(load_at(t1))
         for _ in range(s.snap_bisections):
@@ -270,11 +238,11 @@ class _Walk:
                 best = (end, released, steps, its)
         if best is None:  # from the stable side of a narrowed bracket
             t0, state, t1 = self.narrow(load_at, t0, t1, (x0, a0, e0, g0))
-            end = self.cross(step, load_at, t0, t1, state)
+            end = self.cross(path, t0, t1, state)
             return None if end is None else (t1, end)
         end, released, steps, its = best
         before, after = record(m, -1, "press", load, sol1), record(m, -1, "press", load, end)
-        self.jump(step.travel_at(t1), before, after, released, steps, its)
+        self.jump(path.travel_at(t1), before, after, released, steps, its)
         return t1, end
 
     def jump(self, y, before, after, released, steps, its) -> None:
@@ -302,7 +270,7 @@ class _Walk:
                 t0, state = tm, (solm.x, solm.active, solm.engaged, solm.grip)
         return t0, state, t1
 
-    def cross(self, step, load_at, t0, t1, state=None):
+    def cross(self, path, t0, t1, state=None):
         """A stable state at ``t1`` where Newton finds none from the stable one at ``t0``
         however short the increment: the branch ends there (a fold: no equilibrium near it
         past t0), or Newton cycles between contact sets; or where the descent from an
@@ -310,7 +278,7 @@ class _Walk:
         (x, active, engaged, grip), the walk's by default) with the plate at t1
         (:func:`.snap.relax`, no push) and the jump recorded like a snap-through's; None if
         this descent finds no stable state either."""
-        m, s = self.model, self.s
+        m, s, load_at = self.model, self.s, path.load_at
         x, active, engaged, grip = state or (self.x, self.active, self.engaged, self.grip)
         load = load_at(t1)
         anchors = (Grip.empty(m) if grip is None else grip) if load.stick else None
@@ -327,16 +295,17 @@ class _Walk:
         before, after = record(m, -1, "press", load_at(t0), start), \
             record(m, -1, "press", load, end)
         # Π holds no plate: the plate's work over the last short travel, F Δy, is added
-        released += before.force * (step.travel_at(t1) - step.travel_at(t0))
-        self.jump(step.travel_at(t1), before, after, released, steps, its)
+        released += before.force * (path.travel_at(t1) - path.travel_at(t0))
+        self.jump(path.travel_at(t1), before, after, released, steps, its)
         return end
 
-    def keep(self, rec, kind, t, step) -> None:
+    def keep(self, rec, path, t) -> None:
         """Record a stable point; a plate force falling between points is reported."""
+        kind = path.kind
         if kind == "press" and rec.force < (1 - self.s.softening) * self.last_force:
             self.instability = self.instability or (
                 f"plate force falls from {self.last_force:.4g} N to {rec.force:.4g} N near "
-                f"y = {step.travel_at(t):.3g} mm: negative stiffness (the wall buckles "
+                f"y = {path.travel_at(t):.3g} mm: negative stiffness (the wall buckles "
                 "or snaps; the points stay valid under displacement control)")
         self.last_force = rec.force if kind == "press" else self.last_force
         self.records.append(rec)
@@ -372,8 +341,8 @@ def solve(model, steps, *, settings=None, progress=None, start: Result | None = 
     if start is not None:
         walk.resume(start)
     for k, step in enumerate(steps):
-        if isinstance(step, CloseValve):
-            walk.close_valve(step)
+        walk.load = step.begin(walk.load, lambda: model.volume(walk.x))
+        if not step.increments:
             continue
         stop = walk.ramp(k, step)
         if stop is not None:

@@ -115,6 +115,7 @@ class FEMModel:
     #: a load fails (its increment is cut) on these; a line-search trial on the second
     recoverable = (NewtonFailure, np.linalg.LinAlgError, ValueError)
     inadmissible = (InvertedElement,)
+    viscous = None  # an elastic solid: no history between loads
 
     @property
     def n(self) -> int:
@@ -207,6 +208,9 @@ class FEMModel:
     def displaced(self) -> float:
         """Volume (mm³) the insert takes from the cavity's gas (0 without one)."""
         return self.insert.volume if self.insert is not None else 0.0
+
+    def commit(self, x, load) -> None:
+        """Nothing to close: the solid's law has no history."""
 
     def volume(self, x) -> float:
         """Full gas volume (mm³) in state x: the cavity less the insert."""
