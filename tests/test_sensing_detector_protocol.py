@@ -23,7 +23,8 @@ from spsc.cli.main import main
 from spsc.core.errors import ParameterError
 from spsc.sensing import EstimatorParams, SenseParams
 from spsc.sensing.chamber import chamber_map
-from spsc.sensing.detectors import DETECTORS, ComplianceParams, ContactParams, SlipParams
+from spsc.sensing.detectors import (DETECTORS, ComplianceParams, ContactParams, LeakParams,
+                                    SlipParams)
 from spsc.sensing.output import DEFAULT_COLOUR, figure
 from spsc.testing import sense_traces as st
 
@@ -92,11 +93,11 @@ def test_a_toy_detector_runs_through_spsc_sense(registered, press_log, cache, tm
 
     monkeypatch.setattr(matplotlib.axes.Axes, "axvline", spy)
     plain, run0, _ = _sense(press_log, tmp_path / "plain", cache)
-    assert [e["kind"] for e in plain] == ["contact", "release"] and run0["detectors"] == ["slip"]
+    assert [e["kind"] for e in plain] == ["contact", "release"] and run0["detectors"] == ["slip", "leak"]
     lines.clear()
     events, run, est = _sense(press_log, tmp_path / "toy", cache, "--detectors", "over_pressure")
     assert [e["kind"] for e in events] == ["contact", "over_pressure", "release"]
-    assert run["detectors"] == ["slip", "over_pressure"]
+    assert run["detectors"] == ["slip", "leak", "over_pressure"]
     assert [e for e in events if e["kind"] != "over_pressure"] == plain  # the others as they were
     # the sample the toy fired on: the first in contact above its level (the gas is isothermal:
     # the filtered pressure it reads is the estimate's)
@@ -135,9 +136,10 @@ def test_sense_params_keep_their_fields_and_list_the_detectors(registered):
     toy, comp = OverPressure.Params(42.0), ComplianceParams(0.06)
     prm = SenseParams(est, contact=ContactParams(method="threshold"), slip=SlipParams(),
                       compliance=comp, extra_detectors=[toy])
-    assert prm.detectors == (SlipParams(), comp, toy) and prm.extra_detectors == (toy,)
-    assert SenseParams(est).detectors == (SlipParams(),)
-    assert SenseParams(est, slip=None).detectors == ()
+    assert prm.detectors == (SlipParams(), comp, LeakParams(), toy)
+    assert prm.extra_detectors == (toy,)
+    assert SenseParams(est).detectors == (SlipParams(), LeakParams())
+    assert SenseParams(est, slip=None, leak=None).detectors == ()
 
 
 def test_parameters_of_no_registered_detector_are_refused():

@@ -29,7 +29,7 @@ __all__ = ["register", "run"]
 VERB = "sense"
 _CHUNK = 5000  # samples between progress-bar updates
 #: the registry's detectors that run without --detectors, and when
-_BUILT_IN = {"slip": "always", "compliance": "with --stiff-mm-per-deg"}
+_BUILT_IN = {"slip": "always", "compliance": "with --stiff-mm-per-deg", "leak": "always"}
 
 
 def register(subparsers) -> None:

@@ -69,6 +69,9 @@ def _read(path):
     if sc.triggers or sc.stiffness is not None:
         raise ParameterError("events", "pressure triggers or [stiffness]", "timed valve events "
                              "only in a scene")
+    if sc.leak is not None:
+        raise ParameterError("circuit.leak", sc.leak.describe(), "none in a scene (the "
+                             "virtual chambers are sealed; spsc simulate runs a leak)")
     return sc, scene
 
 

@@ -117,7 +117,9 @@ def pressure_levels(setup_kPa: float, top_kPa: float, count: int = 9) -> np.ndar
 
 def travel_grid(y_lo: float, y_hi: float, step: float) -> np.ndarray:
     """Travels from ``y_lo`` ≤ 0 to ``y_hi`` (mm) with y = 0 (first contact at the setup
-    pressure) on the grid, about ``step`` apart."""
+    pressure) on the grid, about ``step`` apart; at least one step past it (a scenario at
+    rest, whose plate never goes below first contact, has a map to stand on)."""
+    y_hi = max(y_hi, step)
     below = np.linspace(0.0, y_lo, max(2, math.ceil(-y_lo / step) + 1))[:0:-1] \
         if y_lo < 0 else np.zeros(0)
     above = np.linspace(0.0, y_hi, max(2, math.ceil(y_hi / step) + 1))

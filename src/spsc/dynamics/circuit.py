@@ -50,12 +50,15 @@ class CircuitFailure(RuntimeError):
 @dataclass(frozen=True)
 class Circuit:
     """``reservoir_mm3`` (0: none), the ``valve`` (:class:`~.valve.Valve`), the ``gas``
-    (:class:`~.gas.Gas`), ``setup_kPa`` the gauge pressure both were filled to at rest."""
+    (:class:`~.gas.Gas`), ``setup_kPa`` the gauge pressure both were filled to at rest;
+    ``leak`` an orifice from the chamber to the ambient air (a :class:`~.valve.Valve`,
+    :mod:`.leak`; None: sealed)."""
 
     setup_kPa: float
     reservoir_mm3: float
     valve: object
     gas: object
+    leak: object = None
 
 
 def _rates(chamber, circuit, state, y, ydot, open_, fdot=None, spring=0.0):
@@ -74,13 +77,19 @@ def _rates(chamber, circuit, state, y, ydot, open_, fdot=None, spring=0.0):
     q = 0.0
     if open_ and vr > 0:
         q = valve.mass_flow(gas.pressure(mr, vr, tr), pa, tr, tc)  # reservoir -> chamber
+    q_in = q  # into the chamber: the valve's, less the leak's to the ambient air
+    if circuit.leak is not None:
+        q_in = q + circuit.leak.mass_flow(_PA, pa, gas.ambient_K, tc)
     if gas.isothermal:
-        return np.array([q / _MG, 0.0, -q / _MG, 0.0])
+        return np.array([q_in / _MG, 0.0, -q / _MG, 0.0])
     tr_dot = 0.0
     if vr > 0:
         tr_dot = (gas.enthalpy_in(-q, tr, tc) + gas.heat(mr, tr)) / (mr * gas.cv)
     vy = float(s.dvolume_dy(p)) * _MM3 * 1e3  # ∂V/∂y (m³/m)
-    rhs = [gas.R * tc * q, gas.enthalpy_in(q, tc, tr) + gas.heat(mc, tc)]
+    enthalpy = gas.enthalpy_in(q, tc, tr) + gas.heat(mc, tc)
+    if q_in != q:
+        enthalpy += gas.enthalpy_in(q_in - q, tc, gas.ambient_K)
+    rhs = [gas.R * tc * q_in, enthalpy]
     if fdot is None:
         A = np.array([[v + pa * vp, -mc * gas.R], [pa * vp, mc * gas.cv]])
         b = np.array(rhs) - pa * vy * ydot * 1e-3
@@ -92,7 +101,7 @@ def _rates(chamber, circuit, state, y, ydot, open_, fdot=None, spring=0.0):
                       [f_p, 0.0, f_y + spring * 1e3]])
         b = np.array(rhs + [fdot])
     tc_dot = np.linalg.solve(A, b)[1]
-    return np.array([q / _MG, tc_dot, -q / _MG, tr_dot])
+    return np.array([q_in / _MG, tc_dot, -q / _MG, tr_dot])
 
 
 @dataclass

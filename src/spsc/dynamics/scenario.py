@@ -16,6 +16,7 @@ press and the valve events, read from TOML and checked, every malformed entry a 
     valve = { C = 0.06, b = 0.528, state = "closed" }   # C dm³/(s·bar); or area_mm2 = 0.3
     gas = { n = 1.0, thermal_time_s = inf }             # n = 1: isothermal; 1.4: air
     sensor = { rate_Hz = 1000, noise_kPa = 0.1 }        # or preset = "elvh"
+    leak = { drop_kPa = 1, over_s = 1800 }              # or C = 5e-9; or area_mm2 = 1e-5
 
     [press]
     profile = [[0, 0], [0.5, 3], [2, 3], [2.5, 0]]      # [t_s, y_mm], piecewise linear
@@ -58,6 +59,7 @@ from pathlib import Path
 from spsc.core.errors import ParameterError, require, require_integer
 
 from .gas import Gas
+from .leak import LeakSpec
 from .profile import ForceProfile, PressProfile, SpringProfile
 from .sensor import Sensor
 from .valve import Valve, sonic_conductance
@@ -67,7 +69,7 @@ __all__ = ["Scenario", "ChamberSpec", "read_scenario", "parse_scenario"]
 _TABLES = {"chamber", "circuit", "press", "events", "output", "bode", "stiffness"}
 _CHAMBER = {"type", "footprint", "material", "model", "mesh_size", "layers",
             "w", "h", "l", "t0", "n1", "n2", "cy"}
-_CIRCUIT = {"setup_kPa", "reservoir_mm3", "valve", "gas", "sensor"}
+_CIRCUIT = {"setup_kPa", "reservoir_mm3", "valve", "gas", "sensor", "leak"}
 _VALVE = {"C", "b", "m", "area_mm2", "state"}
 _GAS = {"n", "thermal_time_s", "ambient_K"}
 _SENSOR = {"preset", "rate_Hz", "noise_kPa", "resolution_kPa", "full_scale_kPa", "seed"}
@@ -115,6 +117,7 @@ class Scenario:
     dt: float = 1e-3
     bode: dict = field(default_factory=dict)  # y_mm, valve_open, f_min_Hz, f_max_Hz, points
     stiffness: object = None  # a StiffnessControl: the reservoir a piston, the valve open
+    leak: LeakSpec | None = None  # an orifice to the ambient air (:mod:`.leak`)
     source: dict = field(default_factory=dict, compare=False)
 
 
@@ -340,10 +343,15 @@ def parse_scenario(doc: dict) -> Scenario:
                         unit="mm³")
     timed, triggers = _events(doc, profile.duration)
     control = _stiffness(doc, profile, reservoir, timed, triggers)
-    return Scenario(spec, require("circuit.setup_kPa", c.get("setup_kPa", 40.0), ge=0, le=200,
-                                  unit="kPa gauge"), reservoir,
+    setup = require("circuit.setup_kPa", c.get("setup_kPa", 40.0), ge=0, le=200,
+                    unit="kPa gauge")
+    leak = None if "leak" not in c else LeakSpec.parse(c["leak"], setup)
+    if leak is not None and control is not None:
+        raise ParameterError("circuit.leak", leak.describe(), "none with [stiffness] (the "
+                             "piston's control loop is built for a sealed circuit)")
+    return Scenario(spec, setup, reservoir,
                     valve, opened or control is not None, Gas(**g), _sensor(c), profile,
-                    timed, triggers, dt, _bode(doc, profile, opened), control, doc)
+                    timed, triggers, dt, _bode(doc, profile, opened), control, leak, doc)
 
 
 def read_scenario(path) -> Scenario:

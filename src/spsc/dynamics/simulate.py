@@ -143,6 +143,21 @@ def _sample(sensor, df) -> pd.DataFrame:
                          "pressure_measured_kPa": sensor.read(true)})
 
 
+def leak_valve(scenario, chamber_map):
+    """The scenario's leak as an orifice (None: sealed); a leak given as a loss over a time
+    resolved on the chamber at rest at the setup pressure, its effective volume V + P ∂V/∂P
+    (:mod:`.leak`) with the reservoir's if the valve is open at t = 0."""
+    if scenario.leak is None:
+        return None
+    y0 = float(scenario.press.y(0.0)) if hasattr(scenario.press, "y") else 0.0
+    s, p = chamber_map.at(min(max(y0, chamber_map.y_range[0]), chamber_map.y_range[1])), \
+        scenario.setup_kPa
+    effective = float(s.volume(p)) + (p + P_AMB_KPA) * float(s.volume(p, 1))
+    if scenario.valve_open:
+        effective += scenario.reservoir_mm3
+    return scenario.leak.valve(p, effective, scenario.gas.ambient_K)
+
+
 def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None,
              workers: int | None = 1, scheduler: str | None = None) -> Simulation:
     """Run ``scenario`` (:class:`~.scenario.Scenario`): ``progress(t, t_end)`` while
@@ -152,7 +167,8 @@ def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None,
     m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress, workers=workers,
                         scheduler=scheduler)
     t1 = time.perf_counter()
-    circuit = Circuit(scenario.setup_kPa, scenario.reservoir_mm3, scenario.valve, scenario.gas)
+    circuit = Circuit(scenario.setup_kPa, scenario.reservoir_mm3, scenario.valve, scenario.gas,
+                      leak_valve(scenario, m))
     complete, message, switches, steps = True, "complete", [], []
     if scenario.stiffness is not None:
         df, stopped, steps = _controlled(m, circuit, scenario, progress)
@@ -200,6 +216,11 @@ def frequency_response(scenario, *, cache_dir=None, map_progress=None,
     sensitivity is halfway between them (in log), the map's seconds)."""
     from .frequency import bode, linearise
 
+    if scenario.leak is not None:
+        from spsc.core.errors import ParameterError
+
+        raise ParameterError("circuit.leak", scenario.leak.describe(), "none with --bode (a "
+                             "leaking chamber has no rest to linearise about)")
     t0 = time.perf_counter()
     m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress, workers=workers,
                         scheduler=scheduler)

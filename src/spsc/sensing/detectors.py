@@ -16,10 +16,12 @@ from dataclasses import dataclass
 from spsc.core.errors import ParameterError, require
 
 from .contact import ContactParams, CusumContact, Slope, ThresholdContact, contact_detector
+from .leak import LeakDetector, LeakParams
 from .protocol import Context, Detector, Sample
 
 __all__ = ["ContactParams", "ThresholdContact", "CusumContact", "Slope", "contact_detector",
-           "SlipParams", "SlipDetector", "ComplianceParams", "ComplianceDetector", "DETECTORS",
+           "SlipParams", "SlipDetector", "ComplianceParams", "ComplianceDetector",
+           "LeakParams", "LeakDetector", "DETECTORS",
            "detector_class", "build_detector", "parse_detectors"]
 
 
@@ -230,7 +232,8 @@ class _Fit:
 #: The detectors :class:`~.stream.SenseStream` can run after the contact's: name -> class
 #: (a :class:`~.protocol.Detector` with its ``Params``, built as ``cls(params, context)``).
 #: A new detector is its class and one line here.
-DETECTORS: dict[str, type] = {"slip": SlipDetector, "compliance": ComplianceDetector}
+DETECTORS: dict[str, type] = {"slip": SlipDetector, "compliance": ComplianceDetector,
+                              "leak": LeakDetector}
 
 
 def detector_class(params) -> type:

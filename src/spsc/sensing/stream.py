@@ -25,8 +25,8 @@ from typing import NamedTuple
 
 from spsc.core.errors import ParameterError, require
 
-from .detectors import (ComplianceParams, ContactParams, SlipParams, build_detector,
-                        contact_detector, detector_class)
+from .detectors import (ComplianceParams, ContactParams, LeakParams, SlipParams,
+                        build_detector, contact_detector, detector_class)
 from .estimator import Estimator, EstimatorParams
 from .protocol import Context, Sample
 
@@ -38,14 +38,15 @@ class SenseParams:
     """The estimator's, the detectors' parameters; ``rate_Hz`` the nominal sampling rate (the
     detectors' windows in samples); ``infer_switch`` an opening from the pressure when no
     ``valve_open`` is given, within ``switch_window_s``. The detectors after the contact's are
-    :attr:`detectors`: ``slip`` (None: off), ``compliance`` (None, the default: off), then
-    ``extra_detectors``, the parameters of any other detector of
+    :attr:`detectors`: ``slip`` (None: off), ``compliance`` (None, the default: off),
+    ``leak`` (None: off; :mod:`.leak`), then ``extra_detectors``, the parameters of any other detector of
     :data:`~.detectors.DETECTORS`, in the order they run."""
 
     estimator: EstimatorParams
     contact: ContactParams = field(default_factory=ContactParams)
     slip: SlipParams | None = field(default_factory=SlipParams)
     compliance: ComplianceParams | None = None
+    leak: LeakParams | None = field(default_factory=LeakParams)
     rate_Hz: float = 1000.0
     infer_switch: bool = True
     switch_window_s: float = 0.02
@@ -61,8 +62,8 @@ class SenseParams:
     @property
     def detectors(self) -> tuple:
         """The parameters of the detectors that run after the contact's, in their order."""
-        return tuple(p for p in (self.slip, self.compliance, *self.extra_detectors)
-                     if p is not None)
+        return tuple(p for p in (self.slip, self.compliance, self.leak,
+                                 *self.extra_detectors) if p is not None)
 
 
 class State(NamedTuple):
