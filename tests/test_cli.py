@@ -107,6 +107,8 @@ KEY_OPTIONS = {
                      "--stress-unit", "--json", "--png", "--out", "--list-catalogue"],
     "simulate": ["--out", "--csv", "--cache", "--quiet"],
     "surrogate": [],
+    "fatigue": ["--type", "--material", "--pressure", "--reservoir", "--stroke", "--points",
+                "--exponent", "--json", "--png", "--quiet"],
     "sense": ["--out", "--type", "--material", "--pressure", "--reservoir", "--noise",
               "--model-error", "--detector", "--follow", "--haptic-calibrate", "--haptic",
               "--cache", "--quiet"],

@@ -41,6 +41,7 @@ COMMANDS = {
     "bench-gap": "bench_gap",
     "surrogate": "surrogate",
     "virtual": "virtual",
+    "fatigue": "fatigue",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

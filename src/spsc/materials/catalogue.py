@@ -8,7 +8,7 @@ from .file import load_material
 from .law import Material, neo_hookean, yeoh
 from .prony import Prony
 
-__all__ = ["CATALOGUE", "PRONY", "material", "viscosity"]
+__all__ = ["CATALOGUE", "PRONY", "FATIGUE_TESTS", "material", "viscosity"]
 
 
 def _shore_a_to_youngs(shore_a: float) -> float:
@@ -88,3 +88,23 @@ def viscosity(name) -> tuple[Prony | None, str]:
     material(text)  # a catalogue name, or the one-line error
     got = PRONY.get(text.lower())
     return (got[0], got[1]) if got else (None, f"the catalogue has no Prony terms for {text}")
+
+
+#: The paper's fatigue test of each catalogue material (Table 2: a Type B chamber at
+#: p_i = 50 kPa on its 40 cm³ reservoir, cycles to failure; ``runout``: passed without
+#: failing) and the crack-growth exponent F assumed for it (:mod:`.fatigue`): the four are
+#: non-crystallising elastomers (silicones, a TPU, an acrylate resin), F = 4 by analogy with
+#: Lake & Lindley's non-crystallising SBR (Mars & Fatemi 2002) — ASSUMED, no crack-growth
+#: test of these materials used. The fatigue law's constant is CALIBRATED on this test
+#: (:func:`spsc.fem.wall.durability.paper_fatigue_law`).
+FATIGUE_TESTS: dict[str, dict] = {
+    "tpu60a": {"cycles": 4100.0, "runout": False, "exponent": 4.0,
+               "source": "Table 2: Recreus TPU 60A, FDM, 4100 cycles to failure"},
+    "elastic50a": {"cycles": 1330.0, "runout": False, "exponent": 4.0,
+                   "source": "Table 2: Formlabs Elastic 50A (cured), SLA, 1330 cycles"},
+    "silicone40a": {"cycles": 2075.0, "runout": False, "exponent": 4.0,
+                    "source": "Table 2: Formlabs Silicone 40A (cured), SLA, 2075 cycles"},
+    "as40": {"cycles": 5000.0, "runout": True, "exponent": 4.0,
+             "source": "Table 2: Easy Composites AS40, compression molded, > 5000 cycles "
+                       "(passed without failing: a run-out, the lives are lower bounds)"},
+}

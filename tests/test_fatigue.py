@@ -1,0 +1,71 @@
+"""The fatigue life (issue 51): the power law through its calibration point, and spsc fatigue
+end to end (the Type B dome against the calibration on Table 1's Type B)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from numpy.testing import assert_allclose
+
+from spsc.cli.main import main
+from spsc.core.errors import ParameterError
+from spsc.materials.catalogue import CATALOGUE, FATIGUE_TESTS
+from spsc.materials.fatigue import FatigueLaw
+
+
+def test_the_law_passes_through_its_point_with_its_slope():
+    law = FatigueLaw(4.0, 0.09, 4100.0)
+    assert law.life(0.09) == pytest.approx(4100.0, rel=1e-12)
+    assert law.life(0.18) == pytest.approx(4100.0 / 16.0, rel=1e-12)  # W_a doubled: 2^-F
+    assert law.life(0.0) == math.inf
+    assert law.energy_MPa == pytest.approx(0.09 * 4100.0 ** 0.25, rel=1e-12)
+    assert law.life(law.energy_MPa) == pytest.approx(1.0, rel=1e-12)  # W_c: one cycle
+    assert law.amplitude_for(law.life(0.05)) == pytest.approx(0.05, rel=1e-12)
+    two = law.with_exponent(2.0)
+    assert two.life(0.09) == pytest.approx(4100.0, rel=1e-12)
+    assert two.life(0.18) == pytest.approx(4100.0 / 4.0, rel=1e-12)
+    for bad in (-1.0, math.nan, math.inf):
+        with pytest.raises(ParameterError, match="energy amplitude"):
+            law.life(bad)
+    with pytest.raises(ParameterError, match="fatigue exponent"):
+        FatigueLaw(1.0, 0.09, 4100.0)
+
+
+def test_every_catalogue_material_has_its_table_2_test():
+    assert set(FATIGUE_TESTS) == set(CATALOGUE)
+    cycles = {k: v["cycles"] for k, v in FATIGUE_TESTS.items()}
+    assert cycles == {"tpu60a": 4100.0, "elastic50a": 1330.0, "silicone40a": 2075.0,
+                      "as40": 5000.0}
+    assert [k for k, v in FATIGUE_TESTS.items() if v["runout"]] == ["as40"]
+
+
+def test_spsc_fatigue_predicts_a_dome_from_the_type_b_calibration(tmp_path, capsys):
+    out, png = tmp_path / "f.json", tmp_path / "f.png"
+    assert main(["fatigue", "--type", "B", "--l", "0", "--json", str(out), "--png", str(png),
+                 "--quiet"]) == 0
+    doc = json.loads(out.read_text())
+    law = doc["law"]
+    assert law["calibration_cycles"] == 4100.0 and law["exponent"] == 4.0
+    w = doc["energy_amplitude_MPa"]
+    # eq. L1 through the calibration point, recomputed here
+    expect = 4100.0 * (w / law["calibration_amplitude_MPa"]) ** -4.0
+    assert_allclose(doc["life_cycles"], expect, rtol=1e-12)
+    assert_allclose(doc["life_other_exponent"]["cycles"],
+                    4100.0 * (w / law["calibration_amplitude_MPa"]) ** -2.0, rtol=1e-12)
+    hot = doc["peaks"]["energy_amplitude"]
+    assert hot["value"] == w and not hot["base"] and hot["face"] in ("inner", "outer")
+    assert doc["converged"] and doc["setup"]["pressure_kPa"] == 50.0
+    assert doc["provenance"]["commit"] is None or len(doc["provenance"]["commit"]) == 40
+    assert png.stat().st_size > 10_000
+    text = capsys.readouterr().out
+    assert "hot spot" in text and "life" in text and "CALIBRATED" in text
+
+
+def test_a_run_out_gives_a_lower_bound(tmp_path, capsys):
+    out = tmp_path / "f.json"
+    assert main(["fatigue", "--type", "B", "--l", "0", "--material", "as40", "--json",
+                 str(out), "--quiet"]) == 0
+    doc = json.loads(out.read_text())
+    assert doc["life_is_lower_bound"] and "life at least" in capsys.readouterr().out
