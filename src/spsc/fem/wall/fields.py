@@ -29,13 +29,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..fields import CycleFields, over_cycle, principal_stretch
+
 __all__ = ["WallFields", "CycleFields", "wall_fields", "cycle_fields", "nodal", "node_places"]
-
-
-def principal_stretch(F: np.ndarray) -> np.ndarray:
-    """λ₁ (...) of the deformation gradients F (..., 3, 3)."""
-    C = np.einsum("...ki,...kj->...ij", F, F)
-    return np.sqrt(np.linalg.eigvalsh(C)[..., -1])
 
 
 @dataclass(frozen=True)
@@ -119,36 +115,9 @@ def _face_nodes(model) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(section.cavity).ravel(), np.asarray(section.outer).ravel()
 
 
-@dataclass(frozen=True)
-class CycleFields:
-    """Over the records of a cycle, per node (the recovered nodal fields, :func:`nodal`):
-    the largest stretch ``stretch_max`` and energy ``energy_max`` (MPa), their amplitudes
-    ``stretch_amplitude`` and ``energy_amplitude`` (largest − smallest), and each node's
-    place (:func:`node_places`)."""
-
-    stretch_max: np.ndarray
-    stretch_amplitude: np.ndarray
-    energy_max: np.ndarray
-    energy_amplitude: np.ndarray
-    places: dict
-
-    def peak(self, name: str, *, away_from_base: bool = True) -> dict:
-        """The largest value of the field ``name`` (one of the four) over the wall, or over
-        the nodes away from the clamped base: its value and its node's place."""
-        values = getattr(self, name)
-        keep = ~self.places["base"] if away_from_base else np.ones(values.size, bool)
-        k = int(np.flatnonzero(keep)[np.argmax(values[keep])])
-        return {"value": float(values[k]), "node": k,
-                "height_mm": float(self.places["height"][k]),
-                "radius_mm": float(self.places["radius"][k]),
-                "face": str(self.places["face"][k]), "base": bool(self.places["base"][k])}
-
-
 def cycle_fields(model, states) -> CycleFields:
     """The cycle's fields over the states ``states`` (the records' x, the rest first)."""
     rec = _recovery(model)
     fields = [wall_fields(model, x) for x in states]
-    s = np.stack([nodal(model, f.stretch, rec) for f in fields])
-    w = np.stack([nodal(model, f.energy, rec) for f in fields])
-    return CycleFields(s.max(0), s.max(0) - s.min(0), w.max(0), w.max(0) - w.min(0),
-                       node_places(model))
+    return over_cycle([nodal(model, f.stretch, rec) for f in fields],
+                      [nodal(model, f.energy, rec) for f in fields], node_places(model))
