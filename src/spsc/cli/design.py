@@ -55,6 +55,14 @@ def register(subparsers) -> None:
     r.add_argument("--confidence", type=number("confidence"), default=None, metavar="P",
                    help="the share of prints that must meet the targets (default 0.9 with "
                    "--tolerance)")
+    d = p.add_argument_group("a life to reach (issue 51): the squeeze cycle in the wall model, "
+                             "the fatigue law calibrated on Table 2 (docs/guides/durability.md)")
+    d.add_argument("--min-life", type=number("min-life", "cycles"), default=None, metavar="N",
+                   help="each trial's chamber must last N squeeze cycles at its own setup "
+                   "(one wall solve a trial: 0.3 s a dome, 3 s a stadium)")
+    d.add_argument("--life-stroke", type=number("life-stroke", "mm"), default=None,
+                   metavar="MM", help="the squeeze of the life, mm from first contact "
+                   "(default --stroke)")
     v = p.add_argument_group("the best design")
     v.add_argument("--verify", choices=("fem", "none"), default="fem",
                    help="re-run the best with the 3D FEM and compare (default fem)")
@@ -174,11 +182,24 @@ def prepare(args):
             check_mode(params, "fem", "low", points=fem_points(args.stroke),
                        stroke_mm=args.stroke, options={"mesh_size": args.mesh_size})
     problem = Problem(goal, space, args.model, args.process, args.points, args.stroke,
-                      robust=_robust(args, goal))
+                      robust=_robust(args, goal), life=_life(args, space))
     check_resumable(out, problem)
     if args.scheduler is not None:
         args.scheduler = check_scheduler(args.scheduler)
     return problem
+
+
+def _life(args, space):
+    """The life to reach (None without --min-life), checked."""
+    if args.min_life is None:
+        if args.life_stroke is not None:
+            raise ParameterError("life-stroke", args.life_stroke, "only with --min-life")
+        return None
+    from spsc.design.life import check_life
+
+    materials = space["material"].values  # one material (fixed) a search
+    return check_life(args.min_life, args.stroke if args.life_stroke is None
+                      else args.life_stroke, None, materials, space["h"].low)
 
 
 def _robust(args, goal):

@@ -68,6 +68,11 @@ def register(subparsers) -> None:
     m.add_argument("--points", type=integer("points"), default=None, metavar="N",
                    help="plate positions per curve (default the model's: membrane, simplified "
                    "41; wall, surrogate 25)")
+    m.add_argument("--life", action="store_true",
+                   help="each design's life too: squeezed in the wall model to --stroke at its "
+                   "setup, cycles by its material's fatigue law calibrated on Table 2 "
+                   "(docs/guides/durability.md; one wall solve a design: 0.3 s a dome, 3 s a "
+                   "stadium): life_cycles, peak_stretch, energy_amplitude_MPa")
     m.add_argument("--stroke", type=number("stroke", "mm"), default=6.0, metavar="MM",
                    help="plate travel of the metrics, mm (default 6, the paper's)")
     o = p.add_argument_group("outputs and where it runs (checked before any work)")
@@ -133,6 +138,11 @@ def prepare(args):
             if a.name == "pressure" and a.kind != "range":
                 for v in a.values:
                     check_membrane_pressure(v, args.stroke)
+    if args.life:
+        from spsc.sweep.life import check_life_materials
+
+        check_life_materials([m for a in space.axes if a.name == "material" for m in a.values]
+                             or ["tpu60a"])
     if args.scheduler is not None:
         args.scheduler = check_scheduler(args.scheduler)
     return space
@@ -148,7 +158,8 @@ def run(args) -> int:
           f"{args.stroke:g} mm), printability for {args.process}, on {where}")
     df = sweep.run_sweep(space, model=args.model, process=args.process, points=args.points,
                          stroke_mm=args.stroke, out=args.out, workers=args.workers,
-                         scheduler=args.scheduler, progress=not args.quiet, csv=args.csv)
+                         scheduler=args.scheduler, progress=not args.quiet, csv=args.csv,
+                         life_stroke_mm=args.stroke if args.life else None)
     code = summary(df, args)
     if args.html is not None:
         from spsc.report.sweep_page import write_page

@@ -52,18 +52,25 @@ class DesignRun:
 # -- the loop ----------------------------------------------------------------------------------
 def _evaluator(problem: Problem):
     """The trial's evaluation: a sweep row, or with a robust problem the row with its
-    samples' quantile miss (:func:`~.robust.robust_row`)."""
-    from spsc.sweep.evaluate import evaluate
-
-    if problem.robust is None:
-        return evaluate
+    samples' quantile miss (:func:`~.robust.robust_row`); with a life to reach, the row with
+    its life (:func:`~.life.life_row`)."""
     import functools
 
-    from spsc.design.robust import robust_row
+    from spsc.sweep.evaluate import evaluate
 
-    r = problem.robust
-    return functools.partial(robust_row, tolerance=r["tolerance"], goal=problem.goal,
-                             confidence=r["confidence"], n=r["samples"])
+    base = evaluate
+    if problem.robust is not None:
+        from spsc.design.robust import robust_row
+
+        r = problem.robust
+        base = functools.partial(robust_row, tolerance=r["tolerance"], goal=problem.goal,
+                                 confidence=r["confidence"], n=r["samples"])
+    if problem.life is None:
+        return base
+    from spsc.design.life import life_row
+
+    return functools.partial(life_row, base=base, life_stroke_mm=problem.life["stroke_mm"],
+                             exponent=problem.life["exponent"])
 
 
 def run_design(problem: Problem, out, *, trials: int, seed: int, sampler: str | None = None,
@@ -228,6 +235,12 @@ def _tell(study, problem: Problem, trial, design: dict, row: dict) -> bool:
         study.tell(trial, state=optuna.trial.TrialState.FAIL)
         return False
     trial.set_constraint("printability", 0.0 if printable else 1.0)
+    if problem.life is not None:
+        from spsc.design.life import LIFE_COLUMNS, life_constraint
+
+        for key in LIFE_COLUMNS:
+            trial.set_user_attr(key, row.get(key))
+        trial.set_constraint("life", life_constraint(row, problem.life["cycles"]))
     for key, value in goal.constraints(metrics).items():
         trial.set_constraint(key, value)
     miss = goal.miss(metrics)
@@ -295,7 +308,10 @@ def trial_rows(study) -> list[dict]:
                     "status": a.get("status", ""), "reason": a.get("reason", ""),
                     "message": a.get("message", ""), "seconds": a.get("seconds"),
                     "proposer": a.get("proposer", "sampler"),
-                    "nominal_miss": a.get("nominal_miss"), "p_met": a.get("p_met")})
+                    "nominal_miss": a.get("nominal_miss"), "p_met": a.get("p_met"),
+                    "life_cycles": a.get("life_cycles"), "peak_stretch": a.get("peak_stretch"),
+                    "energy_amplitude_MPa": a.get("energy_amplitude_MPa"),
+                    "life_message": a.get("life_message")})
         rows.append(row)
     return rows
 

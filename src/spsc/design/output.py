@@ -35,9 +35,10 @@ __all__ = ["SCHEMA", "SCHEMA_VERSION", "document", "design_entry", "rerun_comman
 SCHEMA, SCHEMA_VERSION = "spsc.design", 1
 #: The columns of trials.parquet, in order.
 TABLE_COLUMNS = ("trial", "state") + INPUTS + METRIC_NAMES + (
-    "miss", "feasible", "printable", "printability", "status", "reason", "seconds", "proposer")
+    "miss", "feasible", "printable", "printability", "status", "reason", "seconds", "proposer",
+    "life_cycles", "peak_stretch", "energy_amplitude_MPa")
 _NUMERIC = ("w", "h", "l", "t0", "n1", "n2", "cy", "pressure", "reservoir") + METRIC_NAMES + (
-    "miss", "seconds")
+    "miss", "seconds", "life_cycles", "peak_stretch", "energy_amplitude_MPa")
 
 
 def design_entry(row: dict) -> dict:
@@ -81,6 +82,11 @@ def document(problem, run, *, verify=None, build=None, command: str = "",
            "rerun": (rerun_commands(best["params"], problem.model, problem.points,
                                     problem.stroke_mm) if best else None),
            "command": command}
+    if problem.life is not None:  # the life asked, and the best's (its trial's wall cycle)
+        doc["life"] = dict(problem.life)
+        if run.best is not None:
+            doc["life"]["best"] = {k: run.best.get(k) for k in ("life_cycles", "peak_stretch",
+                                                                "energy_amplitude_MPa")}
     if robust is not None:  # met when the wall model's prints meet it at the confidence
         doc["robust"] = robust
         doc["met"] = bool(robust["wall"]["p_met"] >= robust["confidence"] - 1e-12)
@@ -146,7 +152,9 @@ def print_summary(doc: dict, out: Path) -> None:
           f"{run['loop_seconds']:.1f} s ({run['sampler']}, seed {run['seed']})")
     best = doc["best"]
     if best is None:
+        life = doc.get("life")
         print("no feasible design: none was printable"
+              + (f" and lasted {life['cycles']:g} cycles" if life else "")
               + (" and met the targets" if doc["goal"]["multi_objective"] else ""))
         if doc.get("closest"):
             print(f"closest (trial {doc['closest']['trial']}, not printable): "
@@ -156,6 +164,12 @@ def print_summary(doc: dict, out: Path) -> None:
     state = (f"screened by the {doc['model']} model" if doc.get("confirmed")
              or doc.get("robust") else "goal met" if doc["met"] else "goal NOT met")
     print(f"best: trial {best['trial']}{miss} ({state}): " + _line(best))
+    life = doc.get("life")
+    if life and life.get("best") and life["best"].get("life_cycles") is not None:
+        b = life["best"]
+        print(f"  its life: {b['life_cycles']:.3g} cycles squeezed to {life['stroke_mm']:g} mm "
+              f"at its setup (asked {life['cycles']:g}; hot spot's energy amplitude "
+              f"{b['energy_amplitude_MPa']:.3g} MPa, largest stretch {b['peak_stretch']:.4f})")
     if doc["goal"]["multi_objective"]:
         print(f"Pareto front: {len(doc['pareto'])} feasible non-dominated designs")
     if doc.get("confirmed"):

@@ -25,6 +25,9 @@ class Problem:
     #: a robust search (:mod:`spsc.design.robust`): {"tolerance": Tolerance, "confidence":
     #: float, "samples": int}; None: the nominal search
     robust: dict | None = None
+    #: a life to reach (:mod:`spsc.design.life`): {"cycles": N, "stroke_mm": mm, "exponent":
+    #: F or None}; None: no durability constraint
+    life: dict | None = None
 
     def to_dict(self) -> dict:
         out = {"goal": self.goal.to_dict(), "space": self.space.to_dict(), "model": self.model,
@@ -33,4 +36,6 @@ class Problem:
             out["robust"] = {"tolerance": self.robust["tolerance"].to_dict()["inputs"],
                              "confidence": self.robust["confidence"],
                              "samples": self.robust["samples"]}
+        if self.life is not None:  # a study continues only with the same life asked
+            out["life"] = dict(self.life)
         return out

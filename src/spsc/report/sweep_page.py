@@ -64,7 +64,8 @@ def write_page(df, out, *, model: str, process: str, stroke_mm: float, points: i
            "printable": sum(bool(r["printable"]) for r in rows if r["printable"] is not None),
            "ranges": _ranges(rows, varied + by_type),
            "front_rows": [_with_rerun(r, model, points, stroke_mm) for r in on_front],
-           "top": _top(rows, good, front), "problems": _problems(rows)}
+           "top": _top(rows, good, front), "problems": _problems(rows),
+           "life": any(r.get("life_cycles") is not None for r in rows)}
     path = out / "index.html"
     path.write_text(render_page(ctx, "sweep.html.j2"), encoding="utf-8")
     for n in notes:

@@ -42,7 +42,8 @@ INPUTS = ("type",) + PARAMS + ("material", "pressure", "reservoir")
 METRICS = tuple(f.name for f in fields(DesignMetrics))
 #: Every column of a sweep's table, in order.
 COLUMNS = INPUTS + METRICS + ("printable", "printability", "status", "message", "seconds",
-                              "key")
+                              "key", "life_cycles", "energy_amplitude_MPa", "peak_stretch",
+                              "life_message")
 #: ok: both modes converged; partial: a solve stopped early (metrics over what it reached);
 #: invalid: the models refuse the design (ParameterError); failed: anything else.
 STATUSES = ("ok", "partial", "invalid", "failed")
@@ -248,13 +249,14 @@ def failed_row(design: dict, message: str, *, key: str = "", seconds: float = ma
 
 
 def design_key(design: dict, model: str, process: str, points: int | None = None,
-               stroke_mm: float | None = None) -> str:
+               stroke_mm: float | None = None, *, life_stroke_mm: float | None = None) -> str:
     """A stable hash (20 hex digits) of what a row depends on: the design's inputs (numbers
     as floats, the type upper-case, a catalogue name lower-case, a material file by its
     content), the model and its code version (the source files it imports: a changed model is
     computed again, never read back from an older table), the process, the plate positions and
-    the stroke (mm; None: the model's default). The same design asked twice, or in a re-run of
-    the same code, has the same key."""
+    the stroke (mm; None: the model's default), and the life's stroke when the row carries a
+    life (:mod:`.life`; None: no life, the key of a row without one). The same design asked
+    twice, or in a re-run of the same code, has the same key."""
     entry = MODELS.get(model)
     if entry is not None:
         points = entry.points if points is None else points
@@ -262,6 +264,8 @@ def design_key(design: dict, model: str, process: str, points: int | None = None
     facts = {k: _canonical(k, design.get(k)) for k in INPUTS}
     facts.update(model=str(model), code=_code(str(model)), process=str(process).strip().lower(),
                  points=_canonical("points", points), stroke_mm=_canonical("stroke", stroke_mm))
+    if life_stroke_mm is not None:
+        facts["life_stroke_mm"] = _canonical("stroke", life_stroke_mm)
     text = json.dumps(facts, sort_keys=True, allow_nan=True)
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]
 

@@ -14,6 +14,7 @@ times. No design is lost and none is stored twice.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import sys
 import time
@@ -48,7 +49,8 @@ BATCH = 2000
 def run_sweep(designs, *, model: str, process: str, points: int | None,
               stroke_mm: float | None, out, workers: int | None = None,
               scheduler: str | None = None, progress: bool = True, csv=None,
-              task=evaluate, checkpoint_s: float = CHECKPOINT_S, batch: int = BATCH):
+              task=evaluate, checkpoint_s: float = CHECKPOINT_S, batch: int = BATCH,
+              life_stroke_mm: float | None = None):
     """Evaluate ``designs`` (an iterable of design dicts, iterated twice; see
     :mod:`.sweep_space`) with ``model`` and the printability of ``process``, ``points`` plate
     positions over ``stroke_mm`` (mm; None: the model's defaults), and write the table to
@@ -61,7 +63,9 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
     :func:`~.evaluate.evaluate_many`). Returns the table of the sweep's designs (one row per distinct
     design, in sweep order); ``df.attrs["sweep"]`` holds the run's counts (designs, skipped:
     done earlier, evaluated, retried_killed, workers) and seconds (start_s: the cluster,
-    compute_s: first submission to last row, seconds: all).
+    compute_s: first submission to last row, seconds: all). ``life_stroke_mm``: each row also
+    carries the design's life squeezed to that stroke (:mod:`.life`: one wall solve a design,
+    its rows keyed apart from the rows without a life).
     """
     import pandas  # noqa: F401  (the table's writers, loaded now: missing, the sweep stops
     import pyarrow  # noqa: F401  before any work; present, the client's memory is set at start)
@@ -70,27 +74,25 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
     if iter(designs) is designs:  # a one-shot iterator: it is walked twice
         designs = list(designs)
     settings = (model, process, points, stroke_mm)
+    if life_stroke_mm is not None:
+        from spsc.sweep.life import life_row
+
+        task = functools.partial(life_row, base=task, life_stroke_mm=life_stroke_mm)
+    key_of = functools.partial(design_key, life_stroke_mm=life_stroke_mm) \
+        if life_stroke_mm is not None else design_key
     done = store.done()
-    keys, seen, todo = [], set(), 0
-    for d in designs:
-        k = design_key(d, *settings)
-        if k in seen:
-            continue
-        seen.add(k)
-        keys.append(k)
-        todo += k not in done
-    del seen
+    keys, todo = _keys(designs, settings, done, key_of)
     stats = {"designs": len(keys), "skipped": len(keys) - todo, "evaluated": 0,
              "retried_killed": 0, "workers": 0, "start_s": 0.0, "compute_s": 0.0,
              "seconds": 0.0, "journal": str(store.journal)}
     t0 = time.perf_counter()
     try:
         if todo and task is evaluate and batched(model):
-            _run_batched(_pending(designs, settings, done), todo, store, settings, stats,
+            _run_batched(_pending(designs, settings, done, key_of), todo, store, settings, stats,
                          workers=workers, scheduler=scheduler, progress=progress,
                          checkpoint=(keys, checkpoint_s), batch=batch)
         elif todo:
-            _run(_pending(designs, settings, done), todo, store, settings, stats,
+            _run(_pending(designs, settings, done, key_of), todo, store, settings, stats,
                  workers=workers, scheduler=scheduler, progress=progress, task=task,
                  checkpoint=(keys, checkpoint_s))
     finally:
@@ -101,11 +103,24 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
     return df
 
 
-def _pending(designs, settings, done):
+def _keys(designs, settings, done, key_of) -> tuple[list, int]:
+    """(every distinct design's key in sweep order, how many are not done)."""
+    keys, seen, todo = [], set(), 0
+    for d in designs:
+        k = key_of(d, *settings)
+        if k in seen:
+            continue
+        seen.add(k)
+        keys.append(k)
+        todo += k not in done
+    return keys, todo
+
+
+def _pending(designs, settings, done, key_of=design_key):
     """(key, design) of every design still to compute, each key once."""
     seen = set()
     for d in designs:
-        k = design_key(d, *settings)
+        k = key_of(d, *settings)
         if k not in done and k not in seen:
             seen.add(k)
             yield k, d

@@ -110,10 +110,11 @@ def frame(rows):
     import pandas as pd
 
     df = pd.DataFrame(list(rows), columns=list(COLUMNS))
-    for c in INPUTS + METRICS + ("seconds",):
+    for c in INPUTS + METRICS + ("seconds", "life_cycles", "energy_amplitude_MPa",
+                                 "peak_stretch"):
         if c not in ("type", "material"):
             df[c] = pd.to_numeric(df[c], errors="coerce").astype("float64")
-    for c in ("type", "material", "printability", "status", "message", "key"):
+    for c in ("type", "material", "printability", "status", "message", "key", "life_message"):
         df[c] = df[c].astype("string")
     df["printable"] = df["printable"].astype("boolean")
     return df

@@ -17,7 +17,7 @@ def fatigue_cases(f, tmp) -> list[Case]:
     cases += [Case(base + ("--type", "E"), "unknown type", "type"),
               Case(base + ("--material", "rubber"), "unknown material", "material"),
               Case(base + ("--material", ""), "empty material", "material"),
-              Case(base + ("--material", str(f["file"]) + ".json"),
+              Case(base + ("--material", str(f["ogden.json"])),
                    "a material file (no fatigue test calibrates it)", "material"),
               Case(base + ("--stroke", "20"), "stroke above the chamber's height", "stroke"),
               Case(base + ("--h", "4", "--stroke", "5"), "stroke above h", "stroke"),
@@ -28,4 +28,20 @@ def fatigue_cases(f, tmp) -> list[Case]:
               Case(base + ("--reservoir", "-1"), "a negative reservoir", "reservoir")]
     cases += outputs(base, "--json", f, tmp)
     cases += outputs(base, "--png", f, tmp, ".png")
+    design = ("design", "--target", "stiffness_high=6", "--model", "simplified", "--out",
+              str(tmp / "design-life"), "--quiet")
+    cases += numbers(design + ("--min-life", "1000"), ("life-stroke",))
+    cases += numbers(design, ("min-life",))
+    cases += [Case(design + ("--min-life", "0"), "a life of no cycles", "min-life"),
+              Case(design + ("--min-life", "1e12"), "a life of 1e12 cycles", "min-life"),
+              Case(design + ("--life-stroke", "4"), "--life-stroke without --min-life",
+                   "life-stroke"),
+              Case(design + ("--min-life", "1000", "--life-stroke", "30"),
+                   "a life's stroke above every h of the space", "life-stroke"),
+              Case(design + ("--min-life", "1000", "--material", str(f["ogden.json"])),
+                   "a material file with --min-life (no fatigue test)", "material")]
+    sweep = ("sweep", "--type", "B", "--model", "simplified", "--out",
+             str(tmp / "life.parquet"), "--quiet", "--life")
+    cases += [Case(sweep + ("--material", str(f["ogden.json"])),
+                   "a material file with --life (no fatigue test)", "material")]
     return cases
