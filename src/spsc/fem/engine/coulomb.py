@@ -96,7 +96,7 @@ def _map(model, r, x, active, grip: Grip, slip: dict, mu: float) -> tuple[dict, 
     to the largest)."""
     lat = lateral(model, active)
     normal = np.maximum(-r[active], 0.0)
-    new, change, scale = {}, 0.0, mu * max(float(normal.max(initial=0.0)), 1e-300)
+    new, change, scale = {}, 0.0, max(mu * float(normal.max(initial=0.0)), 1e-300)
     for k in range(len(active)):
         dofs = lat[:, k][lat[:, k] >= 0]
         if dofs.size == 0 or np.isnan(grip.anchor[dofs]).any():

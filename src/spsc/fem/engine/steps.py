@@ -171,11 +171,14 @@ class Cycle:
     """Move the plate in time: travel ``travels`` (mm from first contact, any order: down and
     back up) at the instants ``times`` (s, increasing from 0), piecewise linear between them;
     each instant after the first is a recorded point (the load parameter t is the time). For a
-    wall with a rate-dependent material (:mod:`spsc.fem.viscous`) the time is the load's."""
+    wall with a rate-dependent material (:mod:`spsc.fem.viscous`) the time is the load's.
+    ``stick``: the plate holds what it touches; with ``mu`` a Coulomb coefficient, what it
+    touches sticks or slips (:mod:`.coulomb`), on the way down and back up."""
 
     times: tuple
     travels: tuple
     stick: bool = False
+    mu: float | None = None
 
     def __post_init__(self):
         t = tuple(float(v) for v in self.times)
@@ -185,6 +188,8 @@ class Cycle:
                                  "per travel")
         object.__setattr__(self, "times", t)
         object.__setattr__(self, "travels", tuple(float(v) for v in self.travels))
+        if self.mu is not None:
+            object.__setattr__(self, "stick", True)  # Coulomb starts from a sticking trial
 
     @property
     def increments(self) -> int:
@@ -202,8 +207,14 @@ class Cycle:
     def path(self, load: Load, contact_height: Callable, settings) -> Path:
         """The plate moved in time from first contact (the plate's height if it touches)."""
         z0 = contact_height(None) if load.plate is None else load.plate
+        span = None
+        if self.stick:  # touch-downs interpolated per increment: at most stick_increment
+            speed = max(abs(b - a) / (tb - ta) for a, b, ta, tb in
+                        zip(self.travels, self.travels[1:], self.times, self.times[1:]))
+            span = settings.stick_increment / speed if speed > 0 else None
         return Path(lambda t: Load(load.pressure, load.gas, z0 - self.travel_at(t), t,
-                                   self.stick), "press", self.targets(), self.travel_at)
+                                   self.stick), "press", self.targets(), self.travel_at,
+                    mu=self.mu, span=span)
 
 
 @dataclass(frozen=True)

@@ -42,30 +42,52 @@ class CycleResult:
     complete: bool
     message: str
     seconds: float
+    #: the snap-throughs followed (``snaps``): (travel mm, force before, after N, energy
+    #: released mJ) each, on the way down and back up; their energy is dissipated too
+    jumps: tuple = ()
+
+    @property
+    def jump_energy_mJ(self) -> float:
+        """The energy the snap-throughs released (mJ): dissipated between recorded points,
+        where the loop's area over the recorded travels does not see it."""
+        return float(sum(j[3] for j in self.jumps))
 
 
 def wall_cycle(geometry, material, prony, *, stroke_mm: float = 6.0, speed_mm_s: float = 1.0,
                points: int = 25, pressure_kPa: float = 0.0, reservoir_mm3: float = 0.0,
-               settings: WallSettings | None = None) -> CycleResult:
+               settings: WallSettings | None = None, friction=None,
+               snaps: bool = False) -> CycleResult:
     """Squeeze by ``stroke_mm`` and release at ``speed_mm_s``, ``points`` travels each way
     (0 and the stroke included), with the ``prony`` terms (None: the relaxed law, which
-    retraces itself)."""
+    retraces itself unless something else dissipates). ``friction``: None (frictionless),
+    ``"stick"`` or a Coulomb coefficient μ on the plate, both ways; ``snaps``: follow the
+    snap-throughs on the way down and back up (:mod:`spsc.fem.engine.snap`: a jump's energy
+    is dissipated, a hysteresis without any viscosity; an elastic, frictionless wall only —
+    the descent needs the wall's potential)."""
     require("stroke", stroke_mm, gt=0, le=12, unit="mm")
     require("speed", speed_mm_s, gt=0, le=1e4, unit="mm/s")
     require("points", points, ge=3, le=500)
+    if friction not in (None, "stick"):
+        friction = require("friction", friction, ge=0, le=1e6) or None  # 0: frictionless
+    if snaps and (prony is not None or friction is not None):
+        from spsc.core.errors import ParameterError
+
+        raise ParameterError("snaps", True, "with an elastic, frictionless wall only (a jump "
+                             "is found by descending the wall's potential, which a viscous "
+                             "wall or a sliding plate has not)")
     from threadpoolctl import threadpool_limits
 
     # one BLAS thread, as wall_curve: on small blocks threads spin (10-20x slower under load)
     with threadpool_limits(limits=1, user_api="blas"):
         return _cycle(geometry, material, prony, stroke_mm, speed_mm_s, int(points),
-                      pressure_kPa, reservoir_mm3, settings)
+                      pressure_kPa, reservoir_mm3, settings, friction, snaps)
 
 
 def _cycle(geometry, material, prony, stroke_mm, speed_mm_s, points, pressure_kPa,
-           reservoir_mm3, settings) -> CycleResult:
+           reservoir_mm3, settings, friction=None, snaps=False) -> CycleResult:
     t0 = time.perf_counter()
     model = WallModel(geometry, material, settings, prony=prony)
-    s = dataclasses.replace(model.default_settings(), snap_through=False)  # no potential
+    s = dataclasses.replace(model.default_settings(), snap_through=bool(snaps))
     y = np.linspace(0.0, stroke_mm, int(points))
     travels = np.concatenate([y, y[-2::-1]])
     times = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(travels)))]) / speed_mm_s
@@ -73,7 +95,9 @@ def _cycle(geometry, material, prony, stroke_mm, speed_mm_s, points, pressure_kP
     if pressure_kPa > 0:
         steps = [Inflate(to_MPa(pressure_kPa), model.settings.inflate_increments),
                  CloseValve(reservoir_mm3)]
-    res = solve(model, steps + [Cycle(tuple(times), tuple(travels))], settings=s)
+    mu = None if friction in (None, "stick") else float(friction)
+    cycle = Cycle(tuple(times), tuple(travels), stick=friction is not None, mu=mu)
+    res = solve(model, steps + [cycle], settings=s)
     pressed = [r for r in res.records if r.kind == "press"]
     n = len(y)
     F = np.full(2 * n - 1, np.nan)
@@ -88,4 +112,6 @@ def _cycle(geometry, material, prony, stroke_mm, speed_mm_s, points, pressure_kP
     area = float(np.trapezoid(gap, y)) if np.all(np.isfinite(gap)) else float("nan")
     return CycleResult(y, load, unload, p_load, p_unload, float(np.nanmax(gap))
                        if np.isfinite(gap).any() else float("nan"), float(y[k]), area,
-                       bool(res.converged), res.message, time.perf_counter() - t0)
+                       bool(res.converged), res.message, time.perf_counter() - t0,
+                       tuple((j.y_mm, j.force_before_N, j.force_after_N, j.energy_released_mJ)
+                             for j in res.jumps))
