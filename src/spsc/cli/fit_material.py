@@ -6,12 +6,15 @@ statistics and Drucker stability, a figure, and a material file every model take
         [--law neo-hookean|mooney-rivlin|yeoh|ogden|all] [--ogden-terms N] [--range LMIN:LMAX]
         [--strain-unit -|%|stretch] [--stress-unit MPa|kPa|Pa|psi|kgf/cm2]
         [--weighting relative|absolute] [--name NAME] [--json F] [--png F] [--out MATERIAL.json]
-        [--relaxation RELAX.csv]
+        [--relaxation RELAX.csv | --cyclic CYCLE.csv]
     spsc fit-material --list-catalogue
 
 ``--relaxation`` fits a Prony series (the wall's viscoelasticity, :mod:`spsc.materials.prony`)
 to a relaxation test — a CSV of t_s and the stress or modulus of a held strain — and writes its
-terms into the material file beside the hyperelastic law (the relaxed response).
+terms into the material file beside the hyperelastic law (the relaxed response). ``--cyclic``
+fits them to a cyclic uniaxial test instead — a CSV of t_s, stretch and stress_MPa loaded and
+unloaded (two rates tell the times apart) — over the law this command fits
+(:mod:`spsc.materials.prony_cyclic`).
 
 Several files (or a file with a ``test`` column) fit jointly: one set of constants, every test
 in the residual. Exit 0; 1 when the law written is not Drucker-stable over its own data, has no
@@ -66,6 +69,9 @@ def register(subparsers) -> None:
                    help="list the catalogue materials (law, constants, provenance) and exit")
     p.add_argument("--relaxation", metavar="RELAX.csv", default=None, help="a relaxation test "
                    "(t_s and stress or modulus): fit Prony terms into the material file")
+    p.add_argument("--cyclic", metavar="CYCLE.csv", default=None, help="a cyclic uniaxial test "
+                   "(t_s, stretch, stress_MPa: loaded and unloaded, at two rates): fit Prony "
+                   "terms over the fitted law into the material file")
     g = p.add_argument_group("outputs (checked before any work)")
     g.add_argument("--json", metavar="FILE", help="every law's fit, statistics and stability")
     g.add_argument("--png", metavar="FILE", help="data against every law, one panel per test")
@@ -167,6 +173,10 @@ def run(args) -> int:
     from spsc.materials.fit.fitting import choose, fit_laws
 
     tests, notes, laws, rng, terms = prepare(args)
+    if args.relaxation is not None and args.cyclic is not None:
+        raise ParameterError("cyclic", args.cyclic, "without --relaxation (one test gives "
+                             "the Prony terms)")
+    cyclic = _read_cyclic(args.cyclic)
     prony = _relaxation(args.relaxation)
     for line in notes:
         print(f"spsc {VERB}: read {line}", file=sys.stderr)
@@ -186,6 +196,8 @@ def run(args) -> int:
     print(f"material file law: {why}")
     from spsc.materials.fit.report import write_outputs
 
+    if cyclic is not None and chosen is not None:
+        prony = _cyclic(cyclic, chosen, tests, rng, args)
     write_outputs(args, tests, fits, chosen, why, rng, notes, prony=prony)
     return _verdict(fits, chosen)
 
@@ -202,6 +214,31 @@ def _relaxation(path):
     print(f"prony ({data['file']}, {data['points']} points): {terms}; relaxed level "
           f"{fit.relaxed:.4g}, rms {fit.rms_relative:.2%} of it")
     return prony_record(fit, data)
+
+
+def _read_cyclic(path):
+    """The cyclic test at ``path`` (None without one), read before any fit."""
+    if path is None:
+        return None
+    from spsc.materials.prony_cyclic import read_cyclic
+
+    return read_cyclic(path)
+
+
+def _cyclic(test, chosen, tests, rng, args):
+    """The ``prony`` entry fitted to the cyclic ``test`` over the ``chosen`` law, printed."""
+    from spsc.materials.file import material_from_record
+    from spsc.materials.fit.report import material_file_record
+    from spsc.materials.prony_cyclic import cyclic_record, fit_cyclic
+
+    record = material_file_record(chosen, tests, name="cyclic", rng=rng,
+                                  weighting=args.weighting, why="")
+    t, lam, stress, data = test
+    fit = fit_cyclic(material_from_record(record), t, lam, stress)
+    terms = ", ".join(f"beta {b:.4g} tau {tau:.4g} s" for b, tau in fit.prony.terms)
+    print(f"prony ({data['file']}, {data['points']} points, over {chosen.name}): {terms}; "
+          f"rms {fit.rms_relative:.2%} of the largest stress")
+    return cyclic_record(fit, data)
 
 
 def _verdict(fits, chosen) -> int:
