@@ -40,6 +40,13 @@ def fatigue_cases(f, tmp) -> list[Case]:
                    "a life's stroke above every h of the space", "life-stroke"),
               Case(design + ("--min-life", "1000", "--material", str(f["ogden.json"])),
                    "a material file with --min-life (no fatigue test)", "material")]
+    fit = ("fit-material", str(f["tension.csv"]), "--law", "neo-hookean")
+    cases += [Case(fit + ("--cyclic", str(tmp / "no-cycle.csv")), "a missing cyclic test",
+                   "--cyclic", "input file"),
+              Case(fit + ("--cyclic", str(f["tension.csv"])), "a cyclic test without t_s",
+                   "--cyclic", "input file"),
+              Case(fit + ("--cyclic", str(f["tension.csv"]), "--relaxation",
+                          str(f["tension.csv"])), "a cyclic and a relaxation test", "cyclic")]
     sweep = ("sweep", "--type", "B", "--model", "simplified", "--out",
              str(tmp / "life.parquet"), "--quiet", "--life")
     cases += [Case(sweep + ("--material", str(f["ogden.json"])),
