@@ -44,14 +44,16 @@ def dome():
     ("cylinder:R=10,axis=y", "cylinder:R=10,axis=y"), ("cylinder:R=4", "cylinder:R=4,axis=x"),
     ("wedge:angle=60,axis=x", "wedge:angle=60,axis=x,r=0.5"),
     ("wedge:ANGLE=90,axis=y,r=0", "wedge:angle=90,axis=y,r=0"),
-    ("plate:tilt=5", "plate:tilt=5,axis=x"), ("plate:tilt=0", "plate")])
+    ("plate:tilt=5", "plate:tilt=5,axis=x"), ("plate:tilt=0", "plate"),
+    ("cone:angle=60,r=0.05", "cone:angle=60,r=0.05"), ("Cone:ANGLE=90", "cone:angle=90,r=0.5")])
 def test_spellings(text, spec):
     assert check_indenter(text) == spec
 
 
 @pytest.mark.parametrize("text", ["ball:R=3", "sphere", "sphere:R=-1", "sphere:R=nan",
                                   "cylinder:R=3,axis=z", "wedge:axis=x", "wedge:angle=180",
-                                  "sphere:R=3,angle=4", "sphere:R"])
+                                  "sphere:R=3,angle=4", "sphere:R", "cone:r=1", "cone:angle=0",
+                                  "cone:angle=60,axis=x"])
 def test_bad_spellings_are_refused_in_one_line(text):
     with pytest.raises(ParameterError) as err:
         parse_indenter(text)
@@ -61,7 +63,8 @@ def test_bad_spellings_are_refused_in_one_line(text):
 
 @pytest.mark.parametrize("body", ["sphere:R=7", "cylinder:R=5,axis=x", "cylinder:R=5,axis=y",
                                   "plate:tilt=-20,axis=y",
-                                  "wedge:angle=70,axis=y,r=1.5", "wedge:angle=50,axis=x,r=0"])
+                                  "wedge:angle=70,axis=y,r=1.5", "wedge:angle=50,axis=x,r=0",
+                                  "cone:angle=60,r=0.8", "cone:angle=100,r=1.5"])
 def test_surface_derivatives_are_those_of_s(body):
     """∇S and ∇²S against central differences of S (step 1e-5 mm: error ~1e-9 on these
     curvatures), at points on the arc and on a wedge's flanks; with a gap the offset body
@@ -81,6 +84,22 @@ def test_surface_derivatives_are_those_of_s(body):
         assert_allclose((dSp - dSm) / (2 * h), d2S[:, k], rtol=1e-5, atol=1e-5)
     assert ind.surface(np.zeros((2, 1)))[0][0] == 0.0
     assert np.all(S >= 0) or ind.kind == "plate"
+
+
+def test_the_cone_is_a_sphere_at_its_tip_and_a_cone_beyond():
+    """Within ρ = r cos(half) the tip's sphere; beyond it z = tip + r (1 − sin half) + (ρ −
+    r cos half) cot(half): the flank of the paper's probe rises 1.732 mm per mm; the
+    axisymmetric section's S(r) equals the plane's S at (r, 0)."""
+    cone = parse_indenter("cone:angle=60,r=0.05")
+    sphere = parse_indenter("sphere:R=0.05")
+    near = np.array([[0.0, 0.01, 0.02], [0.0, 0.01, -0.02]])
+    assert_allclose(cone.surface(near)[0], sphere.surface(near)[0], rtol=1e-12, atol=1e-15)
+    far = np.array([[1.0, 3.0], [0.0, 4.0]])
+    half = np.radians(30.0)
+    expect = 0.05 * (1 - np.sin(half)) + (np.array([1.0, 5.0]) - 0.05 * np.cos(half)) / np.tan(half)
+    assert_allclose(cone.surface(far)[0], expect, rtol=1e-12)
+    assert_allclose(cone.surface(np.array([[1.0, 5.0]]))[0], expect, rtol=1e-12)
+    assert cone.axisymmetric and cone.mirrored
 
 
 def test_sphere_surface_is_the_sphere_and_its_offset():
@@ -431,3 +450,16 @@ def test_a_body_is_one_class_and_one_registry_line(monkeypatch, tmp_path):
     with pytest.raises(ParameterError, match=r"paraboloid:r=…"):
         indenters.parse_indenter("parabola:R=10")
     assert_allclose(toy.force_N, sphere.force_N, rtol=0.01, atol=1e-6)
+
+
+def test_a_blunt_cone_presses_as_its_tip_sphere_until_the_flank_touches():
+    """cone:angle=60,r=5 is the sphere R = 5 out to ρ = 4.33 mm: while the contact stays on
+    the tip (1 mm of travel at 40 kPa), the wall model's curves are the same to round-off; the
+    paper's sharp probe (r = 0.05) carries less at the same travel."""
+    kw = dict(pressure_kPa=40, stroke_mm=1.0, points=3)
+    cone = wall_curve(DOME, material("tpu60a"), indenter="cone:angle=60,r=5", **kw)
+    ball = wall_curve(DOME, material("tpu60a"), indenter="sphere:R=5", **kw)
+    assert cone.all_converged and ball.all_converged
+    assert_allclose(cone.force_N, ball.force_N, rtol=1e-9, atol=1e-12)
+    sharp = wall_curve(DOME, material("tpu60a"), indenter="cone:angle=60,r=0.05", **kw)
+    assert sharp.all_converged and 0 < sharp.force_N[-1] < ball.force_N[-1]

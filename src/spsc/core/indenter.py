@@ -37,12 +37,12 @@ import numpy as np
 
 from .errors import ParameterError
 
-__all__ = ["Indenter", "Plate", "Sphere", "Cylinder", "Wedge", "FileBody", "INDENTERS",
+__all__ = ["Indenter", "Plate", "Sphere", "Cylinder", "Wedge", "Cone", "FileBody", "INDENTERS",
            "INDENTER_KINDS", "parse_indenter", "check_indenter"]
 
 _ALLOWED = ("plate[:tilt=DEG,axis=x|y], sphere:R=MM, cylinder:R=MM,axis=x|y, "
-            "wedge:angle=DEG,axis=x|y[,r=MM] (|tilt| < 45, 0 < R <= 1e7, 0 < angle < 180, "
-            "r >= 0) "
+            "wedge:angle=DEG,axis=x|y[,r=MM], cone:angle=DEG[,r=MM] (|tilt| < 45, "
+            "0 < R <= 1e7, 0 < angle < 180, r >= 0) "
             "or a body's FILE.stl|.3mf|.step")
 
 
@@ -248,6 +248,39 @@ class Wedge(Indenter):
 
 
 @dataclass(frozen=True)
+class Cone(Indenter):
+    """A cone of included ``angle`` (degrees) on the chamber's axis, its tip rounded with
+    ``radius`` r (mm): the paper's puncture probe is ``cone:angle=60,r=0.05`` (sec. 3.2: half
+    angle 30°, tip Ø 0.1 mm)."""
+
+    angle: float = 60.0
+    radius: float = WEDGE_EDGE_MM
+    kind: ClassVar[str] = "cone"
+    keys: ClassVar[frozenset] = frozenset({"angle", "r"})
+
+    @classmethod
+    def of(cls, keys, text):
+        if "angle" not in keys:
+            raise ParameterError("indenter", text, _allowed())
+        angle = _number("angle", keys["angle"], text)
+        r = _number("r", keys.get("r", WEDGE_EDGE_MM), text)
+        if not 0 < angle < 180 or r < 0:
+            raise ParameterError("indenter", text, _allowed())
+        return cls(angle=angle, radius=r)
+
+    @property
+    def axisymmetric(self) -> bool:
+        return True
+
+    @property
+    def spec(self) -> str:
+        return f"cone:angle={_text(self.angle)},r={_text(self.radius)}"
+
+    def _surface(self, lateral, gap):
+        return _cone(lateral, self.radius + gap, math.radians(self.angle) / 2)
+
+
+@dataclass(frozen=True)
 class FileBody(Indenter):
     """Any rigid body of a file (``path``: STL, 3MF, STEP), its lower surface read as a
     height field by :func:`spsc.cad.heightfield.resolve` before a model uses it."""
@@ -268,7 +301,8 @@ class FileBody(Indenter):
 
 
 #: the bodies ``--indenter`` names, by the name before the colon: one line adds a body
-INDENTERS: dict[str, type[Indenter]] = {c.kind: c for c in (Plate, Sphere, Cylinder, Wedge)}
+INDENTERS: dict[str, type[Indenter]] = {c.kind: c for c in (Plate, Sphere, Cylinder, Wedge,
+                                                             Cone)}
 #: the names of :data:`INDENTERS` when this module was loaded
 INDENTER_KINDS = tuple(INDENTERS)
 
@@ -345,6 +379,29 @@ def _wedge(d, r, half):
     grad = np.where(arc, d / s, np.sign(d) * cot)
     hess = np.where(arc, r * r / s ** 3, 0.0)
     return S, grad[None], hess[None, None]
+
+
+def _cone(p, r, half):
+    """A cone of half-angle ``half`` (rad) about p = 0 (k = 2, or k = 1 the radius of an
+    axisymmetric section), its tip a sphere of radius r (n,) out to ρ = r cos(half), where the
+    flank of slope cot(half) meets it tangentially: S(ρ) as :func:`_wedge`'s profile, its
+    gradient S'(ρ) p/ρ and Hessian S'' p pᵀ/ρ² + S'/ρ (I − p pᵀ/ρ²)."""
+    k, n = p.shape
+    cot = 1.0 / math.tan(half)
+    rho = np.sqrt(np.sum(p * p, axis=0))
+    dt = r * math.cos(half)
+    arc = rho < dt
+    s = np.sqrt(np.where(arc, r * r - rho * rho, 1.0))
+    S = np.where(arc, r - s, r * (1 - math.sin(half)) + (rho - dt) * cot)
+    safe = np.where(rho > 0, rho, 1.0)
+    unit = p / safe
+    outer = unit[:, None, :] * unit[None, :, :]
+    eye = np.eye(k)[:, :, None]
+    # on the arc the sphere's own forms (smooth through ρ = 0); on the flank the cone's
+    grad = np.where(arc, p / s, cot * unit)
+    hess = np.where(arc, eye / s + p[:, None, :] * p[None, :, :] / s ** 3,
+                    cot / safe * (eye - outer))
+    return S, grad, hess
 
 
 def _number(key, value, text) -> float:

@@ -55,10 +55,11 @@ def indenter_option():
     return option("plate", "--indenter", "the body that presses, centred on the chamber's "
                   "axis: plate (default), plate:tilt=DEG,axis=x|y (fem --full), sphere:R=MM, "
                   "cylinder:R=MM,axis=x|y, wedge:angle=DEG,axis=x|y[,r=MM] (a rounded "
-                  "edge, r default 0.5) or any body's FILE.stl|.3mf|.step (fem --full); "
-                  "y is its tip's travel; all but the level plate are "
-                  "frictionless; the wall model takes a sphere on a dome and every symmetric "
-                  "body on a stadium", kind="value", group="contact", metavar="BODY")
+                  "edge, r default 0.5), cone:angle=DEG[,r=MM] (the included angle, its tip "
+                  "rounded; the paper's puncture probe: cone:angle=60,r=0.05) or any body's "
+                  "FILE.stl|.3mf|.step (fem --full); y is its tip's travel; all but the level "
+                  "plate are frictionless; the wall model takes a sphere or a cone on a dome "
+                  "and every symmetric body on a stadium", kind="value", group="contact", metavar="BODY")
 
 
 @dataclass(frozen=True)
