@@ -37,7 +37,11 @@ def _setup(pressure=40.0, reservoir=0.0):
     ({"t0": {"dist": "normal", "sd": 0.1, "cv": 2}}, "t0.cv"),
     ({"w": {"dist": "uniform", "low": 11.1, "high": 10.9}}, "w.high"),
     ({"material": {"dist": "normal", "sd": 0.1}}, "material.sd"),
-    ({"friction": {"dist": "uniform", "low": 0, "high": "stick"}}, "friction"),
+    ({"friction": {"dist": "normal", "sd": 0.1}}, "friction.dist"),
+    ({"friction": {"dist": "uniform", "low": 0, "high": "slip"}}, "friction.high"),
+    ({"friction": {"dist": "uniform", "low": 0.5, "high": 0.3}}, "friction.high"),
+    ({"friction": {"dist": "uniform", "low": -1, "high": 0.3}}, "friction.low"),
+    ({"friction": {"dist": "uniform", "low": 0, "high": 1, "cv": 2}}, "friction.cv"),
     ({"t0": 0.1}, "tolerance t0")])
 def test_a_bad_tolerance_is_one_line_naming_it(doc, name):
     with pytest.raises(ParameterError, match=name) as exc:
@@ -207,3 +211,26 @@ def test_a_robust_design_is_confirmed_by_the_wall_models_prints(tmp_path, capsys
     q = r["band"]["modes"]["high"]["stiffness_N_per_mm"]
     assert q["p5"] < q["p50"] < q["p95"]
     assert "Its prints" in (out / "index.html").read_text()
+
+
+def test_friction_draws_are_coefficients_up_to_the_sticking_plate():
+    """[friction] uniform in μ between low and high; with high = "stick" uniform in the
+    stickiness μ/(1 + μ) from low's to 1, the top draws the sticking plate; each draw is the
+    setup's contact."""
+    from spsc.study.tolerance import STICK, friction_of
+
+    tol = parse_tolerance({"friction": {"dist": "uniform", "low": 0.2, "high": 0.6}})
+    _, X, setups = sample_setups(_setup(), tol, 256, 1)
+    mu = np.array([float(s.contact.friction) for s in setups])
+    assert_allclose(mu, X[:, 0], rtol=1e-5)
+    assert 0.2 <= mu.min() and mu.max() <= 0.6 and abs(mu.mean() - 0.4) < 0.01
+    stick = parse_tolerance({"friction": {"dist": "uniform", "low": 0.0, "high": "stick"}})
+    spread = stick.spreads[0]
+    assert friction_of(0.5, spread) == "1" and friction_of(0.75, spread) == "3"
+    assert friction_of(STICK, spread) == "stick" and friction_of(0.2, spread) == "0.25"
+    _, X, setups = sample_setups(_setup(), stick, 256, 1)
+    s = X[:, 0]
+    assert 0.0 <= s.min() and s.max() <= 1.0 and abs(s.mean() - 0.5) < 0.01
+    for c in setups:  # a coefficient, or the sticking plate at the range's top
+        assert c.contact.friction == "stick" or float(c.contact.friction) >= 0.0
+    assert stick.to_dict()["inputs"]["friction"]["high"] == "stick"

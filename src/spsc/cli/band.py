@@ -14,7 +14,8 @@ __all__ = ["add_tolerance_options", "check_tolerance", "run_band", "band_summary
 def add_tolerance_options(p) -> None:
     t = p.add_argument_group("a band under print and material scatter (issue 49)")
     t.add_argument("--tolerance", metavar="FILE.toml", default=None,
-                   help="a tolerance file ([t0], [w], [h], [l], [pressure], [material]: "
+                   help="a tolerance file ([t0], [w], [h], [l], [pressure], [material], "
+                   "[friction] with the wall model or the FEM: "
                    "docs/guides/tolerance.md): the curve's P5/P50/P95 band, its metrics' "
                    "quantiles and their Sobol indices, in --json and --png")
     t.add_argument("--samples", type=integer("samples"), default=None, metavar="N",
@@ -46,6 +47,16 @@ def check_tolerance(args, setup) -> None:
                                 le=2**32 - 1)
     args.workers = check_workers(args.workers)
     args.tolerance = read_tolerance(args.tolerance)
+    if "friction" in args.tolerance.names:
+        model = getattr(args, "model", None)
+        if model not in ("wall", "fem"):
+            raise ParameterError("tolerance [friction]", model, "with --model wall or fem "
+                                 "(the models that press with friction)")
+        from spsc.core.setup import Contact
+
+        c = setup.contact  # friction on this contact at all (a curved body takes none)
+        Contact.of(c.indenter, "stick", c.object_stiffness)
+        Contact.of(c.indenter, "0.3", c.object_stiffness)
     b = setup.body
     args.tolerance.check({"t0": b.t0, "w": b.w, "h": b.h, "l": b.l,
                           "pressure": setup.load.pressure_kPa})

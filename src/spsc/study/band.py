@@ -63,7 +63,17 @@ def sample_setups(setup, tolerance, n: int, seed: int):
                               points=lc.points, polytropic_n=lc.polytropic_n)
             mat = setup.material if scale == 1.0 else replace(
                 setup.material.scaled(scale), name=setup.material.name)
-            out.append(replace(setup, body=geometry, material=mat, load=load))
+            contact = setup.contact
+            if "friction" in draw:
+                from spsc.core.setup import Contact
+                from spsc.study.tolerance import friction_of
+
+                spread = next(s for s in tolerance.spreads if s.name == "friction")
+                c = setup.contact
+                contact = Contact.of(c.indenter, friction_of(draw["friction"], spread),
+                                     c.object_stiffness)
+            out.append(replace(setup, body=geometry, material=mat, load=load,
+                               contact=contact))
         except ParameterError as exc:
             out.append(str(exc))
     return problem, X, out

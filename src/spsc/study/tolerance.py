@@ -28,9 +28,12 @@ The parameterisation is in real space, stated here because SALib and OpenTURNS d
 * ``[material]`` scales the law's stiffness (W → s W) by s of mean 1: ``cv`` with
   ``normal`` or ``lognormal``, or ``low``, ``high`` (scale factors) with ``uniform``.
 
-Inputs: the lengths ``t0``, ``w``, ``h``, ``l`` (mm), ``pressure`` (kPa gauge), ``material``.
-(The plate's friction, ``[friction]``, needs the wall model's contact and is not in this
-version.)
+Inputs: the lengths ``t0``, ``w``, ``h``, ``l`` (mm), ``pressure`` (kPa gauge), ``material``,
+and ``friction``, the plate's Coulomb coefficient μ (the wall model and the 3D FEM press with
+it): ``uniform`` only, ``low`` and ``high`` the coefficients themselves, or ``high = "stick"``
+(a plate that holds what it touches): then uniform in the stickiness μ/(1 + μ) from the low
+coefficient's to 1, the sticking plate — a range that reaches it is uniform in a bounded
+variable, where μ itself has no upper end.
 """
 
 from __future__ import annotations
@@ -42,11 +45,14 @@ from pathlib import Path
 
 from spsc.core.errors import ParameterError, require
 
-__all__ = ["INPUTS", "DISTS", "Spread", "Tolerance", "read_tolerance", "parse_tolerance"]
+__all__ = ["INPUTS", "DISTS", "Spread", "Tolerance", "read_tolerance", "parse_tolerance",
+           "friction_of", "STICK"]
 
 #: the inputs a tolerance may name (the CLI's names) and their units
 INPUTS = {"t0": "mm", "w": "mm", "h": "mm", "l": "mm", "pressure": "kPa gauge",
-          "material": "stiffness scale"}
+          "material": "stiffness scale", "friction": "Coulomb coefficient"}
+#: a stickiness μ/(1 + μ) at or above this is the sticking plate (μ ≥ 1e6)
+STICK = 1.0 - 1e-6
 DISTS = ("normal", "uniform", "lognormal")
 _KEYS = {"normal": ("sd",), "uniform": ("low", "high"), "lognormal": ("sd",)}
 
@@ -61,9 +67,13 @@ class Spread:
     sd: float | None = None
     low: float | None = None
     high: float | None = None
+    #: a friction range up to the sticking plate (``high = "stick"``): drawn in stickiness
+    stick: bool = False
 
     def salib(self, nominal: float) -> tuple[list[float], str]:
         """(bounds, dist) of SALib's problem for this input around ``nominal``."""
+        if self.stick:
+            return [self.low / (1.0 + self.low), 1.0], "unif"
         if self.dist == "uniform":
             return [self.low, self.high], "unif"
         if self.dist == "normal":
@@ -72,6 +82,8 @@ class Spread:
         return [math.log(nominal) - 0.5 * s2, math.sqrt(s2)], "lognorm"
 
     def describe(self) -> str:
+        if self.stick:
+            return f"{self.name} uniform in μ/(1 + μ) from μ = {self.low:g} to the sticking plate"
         if self.dist == "uniform":
             return f"{self.name} uniform {self.low:g}–{self.high:g}"
         what = "cv" if self.name == "material" else "sd"
@@ -92,7 +104,7 @@ class Tolerance:
     def problem(self, nominal: dict) -> dict:
         """SALib's problem (names, bounds, dists) around the ``nominal`` values of the
         inputs (the material's is 1)."""
-        pairs = [s.salib(1.0 if s.name == "material" else float(nominal[s.name]))
+        pairs = [s.salib(1.0 if s.name in ("material", "friction") else float(nominal[s.name]))
                  for s in self.spreads]
         return {"num_vars": len(pairs), "names": list(self.names),
                 "bounds": [b for b, _ in pairs], "dists": [d for _, d in pairs]}
@@ -101,6 +113,8 @@ class Tolerance:
         """Refuse a normal spread wider than a third of its nominal length (a draw below zero
         is no chamber) and a lognormal of a non-positive nominal value."""
         for s in self.spreads:
+            if s.name == "friction":
+                continue  # uniform only, its own values
             m = 1.0 if s.name == "material" else float(nominal[s.name])
             if s.dist == "lognormal" and m <= 0:
                 raise ParameterError(f"tolerance {s.name}.dist", s.dist, f"normal or uniform "
@@ -113,7 +127,8 @@ class Tolerance:
     def to_dict(self) -> dict:
         return {"source": self.source, "inputs": {
             s.name: {k: v for k, v in (("dist", s.dist), ("sd", s.sd), ("low", s.low),
-                                       ("high", s.high)) if v is not None}
+                                       ("high", "stick" if s.stick else s.high))
+                     if v is not None}
             for s in self.spreads}}
 
 
@@ -126,9 +141,8 @@ def parse_tolerance(doc: dict, source: str = "") -> Tolerance:
     spreads = []
     for name, table in doc.items():
         if name == "friction":
-            raise ParameterError("tolerance [friction]", "given", "not in this version (the "
-                                 "plate's friction needs the wall model's contact); one "
-                                 "value with --friction")
+            spreads.append(_friction(table))
+            continue
         if name not in INPUTS:
             raise ParameterError("tolerance table", f"[{name}]", "one of "
                                  + ", ".join(f"[{k}]" for k in INPUTS))
@@ -160,6 +174,44 @@ def parse_tolerance(doc: dict, source: str = "") -> Tolerance:
         spreads.append(Spread(name, dist, values.get("sd", values.get("cv")),
                               values.get("low"), values.get("high")))
     return Tolerance(tuple(spreads), source)
+
+
+def _friction(table) -> Spread:
+    """The ``[friction]`` table: uniform, ``low`` ≥ 0 and ``high`` above it or ``"stick"``."""
+    if not isinstance(table, dict):
+        raise ParameterError("tolerance friction", table, 'a table with dist = "uniform", '
+                             'low and high (a coefficient or "stick")')
+    if table.get("dist") != "uniform":
+        raise ParameterError("tolerance friction.dist", table.get("dist"), '"uniform" (the '
+                             "plate's coefficient is a range)")
+    extra = sorted(set(table) - {"dist", "low", "high"})
+    if extra:
+        raise ParameterError(f"tolerance friction.{extra[0]}", table[extra[0]],
+                             "only dist, low and high")
+    low, high = table.get("low"), table.get("high")
+    if not isinstance(low, (int, float)) or isinstance(low, bool):
+        raise ParameterError("tolerance friction.low", repr(low), "a number >= 0 (the lowest "
+                             "coefficient)")
+    low = require("tolerance friction.low", low, ge=0, le=1e3)
+    if high == "stick":
+        return Spread("friction", "uniform", None, low, None, stick=True)
+    if not isinstance(high, (int, float)) or isinstance(high, bool):
+        raise ParameterError("tolerance friction.high", repr(high), 'a number above low, or '
+                             '"stick"')
+    high = require("tolerance friction.high", high, le=1e3)
+    if not high > low:
+        raise ParameterError("tolerance friction.high", high, f"> low = {low:g}")
+    return Spread("friction", "uniform", None, low, high)
+
+
+def friction_of(value: float, spread: Spread) -> str:
+    """The ``--friction`` spelling of one draw of ``spread``: the coefficient, or ``stick``
+    (a stickiness draw at or above :data:`STICK`)."""
+    if spread.stick:
+        if value >= STICK:
+            return "stick"
+        value = value / (1.0 - value)
+    return f"{value:.6g}"
 
 
 def read_tolerance(path) -> Tolerance:

@@ -295,7 +295,13 @@ def tolerance_cases(f, tmp) -> list[Case]:
               Case(curve + ("--tolerance", str(good), "--samples", "2"), "too few samples",
                    "samples", "range"),
               Case(curve + ("--tolerance", str(good), "--samples", "abc"), "samples as text",
-                   "samples", "number")]
+                   "samples", "number"),
+              Case(("curve", "--model", "membrane", "--type", "B", "--quiet", "--tolerance",
+                    str(tmp / "friction.toml")), "a friction range with the membrane model",
+                   "tolerance [friction]", "combination"),
+              Case(("curve", "--model", "wall", "--type", "B", "--l", "0", "--quiet",
+                    "--indenter", "sphere:R=10", "--tolerance", str(tmp / "friction.toml")),
+                   "a friction range under a sphere", "friction", "combination")]
     design = ("design", "--target", "stiffness_high=5", "--out", str(tmp / "robust"),
               "--verify", "none", "--no-build", "--quiet")
     cases += [Case(design + ("--tolerance", str(good)), "a robust design with the wall model",
