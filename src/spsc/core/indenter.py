@@ -36,6 +36,7 @@ from typing import ClassVar
 import numpy as np
 
 from .errors import ParameterError
+from .surfaces import across, cone, round_, tilted, wedge
 
 __all__ = ["Indenter", "Plate", "Sphere", "Cylinder", "Wedge", "Cone", "FileBody", "INDENTERS",
            "INDENTER_KINDS", "parse_indenter", "check_indenter"]
@@ -167,7 +168,7 @@ class Plate(Indenter):
         k, n = lateral.shape
         if not self.curved:
             return np.zeros(n), np.zeros((k, n)), np.zeros((k, k, n))
-        return _tilted(lateral, math.radians(self.angle), self.axis, gap)
+        return tilted(lateral, math.radians(self.angle), self.axis, gap)
 
 
 @dataclass(frozen=True)
@@ -191,7 +192,7 @@ class Sphere(Indenter):
         return f"sphere:R={_text(self.radius)}"
 
     def _surface(self, lateral, gap):
-        return _round(lateral, self.radius + gap)
+        return round_(lateral, self.radius + gap)
 
 
 @dataclass(frozen=True)
@@ -213,7 +214,7 @@ class Cylinder(Indenter):
         return f"cylinder:R={_text(self.radius)},axis={self.axis}"
 
     def _surface(self, lateral, gap):
-        return _across(lateral, self.axis, lambda d: _round(d, self.radius + gap))
+        return across(lateral, self.axis, lambda d: round_(d, self.radius + gap))
 
 
 @dataclass(frozen=True)
@@ -243,8 +244,8 @@ class Wedge(Indenter):
 
     def _surface(self, lateral, gap):
         half = math.radians(self.angle) / 2
-        return _across(lateral, self.axis,
-                       lambda d: _wedge(d[0], self.radius + gap, half))
+        return across(lateral, self.axis,
+                       lambda d: wedge(d[0], self.radius + gap, half))
 
 
 @dataclass(frozen=True)
@@ -277,7 +278,7 @@ class Cone(Indenter):
         return f"cone:angle={_text(self.angle)},r={_text(self.radius)}"
 
     def _surface(self, lateral, gap):
-        return _cone(lateral, self.radius + gap, math.radians(self.angle) / 2)
+        return cone(lateral, self.radius + gap, math.radians(self.angle) / 2)
 
 
 @dataclass(frozen=True)
@@ -323,16 +324,6 @@ def _radius(keys: dict, text: str) -> float:
     return R
 
 
-def _across(lateral, axis: str, profile):
-    """A body constant along the x or y ``axis``: its ``profile`` of the coordinate across
-    it, as (S, ∇S, ∇²S) in the plane (k = 2)."""
-    n = lateral.shape[1]
-    across = 1 if axis == "x" else 0  # the coordinate across the axis
-    S, dS, d2S = profile(lateral[across:across + 1])
-    grad, hess = np.zeros((2, n)), np.zeros((2, 2, n))
-    grad[across] = dS.reshape(n)
-    hess[across, across] = d2S.reshape(n)
-    return S, grad, hess
 
 
 def _text(v: float) -> str:
@@ -341,67 +332,12 @@ def _text(v: float) -> str:
     return s[:-2] if s.endswith(".0") else s
 
 
-def _round(p, R):
-    """A sphere (k = 2 or 1) or a cylinder (one coordinate) of radius R (n,) about p = 0:
-    S = R − √(R² − |p|²), evaluated as |p|² / (R + √(R² − |p|²)) (no cancellation for a
-    large R)."""
-    rho2 = np.sum(p * p, axis=0)
-    inside = rho2 < R * R
-    s = np.sqrt(np.where(inside, R * R - rho2, 1.0))
-    S = np.where(inside, rho2 / (R + s), np.inf)
-    grad = p / s
-    k = p.shape[0]
-    hess = np.eye(k)[:, :, None] / s + p[:, None, :] * p[None, :, :] / s ** 3
-    return S, grad, hess
 
 
-def _tilted(p, tilt, axis, gap):
-    """A plate turned by ``tilt`` (rad) about the x or y ``axis``: z = tip + tan(tilt) times
-    the coordinate across the axis; offset by the gap along its normal, g / cos(tilt) below."""
-    across = 1 if axis == "x" else 0
-    n = p.shape[1]
-    S = math.tan(tilt) * p[across] - gap * (1.0 / math.cos(tilt) - 1.0)
-    grad = np.zeros((2, n))
-    grad[across] = math.tan(tilt)
-    return S, grad, np.zeros((2, 2, n))
 
 
-def _wedge(d, r, half):
-    """A wedge of half-angle ``half`` (rad) whose edge is rounded with radius r (n,): the
-    arc r − √(r² − d²) out to |d| = r cos(half), where it meets the flanks of slope
-    cot(half) tangentially."""
-    cot = 1.0 / math.tan(half)
-    dt = r * math.cos(half)
-    a = np.abs(d)
-    arc = a < dt
-    s = np.sqrt(np.where(arc, r * r - d * d, 1.0))
-    S = np.where(arc, r - s, r * (1 - math.sin(half)) + (a - dt) * cot)
-    grad = np.where(arc, d / s, np.sign(d) * cot)
-    hess = np.where(arc, r * r / s ** 3, 0.0)
-    return S, grad[None], hess[None, None]
 
 
-def _cone(p, r, half):
-    """A cone of half-angle ``half`` (rad) about p = 0 (k = 2, or k = 1 the radius of an
-    axisymmetric section), its tip a sphere of radius r (n,) out to ρ = r cos(half), where the
-    flank of slope cot(half) meets it tangentially: S(ρ) as :func:`_wedge`'s profile, its
-    gradient S'(ρ) p/ρ and Hessian S'' p pᵀ/ρ² + S'/ρ (I − p pᵀ/ρ²)."""
-    k, n = p.shape
-    cot = 1.0 / math.tan(half)
-    rho = np.sqrt(np.sum(p * p, axis=0))
-    dt = r * math.cos(half)
-    arc = rho < dt
-    s = np.sqrt(np.where(arc, r * r - rho * rho, 1.0))
-    S = np.where(arc, r - s, r * (1 - math.sin(half)) + (rho - dt) * cot)
-    safe = np.where(rho > 0, rho, 1.0)
-    unit = p / safe
-    outer = unit[:, None, :] * unit[None, :, :]
-    eye = np.eye(k)[:, :, None]
-    # on the arc the sphere's own forms (smooth through ρ = 0); on the flank the cone's
-    grad = np.where(arc, p / s, cot * unit)
-    hess = np.where(arc, eye / s + p[:, None, :] * p[None, :, :] / s ** 3,
-                    cot / safe * (eye - outer))
-    return S, grad, hess
 
 
 def _number(key, value, text) -> float:
