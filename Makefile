@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-long test-all docs bench bench-mold bench-compare bench-wall bench-speed bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap bench-surrogate surrogate-check clean
+.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-long test-all docs bench bench-mold bench-compare bench-wall bench-speed bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap bench-surrogate surrogate-check durability-study clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -151,6 +151,9 @@ bench-gap: $(STAMP)
 # by make report; bench-surrogate: its speed (quiet machine)
 surrogate-check: $(STAMP)
 	$(BIN)/spsc surrogate check --samples 200 --out build/surrogate-check
+# the paper's fatigue test in the wall model (about a minute), shown by make report
+durability-study: $(STAMP)
+	$(BIN)/spsc fatigue --study --out build/durability
 
 bench-surrogate: $(STAMP)
 	$(BIN)/python bench/bench_surrogate.py $(if $(FULL),--sweep --design)

@@ -6,6 +6,7 @@ a power law whose one constant is calibrated on the material's Table 2 test.
 
     spsc fatigue --type C --material tpu60a [--pressure 50] [--reservoir 40000] [--stroke 6]
                  [--exponent F] [--json F] [--png F]
+    spsc fatigue --study [--out build/durability]   # the report's durability study
 
 Exit 0 when the cycle reached the full stroke, 1 when it did not (what was computed is still
 written), 2 on invalid input.
@@ -50,8 +51,32 @@ def register(subparsers) -> None:
                    "material's: 4, a non-crystallising elastomer; 2 for a crystallising one)")
     add_output_options(p, json="write the result JSON here", csv=None,
                        png="draw the wall's energy amplitude and the hot spot here")
+    s = p.add_argument_group("the report's study")
+    s.add_argument("--study", action="store_true", help="the durability study spsc report "
+                   "shows: every material calibrated, Types A-D in TPU 60A, other strokes and "
+                   "pressures (about a minute)")
+    s.add_argument("--out", default=None, metavar="DIR", help="the study's folder (default "
+                   "build/durability, where spsc report looks); only with --study")
     add_quiet_option(p)
     p.set_defaults(func=run)
+
+
+def _study(args) -> int:
+    from spsc.cli.options import check_output_dir
+    from spsc.studies.durability import DEFAULT_DIR, run_study
+
+    alone = [o for o in ("json", "png", "exponent") if getattr(args, o) is not None]
+    if alone or geometry_given(args):
+        name = alone[0] if alone else "type"
+        raise ParameterError(name, getattr(args, name) if alone else args.type or "a chamber",
+                             "not with --study (the study runs its own chambers and writes "
+                             "its own files)")
+    out = check_output_dir("--out", args.out or DEFAULT_DIR)
+    s = run_study(out, progress=(lambda m: None) if args.quiet else
+                  (lambda m: print(m, file=sys.stderr)))
+    print(f"spsc fatigue: the durability study in {s['seconds']:.0f} s -> {out}/summary.json, "
+          "lives.png, fields-C.png")
+    return 0 if all(r["converged"] for r in s["types"].values()) else 1
 
 
 def run(args) -> int:
@@ -61,6 +86,11 @@ def run(args) -> int:
     from spsc.materials import material
     from spsc.materials.catalogue import FATIGUE_TESTS
 
+    if args.study:
+        return _study(args)
+    if args.out is not None:
+        raise ParameterError("out", args.out, "only with --study (--json, --png for one "
+                             "chamber)")
     geometry = geometry_from_args(args) if geometry_given(args) else _type_b()
     name = str(args.material).strip().lower()
     if name not in FATIGUE_TESTS:
@@ -109,7 +139,7 @@ def run(args) -> int:
     if json_path:
         write_json(json_path, doc)
     if png_path:
-        from spsc.cli.fatigue_figure import draw
+        from spsc.studies.fatigue_figure import draw
 
         draw(cycle, geometry, law, life, png_path)
     return 0 if cycle.converged else 1

@@ -3,7 +3,7 @@
     spsc report [--quick] [--out DIR] [--cache DIR] [--no-fem] [--no-sweep] [--types ABCD]
                 [--quiet] [--workers N | --scheduler ADDRESS] [--allow-dirty]
                 [--fingertip DIR] [--haptic DIR] [--time DIR] [--bench-gap DIR]
-                [--surrogate-check DIR]
+                [--surrogate-check DIR] [--durability DIR]
 
 Default: the full study into ``reports/validation/``; ``--quick`` (coarse FEM mesh, fewer
 points and pressures; CI) into ``build/report-quick/``. Runs are cached under
@@ -69,6 +69,9 @@ def register(subparsers) -> None:
     p.add_argument("--bench-gap", metavar="DIR", default=None,
                    help="the bench-gap study to show (make bench-gap's build/bench-gap, the "
                    "default when it exists)")
+    p.add_argument("--durability", metavar="DIR", default=None,
+                   help="the durability study to show (make durability-study's "
+                   "build/durability, the default when it exists)")
     p.add_argument("--surrogate-check", metavar="DIR", default=None,
                    help="the surrogate's check to show (make surrogate-check's "
                    "build/surrogate-check, the default when it exists)")
@@ -139,7 +142,7 @@ def run(args) -> int:
                         executor=executor, sweep=sweep, fingertip=_fingertip(args),
                         molds=tuple(study.types), haptic=_haptic(args),
                         time_study=_time(args), gap=_gap(args),
-                        surrogate=_surrogate(args))
+                        surrogate=_surrogate(args), durability=_durability(args))
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
@@ -163,7 +166,9 @@ _STUDIES = (("fingertip", "a fingertip study's summary.json (spsc fingertip --fe
             ("bench_gap", "the bench-gap study's summary.json (make bench-gap "
              "writes build/bench-gap)"),
             ("surrogate_check", "the surrogate check's summary.json (make surrogate-check "
-             "writes build/surrogate-check)"))
+             "writes build/surrogate-check)"),
+            ("durability", "the durability study's summary.json (make durability-study "
+             "writes build/durability)"))
 
 
 def _check_studies(args) -> None:
@@ -190,6 +195,12 @@ def _gap(args):
     from spsc.report.gap import DEFAULT_DIR
 
     return DEFAULT_DIR if args.bench_gap is None else args.bench_gap
+
+
+def _durability(args):
+    from spsc.report.durability import DEFAULT_DIR
+
+    return DEFAULT_DIR if args.durability is None else args.durability
 
 
 def _surrogate(args):

@@ -28,6 +28,7 @@ from spsc.report.haptic import haptic_section
 from spsc.report.time import time_section
 from spsc.report.gap import gap_section
 from spsc.report.surrogate import surrogate_section
+from spsc.report.durability import durability_section
 from spsc.report.mold import mold_section
 from spsc.report.sweep import sweep_section
 from spsc.report.sections import (FigureOutput, Results, comparison_section, convergence_section,
@@ -38,14 +39,14 @@ __all__ = ["build_report", "write_run_data"]
 
 
 #: the sections' own folders in a report (emptied before it is written)
-SECTION_DIRS = ("sweep", "mold", "haptic", "time", "gap", "surrogate")
+SECTION_DIRS = ("sweep", "mold", "haptic", "time", "gap", "surrogate", "durability")
 
 
 def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
                  wall_seconds: float | None = None, render: bool = True, fig_cache=None,
                  source: Provenance | None = None, bench=None, executor: str = "",
                  sweep=None, fingertip=None, molds=(), haptic=None, time_study=None,
-                 gap=None, surrogate=None) -> Path:
+                 gap=None, surrogate=None, durability=None) -> Path:
     """Write ``out_dir/index.html`` with ``figures/``, ``data/`` and ``summary.json`` beside
     it; returns the HTML path. ``outcomes`` is :func:`~.runner.run_all`'s result;
     ``fig_cache``: a directory where figures are kept by a hash of what they show (None:
@@ -62,7 +63,8 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
     of the haptic chamber's study (:mod:`.report_haptic`; as ``fingertip``); ``time_study``:
     the folder of the time-domain study (:mod:`.time`; as ``fingertip``); ``gap``: the folder
     of the bench-gap study (:mod:`.gap`), ``surrogate`` the surrogate's check
-    (:mod:`.surrogate`): as ``fingertip``."""
+    (:mod:`.surrogate`), ``durability`` the durability study (:mod:`.durability`): as
+    ``fingertip``."""
     out = Path(out_dir)
     figs, data = out / "figures", out / "data"
     for d in [figs, data] + [out / k for k in SECTION_DIRS]:
@@ -91,7 +93,9 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
            "haptic": haptic_section(haptic, out) if haptic is not None else None,
            "time": time_section(time_study, out) if time_study is not None else None,
            "gap": gap_section(gap, out) if gap is not None else None,
-           "surrogate": surrogate_section(surrogate, out) if surrogate is not None else None}
+           "surrogate": surrogate_section(surrogate, out) if surrogate is not None else None,
+           "durability": durability_section(durability, out) if durability is not None
+           else None}
     ctx["overview"] = overview_section(study, ctx["headline"], ctx["comparison"],
                                        ctx["convergence"], ctx["paper"])
     drawn, ctx["figure_notes"] = draw_figures(

@@ -28,6 +28,17 @@ def fatigue_cases(f, tmp) -> list[Case]:
               Case(base + ("--reservoir", "-1"), "a negative reservoir", "reservoir")]
     cases += outputs(base, "--json", f, tmp)
     cases += outputs(base, "--png", f, tmp, ".png")
+    study = ("fatigue", "--study", "--quiet")
+    cases += [Case(study + ("--json", str(tmp / "f.json")), "--json with --study", "json",
+                   "combination"),
+              Case(study + ("--type", "C"), "a chamber with --study", "type", "combination"),
+              Case(base + ("--out", str(tmp / "dur")), "--out without --study", "out",
+                   "combination"),
+              Case(study + ("--out", str(f["file"])), "--study's folder a file", "--out",
+                   "input file"),
+              Case(("report", "--durability", str(f["dir"]), "--quiet", "--out",
+                    str(tmp / "report")), "a durability folder without its summary",
+                   "durability", "input file")]
     design = ("design", "--target", "stiffness_high=6", "--model", "simplified", "--out",
               str(tmp / "design-life"), "--quiet")
     cases += numbers(design + ("--min-life", "1000"), ("life-stroke",))

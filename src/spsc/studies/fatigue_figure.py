@@ -1,4 +1,4 @@
-"""``spsc fatigue --png``: the wall's section coloured by the squeeze cycle's strain-energy
+"""``spsc fatigue --png`` and the durability study: the wall's section coloured by the squeeze cycle's strain-energy
 amplitude (the largest along the sweep), the hot spot marked, the life in the title."""
 
 from __future__ import annotations
