@@ -81,7 +81,6 @@ def _study(args) -> int:
 
 def run(args) -> int:
     from spsc.core.jsonio import write_json
-    from spsc.core.provenance import code_provenance
     from spsc.fem.wall.durability import paper_fatigue_law, squeeze_cycle
     from spsc.materials import material
     from spsc.materials.catalogue import FATIGUE_TESTS
@@ -124,18 +123,7 @@ def run(args) -> int:
           f"{peaks['stretch_max_with_base']['value']:.4f} (singular, not used)")
     print(f"life {bound}{life:.3g} cycles (F = {law.exponent:g}; {bound}{life_other:.3g} with "
           f"F = {other:g}); {law.source}")
-    doc = {"schema": "spsc.fatigue", "schema_version": 1, "geometry": geometry.as_dict(),
-           "setup": cycle.setup,
-           "peaks": peaks, "energy_amplitude_MPa": w_a, "life_cycles": life,
-           "life_is_lower_bound": law.runout, "life_other_exponent": {"exponent": other,
-                                                                       "cycles": life_other},
-           "law": {"exponent": law.exponent, "calibration_amplitude_MPa": law.amplitude_MPa,
-                   "calibration_cycles": law.cycles, "runout": law.runout,
-                   "source": law.source},
-           "force_N": cycle.force_N, "pressure_kPa": cycle.pressure_kPa,
-           "reached_mm": cycle.reached_mm, "converged": cycle.converged,
-           "message": cycle.message, "seconds": cycle.seconds,
-           "provenance": {"commit": code_provenance().commit}}
+    doc = _document(geometry, cycle, peaks, law, life, other, life_other)
     if json_path:
         write_json(json_path, doc)
     if png_path:
@@ -143,6 +131,24 @@ def run(args) -> int:
 
         draw(cycle, geometry, law, life, png_path)
     return 0 if cycle.converged else 1
+
+
+def _document(geometry, cycle, peaks, law, life, other, life_other) -> dict:
+    """The ``--json`` document (schema ``spsc.fatigue`` v1)."""
+    from spsc.core.provenance import code_provenance
+
+    return {"schema": "spsc.fatigue", "schema_version": 1, "geometry": geometry.as_dict(),
+            "setup": cycle.setup, "peaks": peaks,
+            "energy_amplitude_MPa": cycle.energy_amplitude_MPa, "life_cycles": life,
+            "life_is_lower_bound": law.runout,
+            "life_other_exponent": {"exponent": other, "cycles": life_other},
+            "law": {"exponent": law.exponent, "calibration_amplitude_MPa": law.amplitude_MPa,
+                    "calibration_cycles": law.cycles, "runout": law.runout,
+                    "source": law.source},
+            "force_N": cycle.force_N, "pressure_kPa": cycle.pressure_kPa,
+            "reached_mm": cycle.reached_mm, "converged": cycle.converged,
+            "message": cycle.message, "seconds": cycle.seconds,
+            "provenance": {"commit": code_provenance().commit}}
 
 
 def _type_b():

@@ -88,14 +88,9 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
            "versions": versions({m.name: code_version(m.name) for m in study.models}),
            "bench": bench_section(bench, study, figs) if bench is not None else None,
            "sweep": sweep_section(*sweep, out, study) if sweep is not None else None,
-           "fingertip": fingertip_section(fingertip, out) if fingertip is not None else None,
            "mold": mold_section(out, molds, render=render) if molds else None,
-           "haptic": haptic_section(haptic, out) if haptic is not None else None,
-           "time": time_section(time_study, out) if time_study is not None else None,
-           "gap": gap_section(gap, out) if gap is not None else None,
-           "surrogate": surrogate_section(surrogate, out) if surrogate is not None else None,
-           "durability": durability_section(durability, out) if durability is not None
-           else None}
+           **_studies(out, fingertip=fingertip, haptic=haptic, time=time_study, gap=gap,
+                      surrogate=surrogate, durability=durability)}
     ctx["overview"] = overview_section(study, ctx["headline"], ctx["comparison"],
                                        ctx["convergence"], ctx["paper"])
     drawn, ctx["figure_notes"] = draw_figures(
@@ -105,6 +100,18 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
     path = out / "index.html"
     path.write_text(render_page(ctx), encoding="utf-8")
     return path
+
+
+#: the studies a report shows: context key -> its section's builder (study folder, report)
+_STUDY_SECTIONS = {"fingertip": fingertip_section, "haptic": haptic_section,
+                   "time": time_section, "gap": gap_section, "surrogate": surrogate_section,
+                   "durability": durability_section}
+
+
+def _studies(out, **folders) -> dict:
+    """Each study's section from its folder (None: the study is not asked for)."""
+    return {k: None if folders[k] is None else _STUDY_SECTIONS[k](folders[k], out)
+            for k in _STUDY_SECTIONS}
 
 
 def write_run_data(outcomes: dict, directory: Path) -> None:
