@@ -41,7 +41,8 @@ def fem_cycle(pressure_kPa: float, reservoir_mm3: float) -> None:
     res = solve(model, steps + [Cycle(tuple(times), tuple(travels))], settings=s)
     F = np.array([r.force for r in res.records if r.kind == "press"])
     n = y.size - 1
-    gap = np.r_[0.0, F[:n]] - np.r_[F[n - 1:][::-1], 0.0] if F.size == 2 * n else None
+    # loading at y_0..y_n (F[:n] from y_1), unloading back from y_n (F[n - 1]) to y_0
+    gap = np.r_[0.0, F[:n]] - np.r_[F[n:][::-1], F[n - 1]] if F.size == 2 * n else None
     jumps = [(j.y_mm, j.force_before_N, j.force_after_N, j.energy_released_mJ)
              for j in res.jumps]
     print(f"  3D FEM: {res.message[:60]}; jumps: {_jumps(jumps)}; largest gap "
