@@ -343,8 +343,12 @@ def parse_scenario(doc: dict) -> Scenario:
                         unit="mm³")
     timed, triggers = _events(doc, profile.duration)
     control = _stiffness(doc, profile, reservoir, timed, triggers)
-    setup = require("circuit.setup_kPa", c.get("setup_kPa", 40.0), ge=0, le=200,
-                    unit="kPa gauge")
+    # a sealed chamber at ambient pressure dips below its map's lowest level (0 kPa) at the
+    # plate's first touch: the scenario stopped at its first step (the vented chamber is
+    # spsc curve --pressure 0)
+    setup = require("circuit.setup_kPa", c.get("setup_kPa", 40.0), gt=0, le=200,
+                    unit="kPa gauge; a sealed chamber at 0 kPa falls below its map at the "
+                    "first touch (the vented chamber: spsc curve --pressure 0)")
     leak = None if "leak" not in c else LeakSpec.parse(c["leak"], setup)
     if leak is not None and control is not None:
         raise ParameterError("circuit.leak", leak.describe(), "none with [stiffness] (the "

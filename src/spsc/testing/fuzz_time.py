@@ -56,6 +56,7 @@ _WRONG = (
     ("circuit", 'sensor = { rate_Hz = "1000" }\n', "sensor rate_Hz", "a quoted rate"),
     ("circuit", "sensor = { seed = -1 }\n", "sensor seed", "a negative seed"),
     ("circuit", "sensor = { seed = 1.5 }\n", "sensor seed", "a fractional seed"),
+    ("circuit", "setup_kPa = 0\n", "circuit.setup_kPa", "a sealed chamber at 0 kPa"),
     ("circuit", "leak = { C = -1 }\n", "circuit.leak.C", "a negative leak conductance"),
     ("circuit", "leak = { drop_kPa = 1 }\n", "circuit.leak", "a leak's loss without its time"),
     ("circuit", "leak = { drop_kPa = 90, over_s = 60 }\n", "circuit.leak.drop_kPa",
