@@ -69,3 +69,35 @@ def test_a_run_out_gives_a_lower_bound(tmp_path, capsys):
                  str(out), "--quiet"]) == 0
     doc = json.loads(out.read_text())
     assert doc["life_is_lower_bound"] and "life at least" in capsys.readouterr().out
+
+
+def _material_file(path, fatigue):
+    record = {"schema": "spsc.material", "schema_version": 1, "name": "my-tpu",
+              "law": "neo-hookean", "constants": {"C10": 5.0 / 6.0}, "fatigue": fatigue}
+    path.write_text(json.dumps(record))
+    return str(path)
+
+
+def test_a_material_file_carries_its_own_fatigue_law(tmp_path):
+    """A file's ``fatigue`` entry: its own law (no calibration), or its own Type B test
+    (calibrated as Table 2 calibrates the catalogue's: with the catalogue's TPU 60A constants
+    and its 4100 cycles, the same law)."""
+    from spsc.fem.wall.durability import paper_fatigue_law
+
+    own = _material_file(tmp_path / "own.json", {"exponent": 3.0, "amplitude_MPa": 0.05,
+                                                 "cycles": 1e4, "source": "my test"})
+    law = paper_fatigue_law(own)
+    assert (law.exponent, law.amplitude_MPa, law.cycles, law.source) == (3.0, 0.05, 1e4,
+                                                                       "my test")
+    test = _material_file(tmp_path / "test.json", {"exponent": 4.0, "cycles": 4100})
+    assert_allclose(paper_fatigue_law(test).amplitude_MPa,
+                    paper_fatigue_law("tpu60a").amplitude_MPa, rtol=1e-9)
+    for bad, key in (({"exponent": 1, "cycles": 10}, "fatigue.exponent"),
+                     ({"exponent": 4}, "fatigue.cycles"),
+                     ({"exponent": 4, "cycles": 10, "slope": 2}, "fatigue.slope")):
+        with pytest.raises(ParameterError, match=key):
+            paper_fatigue_law(_material_file(tmp_path / f"bad{len(key)}.json", bad))
+    out = tmp_path / "f.json"
+    assert main(["fatigue", "--type", "B", "--l", "0", "--material", own, "--json", str(out),
+                 "--quiet"]) == 0
+    assert json.loads(out.read_text())["law"]["source"] == "my test"

@@ -33,9 +33,10 @@ def register(subparsers) -> None:
                               description=__doc__.split("\n\n")[0])
     add_geometry_options(p)
     g = p.add_argument_group("the cycle (defaults: the paper's fatigue test)")
-    g.add_argument("--material", default="tpu60a", metavar="NAME",
+    g.add_argument("--material", default="tpu60a", metavar="NAME|FILE.json",
                    help="catalogue material (tpu60a, elastic50a, silicone40a, as40; default "
-                   "tpu60a): its Table 2 test calibrates the life")
+                   "tpu60a): its Table 2 test calibrates the life; or a material file with a "
+                   "fatigue entry (its own law, or its own Type B test)")
     g.add_argument("--pressure", type=number("pressure", "kPa gauge"), default=50.0,
                    metavar="KPA", help="setup pressure, kPa gauge (default 50, Table 2)")
     g.add_argument("--reservoir", type=number("reservoir", "mm³"), default=40000.0,
@@ -91,10 +92,11 @@ def run(args) -> int:
         raise ParameterError("out", args.out, "only with --study (--json, --png for one "
                              "chamber)")
     geometry = geometry_from_args(args) if geometry_given(args) else _type_b()
-    name = str(args.material).strip().lower()
-    if name not in FATIGUE_TESTS:
-        raise ParameterError("material", args.material, "a catalogue material with a "
-                             "fatigue test (" + ", ".join(FATIGUE_TESTS) + ")")
+    from spsc.sweep.life import check_life_materials
+
+    name = str(args.material).strip()
+    name = name.lower() if name.lower() in FATIGUE_TESTS else name
+    check_life_materials([name], "spsc fatigue")
     if args.exponent is not None:
         require("exponent", args.exponent, gt=1, le=20)
     lc = check_load(geometry, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,

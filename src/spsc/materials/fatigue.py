@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 from spsc.core.errors import ParameterError, require
 
-__all__ = ["FatigueLaw", "EXPONENTS"]
+__all__ = ["FatigueLaw", "EXPONENTS", "fatigue_entry"]
 
 #: crack-growth exponents F of the two classes of Lake & Lindley (Mars & Fatemi 2002, sec. 3)
 EXPONENTS = {"crystallising": 2.0, "non-crystallising": 4.0}
@@ -73,3 +73,30 @@ class FatigueLaw:
         """The same calibration point under another exponent F (the sensitivity of a
         prediction to F)."""
         return FatigueLaw(exponent, self.amplitude_MPa, self.cycles, self.runout, self.source)
+
+
+def fatigue_entry(record: dict, fname: str = "") -> dict | None:
+    """The checked ``fatigue`` entry of a material file (None without one): ``exponent`` F,
+    ``cycles`` a life N, and either ``amplitude_MPa`` (the energy amplitude that lasted N: the
+    law itself) or none (N is a Type B chamber's life at the paper's fatigue test, which
+    calibrates it as Table 2 does the catalogue's); ``runout`` (the test did not fail) and
+    ``source``. One-line ParameterError naming the key otherwise."""
+    entry = record.get("fatigue")
+    if entry is None:
+        return None
+    where = f"material {fname}: fatigue" if fname else "fatigue"
+    if not isinstance(entry, dict):
+        raise ParameterError(where, entry, "a table {exponent, cycles[, amplitude_MPa, "
+                             "runout, source]}")
+    extra = sorted(set(entry) - {"exponent", "cycles", "amplitude_MPa", "runout", "source"})
+    if extra:
+        raise ParameterError(f"{where}.{extra[0]}", entry[extra[0]], "one of exponent, "
+                             "cycles, amplitude_MPa, runout, source")
+    out = {"exponent": require(f"{where}.exponent", entry.get("exponent"), gt=1, le=20),
+           "cycles": require(f"{where}.cycles", entry.get("cycles"), ge=1, le=1e12),
+           "runout": bool(entry.get("runout", False)),
+           "source": str(entry.get("source", ""))}
+    if "amplitude_MPa" in entry:
+        out["amplitude_MPa"] = require(f"{where}.amplitude_MPa", entry["amplitude_MPa"],
+                                       gt=0, unit="MPa")
+    return out

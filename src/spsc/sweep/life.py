@@ -61,11 +61,20 @@ def life_row(design: dict, model: str, process: str, points=None, stroke_mm=None
 
 
 def check_life_materials(materials, option: str = "--life") -> None:
-    """Every material of ``materials`` one with a fatigue test (its law is calibrated on it);
-    one ParameterError naming the first that is not."""
+    """Every material of ``materials`` one with a fatigue law: a catalogue material with a
+    fatigue test (Table 2 calibrates it) or a material file with a ``fatigue`` entry; one
+    ParameterError naming the first that is not."""
     from spsc.materials.catalogue import FATIGUE_TESTS
+    from spsc.materials.fatigue import fatigue_entry
+    from spsc.materials.file import read_material_file
 
     for m in materials:
-        if str(m).strip().lower() not in FATIGUE_TESTS:
-            raise ParameterError("material", m, f"with {option}, a catalogue material with a "
-                                 "fatigue test (" + ", ".join(FATIGUE_TESTS) + ")")
+        text = str(m).strip()
+        if text.lower() in FATIGUE_TESTS:
+            continue
+        if text.lower().endswith(".json") and \
+                fatigue_entry(read_material_file(text), text) is not None:
+            continue
+        raise ParameterError("material", m, f"with {option}, a catalogue material with a "
+                             "fatigue test (" + ", ".join(FATIGUE_TESTS) + ") or a material "
+                             "file with a fatigue entry")

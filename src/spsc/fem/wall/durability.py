@@ -112,24 +112,48 @@ def squeeze_cycle(geometry: SPSCGeometry, material: Material, *,
                         reached, res.converged, res.message, time.perf_counter() - t0, section)
 
 
+def _file_test(name: str) -> dict:
+    """The ``fatigue`` entry of the material file ``name`` (its own law, or a Type B test to
+    calibrate on); one-line ParameterError when it has none."""
+    from spsc.materials.catalogue import FATIGUE_TESTS
+    from spsc.materials.fatigue import fatigue_entry
+    from spsc.materials.file import read_material_file
+
+    if not name.lower().endswith(".json"):
+        raise ParameterError("material", name, "a catalogue material with a fatigue test ("
+                             + ", ".join(FATIGUE_TESTS) + ") or a material file with a "
+                             "fatigue entry")
+    entry = fatigue_entry(read_material_file(name), name)
+    if entry is None:
+        raise ParameterError("material", name, "a material file with a fatigue entry "
+                             "({exponent, cycles[, amplitude_MPa]}: docs/guides/durability.md)"
+                             " or a catalogue material with a fatigue test")
+    if not entry["source"]:
+        entry["source"] = f"the fatigue entry of {name}: a Type B chamber's test"
+    return entry
+
+
 @functools.lru_cache(maxsize=16)
 def paper_fatigue_law(name: str, exponent: float | None = None, settings=None) -> FatigueLaw:
     """The fatigue law (eq. L1) of the catalogue material ``name`` calibrated on its Table 2
     test (:data:`~spsc.materials.catalogue.FATIGUE_TESTS`): the wall model's Table 1 Type B
     squeeze cycle at :data:`PAPER_TEST` gives the hot spot's energy amplitude, which lasted the
-    test's cycles. ``exponent``: F (default the catalogue's). One wall solve (seconds), kept
-    for the process."""
+    test's cycles. Or a material file's ``fatigue`` entry: its own law, or its own Type B test
+    calibrated the same way. ``exponent``: F (default the catalogue's or the file's). One wall
+    solve (seconds), kept for the process."""
     from spsc.cad.geometry import preset
     from spsc.materials import material
     from spsc.materials.catalogue import FATIGUE_TESTS
 
     key = str(name).strip().lower()
-    if key not in FATIGUE_TESTS:
-        raise ParameterError("material", name, "a catalogue material with a fatigue test ("
-                             + ", ".join(FATIGUE_TESTS) + "): the life is calibrated on the "
-                             "paper's Table 2")
-    test = FATIGUE_TESTS[key]
-    cycle = squeeze_cycle(preset("B"), material(key), settings=settings)
+    test = FATIGUE_TESTS.get(key) or _file_test(str(name).strip())
+    if "amplitude_MPa" in test:  # the file's own law: no calibration
+        return FatigueLaw(test["exponent"] if exponent is None else float(exponent),
+                          test["amplitude_MPa"], test["cycles"], test["runout"],
+                          test["source"] or f"the fatigue entry of {name}")
+    if key in FATIGUE_TESTS:
+        name = key
+    cycle = squeeze_cycle(preset("B"), material(name), settings=settings)
     if not cycle.converged:
         raise RuntimeError(f"the calibration cycle of {key} did not converge: "
                            f"{cycle.message}")
