@@ -23,8 +23,20 @@ def durability_section(study_dir, out) -> dict | None:
     if found is None:
         return None
     s, dest = found
+    for rows in (s["types"], s["strokes"], s["pressures"]):
+        for r in rows.values():  # three significant figures, in full: 27,700 cycles
+            r["life_text"] = _cycles(r["life_cycles"])
+            r["life_other_text"] = _cycles(r["life_other_exponent"])
     types = s["types"]
     order = sorted(types, key=lambda t: types[t]["life_cycles"])
     return {"summary": s, "order": order, "command": COMMAND,
             "lives": copy_figure(study_dir, dest, "lives.png"),
             "fields": copy_figure(study_dir, dest, "fields-C.png")}
+
+
+def _cycles(n) -> str:
+    """A life to three significant figures, written out (27,700; 227; 96.5)."""
+    if n is None:
+        return "–"
+    v = float(f"{float(n):.3g}")
+    return f"{v:,.0f}" if v >= 100 else f"{v:.3g}"
