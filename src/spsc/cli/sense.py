@@ -34,7 +34,7 @@ _BUILT_IN = {"slip": "always", "compliance": "with --stiff-mm-per-deg", "leak": 
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(VERB, help="force, depth and events (contact, release, slip, "
-                              "switch, object compliance) from a chamber's pressure log",
+                              "switch, object compliance, a leak at rest) from a chamber's pressure log",
                               description=__doc__.split("\n\n")[0])
     p.add_argument("log", nargs="?", metavar="LOG.csv|LOG.parquet", help="the log")
     p.add_argument("--out", metavar="DIR", help="folder for estimate.parquet, events.json, "
@@ -93,8 +93,8 @@ def _sensing_options(p) -> None:
                    help="contact detector: CUSUM (default) or the paper's thresholds")
     s.add_argument("--detectors", default=None, metavar="NAME[,NAME]",
                    help="more event detectors of the registry (spsc.sensing.detectors."
-                   "DETECTORS) with their default parameters, run after slip and compliance "
-                   "(default: none)")
+                   "DETECTORS) with their default parameters, run after slip, compliance and "
+                   "leak (default: none)")
     s.add_argument("--valve", choices=("open", "closed"), default="closed",
                    help="the valve at the start when the log has no valve_open column")
     s.add_argument("--stiff-mm-per-deg", type=number("stiff_mm_per_deg", "mm/deg"),

@@ -230,12 +230,7 @@ class Wedge(Indenter):
 
     @classmethod
     def of(cls, keys, text):
-        if "angle" not in keys:
-            raise ParameterError("indenter", text, _allowed())
-        angle = _number("angle", keys["angle"], text)
-        r = _number("r", keys.get("r", WEDGE_EDGE_MM), text)
-        if not 0 < angle < 180 or r < 0:
-            raise ParameterError("indenter", text, _allowed())
+        angle, r = _angle_and_edge(keys, text)
         return cls(angle=angle, radius=r, axis=_axis(keys, text))
 
     @property
@@ -261,12 +256,7 @@ class Cone(Indenter):
 
     @classmethod
     def of(cls, keys, text):
-        if "angle" not in keys:
-            raise ParameterError("indenter", text, _allowed())
-        angle = _number("angle", keys["angle"], text)
-        r = _number("r", keys.get("r", WEDGE_EDGE_MM), text)
-        if not 0 < angle < 180 or r < 0:
-            raise ParameterError("indenter", text, _allowed())
+        angle, r = _angle_and_edge(keys, text)
         return cls(angle=angle, radius=r)
 
     @property
@@ -313,6 +303,18 @@ def _axis(keys: dict, text: str) -> str:
     if axis not in ("x", "y"):
         raise ParameterError("indenter", text, _allowed())
     return axis
+
+
+def _angle_and_edge(keys: dict, text: str) -> tuple[float, float]:
+    """(included angle, degrees in (0, 180); rounding radius r ≥ 0, mm, default
+    :data:`WEDGE_EDGE_MM`) of a wedge's or a cone's spelling."""
+    if "angle" not in keys:
+        raise ParameterError("indenter", text, _allowed())
+    angle = _number("angle", keys["angle"], text)
+    r = _number("r", keys.get("r", WEDGE_EDGE_MM), text)
+    if not 0 < angle < 180 or r < 0:
+        raise ParameterError("indenter", text, _allowed())
+    return angle, r
 
 
 def _radius(keys: dict, text: str) -> float:

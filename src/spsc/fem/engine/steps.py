@@ -52,8 +52,15 @@ class Path:
         return self.kind == "press" and self.spring is None and self.mu is None
 
 
+class _Ramp:
+    """A step that ramps a load from the current one: it begins where the last ended."""
+
+    def begin(self, load: Load, volume: Callable) -> Load:
+        return load
+
+
 @dataclass(frozen=True)
-class Inflate:
+class Inflate(_Ramp):
     """Ramp the cavity gauge pressure to ``pressure`` (MPa) in ``increments``."""
 
     pressure: float
@@ -63,9 +70,6 @@ class Inflate:
         """The recorded load parameters t ∈ (0, 1] (fractions of the ramp)."""
         nominal = 1.0 / self.increments
         return [(i + 1) * nominal for i in range(self.increments)]
-
-    def begin(self, load: Load, volume: Callable) -> Load:
-        return load
 
     def path(self, load: Load, contact_height: Callable, settings) -> Path:
         """The pressure ramped from the current one to this step's, the plate kept."""
@@ -93,7 +97,7 @@ class CloseValve:
 
 
 @dataclass(frozen=True)
-class Press:
+class Press(_Ramp):
     """Lower the plate from first contact by ``stroke`` (mm) in ``increments`` recorded points
     (the load parameter t is the fraction of the stroke); or, when ``travel`` is given (see
     :meth:`through`), through those plate travels (mm from first contact, increasing; t is the
@@ -143,9 +147,6 @@ class Press:
         """The load parameter's change over a plate travel of ``travel_mm``."""
         return travel_mm if self.travel is not None else travel_mm / self.stroke
 
-    def begin(self, load: Load, volume: Callable) -> Load:
-        return load
-
     def path(self, load: Load, contact_height: Callable, settings) -> Path:
         """The indenter lowered from first contact (``contact_height(indenter)``: its tip's
         height there, mm; the plate's height if it already touches) by the step's travel;
@@ -167,7 +168,7 @@ class Press:
 
 
 @dataclass(frozen=True)
-class Cycle:
+class Cycle(_Ramp):
     """Move the plate in time: travel ``travels`` (mm from first contact, any order: down and
     back up) at the instants ``times`` (s, increasing from 0), piecewise linear between them;
     each instant after the first is a recorded point (the load parameter t is the time). For a
@@ -200,9 +201,6 @@ class Cycle:
 
     def travel_at(self, t: float) -> float:
         return float(np.interp(t, self.times, self.travels))
-
-    def begin(self, load: Load, volume: Callable) -> Load:
-        return load
 
     def path(self, load: Load, contact_height: Callable, settings) -> Path:
         """The plate moved in time from first contact (the plate's height if it touches)."""
