@@ -8,7 +8,7 @@ import json
 import pytest
 
 from spsc.cad.geometry import preset
-from spsc.cli.design_file import design_chamber
+from spsc.cad.design_file import design_chamber
 from spsc.cli.main import build_parser
 from spsc.cli.sense import _check_chamber
 from spsc.core.errors import ParameterError

@@ -121,18 +121,18 @@ def test_the_pad_in_mujoco_holds_the_plate_where_its_curve_says(chamber_map):
         return float(np.interp(force, fs, ys))
 
     before, after = np.searchsorted(tr["t_s"], 0.59), -1
-    assert_allclose(tr["force_N"][[before, after]], 8.0, rtol=2e-3)
-    assert_allclose(tr["y_mm"][before], travel_for(8.0, 0.0), atol=0.02)
-    assert_allclose(tr["y_mm"][after], travel_for(8.0, 40_000.0), atol=0.02)
-    assert tr["y_mm"][after] > tr["y_mm"][before] + 0.05  # the soft mode gives way
-    assert tr["pressure_kPa"][after] < tr["pressure_kPa"][before]
+    assert_allclose(tr["force_N_1"][[before, after]], 8.0, rtol=2e-3)
+    assert_allclose(tr["travel_mm_1"][before], travel_for(8.0, 0.0), atol=0.02)
+    assert_allclose(tr["travel_mm_1"][after], travel_for(8.0, 40_000.0), atol=0.02)
+    assert tr["travel_mm_1"][after] > tr["travel_mm_1"][before] + 0.05  # the soft mode gives way
+    assert tr["pressure_kPa_1"][after] < tr["pressure_kPa_1"][before]
 
 
 def test_the_core_never_imports_mujoco():
     import subprocess
     import sys
 
-    code = ("import sys, spsc.virtual.chambers, spsc.virtual.plate, spsc.cli.main; "
+    code = ("import sys, spsc.virtual.chambers, spsc.virtual.plate, spsc.virtual.gripper, spsc.virtual.scene, spsc.cli.main; "
             "assert 'mujoco' not in sys.modules, 'mujoco imported'")
     subprocess.run([sys.executable, "-c", code], check=True)
 
@@ -148,17 +148,21 @@ def test_spsc_virtual_runs_the_example_scene_and_refuses_what_it_cannot(tmp_path
     assert main(["virtual", str(example), "--out", str(out), "--quiet"]) == 0
     import pandas as pd
 
-    df = pd.read_csv(out / "trace.csv")
+    df = pd.read_parquet(out / "trace.parquet")
     assert (out / "trace.png").stat().st_size > 20_000
     before, after = df[df.t_s < 0.99].iloc[-1], df.iloc[-1]
     assert after.valve_open and not before.valve_open
-    assert after.force_N == pytest.approx(8.0, rel=2e-3)
-    assert after.y_mm > before.y_mm and after.pressure_kPa < before.pressure_kPa
+    assert after.force_N_1 == pytest.approx(8.0, rel=2e-3)
+    assert after.travel_mm_1 > before.travel_mm_1
+    assert after.pressure_kPa_1 < before.pressure_kPa_1
     text = example.read_text()
     for change, says in ((text.replace('[scene]\nkind = "plate"\n', ""), "[scene]"),
-                         (text.replace('kind = "plate"', 'kind = "gripper"'), "scene.kind"),
+                         (text.replace('kind = "plate"', 'kind = "arm"'), "scene.kind"),
+                         (text.replace('kind = "plate"', 'kind = "gripper"'), "[press]"),
                          (text.replace("force = [[0, 0], [0.3, 8], [2, 8]]",
-                                       "profile = [[0, 0], [1, 3], [2, 3]]"), "force"),
+                                       "profile = [[0, 0], [1, 3], [2, 3]]\n"
+                                       "object_N_per_mm = 2").replace(
+                                           "max_travel_mm = 4.5", ""), "object_N_per_mm"),
                          (text + "\n[scene2]\n", "scene2")):
         bad = tmp_path / "bad.toml"
         bad.write_text(change)

@@ -140,7 +140,7 @@ def _geometry(args):
         if given:
             raise ParameterError("--" + given[0], getattr(args, given[0]),
                                  "not with --design (the design file is the chamber)")
-        from spsc.cli.design_file import design_chamber
+        from spsc.cad.design_file import design_chamber
 
         chamber = design_chamber(args.design)
         geometry = chamber.geometry

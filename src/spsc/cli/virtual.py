@@ -1,137 +1,197 @@
-"""``spsc virtual``: a chamber inside a robot simulator, headless (issue 50).
+"""``spsc virtual``: chambers inside a robot simulator, headless (issue 50).
 
-    spsc virtual SCENE.toml --out DIR [--quiet]
+    spsc virtual SCENE.toml --out DIR [--video] [--cache DIR] [--quiet]
 
 SCENE.toml is a scenario of ``spsc simulate`` (its ``[chamber]``, ``[circuit]`` with the valve,
-gas and sensor, timed ``[[events]]``, and a force-controlled ``[press] force = [[t_s, N], ...]``
-that becomes the actuator's push) with a ``[scene]`` table naming the MuJoCo scene: ``kind =
-"plate"`` (a plate on a damped slide pushed onto the pad, :mod:`spsc.virtual.plate`). The pad
-steps on its map (:mod:`spsc.virtual.chambers`) every MuJoCo step and pushes back. Writes
-DIR/trace.csv (t_s, y_mm, force_N, pressure_kPa, measured_kPa, valve_open) and DIR/trace.png.
-MuJoCo is the optional extra ``pip install spsc[sim]`` (``make``'s environment has it).
+gas and sensor, timed ``[[events]]``) with a ``[scene]`` table naming the MuJoCo scene
+(:mod:`spsc.virtual.scene`): ``kind = "plate"`` (a plate pressing one pad, by a force ``[press]
+force`` or along a travel ``[press] profile``) or ``kind = "gripper"`` (two jaws with SPSC pads
+grasping an ``[object]`` along a ``[grasp]``). The pads step on their map every MuJoCo step and
+push back. Writes DIR/trace.parquet (t_s, valve_open and per pad i travel_mm_i, force_N_i,
+pressure_kPa_i, sensor_kPa_i, ...), DIR/trace.png, DIR/scene.json and with ``--video``
+DIR/scene.mp4 (rendered offscreen). ``spsc sense DIR/trace.parquet --pressure-column
+sensor_kPa_1 ...`` reads a pad's trace back. MuJoCo is the optional extra ``pip install
+spsc[sim]`` (``make``'s environment has it). Exit 0; 1 when the scene stopped early (the
+trace so far written); 2 on invalid input (one line on stderr).
 """
 
 from __future__ import annotations
 
+import os
 import sys
 import time
+from pathlib import Path
 
-from spsc.core.errors import ParameterError
 from spsc.cli.options import add_quiet_option, check_output_dir
+from spsc.core.errors import ParameterError
 
 __all__ = ["register", "run"]
 
-#: the scenes there are
-SCENES = ("plate",)
+#: frames per second of --video
+FPS = 30
 
 
 def register(subparsers) -> None:
-    p = subparsers.add_parser("virtual", help="a chamber inside a MuJoCo scene, headless: "
-                              "its force on the scene, its sensor's trace",
-                              description=__doc__.split("\n\n")[0])
+    p = subparsers.add_parser("virtual", help="chambers inside a MuJoCo scene (a plate, a "
+                              "two-finger gripper), headless: their force on the scene, their "
+                              "sensors' traces", description=__doc__.split("\n\n")[0])
     p.add_argument("scene", metavar="SCENE.toml", help="a scenario of spsc simulate with a "
-                   "[scene] table (kind = \"plate\") and a force-controlled [press]")
-    p.add_argument("--out", required=True, metavar="DIR", help="trace.csv and trace.png here")
+                   "[scene] table (kind = \"plate\" | \"gripper\")")
+    p.add_argument("--out", required=True, metavar="DIR", help="trace.parquet, trace.png, "
+                   "scene.json (and scene.mp4) here")
+    p.add_argument("--video", action="store_true", help="render the scene offscreen to "
+                   f"DIR/scene.mp4 ({FPS} frames per second of scene)")
+    p.add_argument("--cache", metavar="DIR", default=None, help="where wall-model maps are "
+                   "kept (default: spsc-cache beside --out)")
     add_quiet_option(p)
     p.set_defaults(func=run)
 
 
-def _read(path):
-    """(the scenario without its [scene], the scene table) of SCENE.toml, checked."""
-    import tomllib
-    from pathlib import Path
-
-    from spsc.dynamics.profile import ForceProfile
-    from spsc.dynamics.scenario import parse_scenario
-
-    p = Path(path)
-    try:
-        doc = tomllib.loads(p.read_text(encoding="utf-8-sig"))
-    except OSError as exc:
-        raise ParameterError("scene", str(path), f"a readable TOML file ({exc.strerror})") \
-            from None
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError, RecursionError) as exc:
-        raise ParameterError("scene", p.name, f"valid TOML ({str(exc)[:80]})") from None
-    scene = doc.pop("scene", None)
-    if not isinstance(scene, dict):
-        raise ParameterError("scene", p.name, "a [scene] table with kind = "
-                             + " | ".join(f'"{s}"' for s in SCENES))
-    if scene.get("kind") not in SCENES:
-        raise ParameterError("scene.kind", scene.get("kind"), " | ".join(SCENES))
-    extra = sorted(set(scene) - {"kind"})
-    if extra:
-        raise ParameterError(f"scene.{extra[0]}", scene[extra[0]], "only kind (the press is "
-                             "[press] force)")
-    sc = parse_scenario(doc)
-    if not isinstance(sc.press, ForceProfile):
-        raise ParameterError("press", "profile", "a force-controlled press, [press] force = "
-                             "[[t_s, N], ...]: the plate scene's actuator pushes with it")
-    if sc.triggers or sc.stiffness is not None:
-        raise ParameterError("events", "pressure triggers or [stiffness]", "timed valve events "
-                             "only in a scene")
-    if sc.leak is not None:
-        raise ParameterError("circuit.leak", sc.leak.describe(), "none in a scene (the "
-                             "virtual chambers are sealed; spsc simulate runs a leak)")
-    return sc, scene
-
-
 def run(args) -> int:
-    from pathlib import Path
-
-    sc, scene = _read(args.scene)
-    out = check_output_dir("--out", args.out)
-    try:
-        import mujoco  # noqa: F401  (the extra: refused before any work when missing)
-    except ImportError:
-        raise ParameterError("scene", "mujoco", "the MuJoCo extra installed (pip install "
-                             "spsc[sim])") from None
     from spsc.dynamics.circuit import Circuit
     from spsc.dynamics.simulate import chamber_map_for
     from spsc.virtual.chambers import VirtualChambers
-    from spsc.virtual.plate import press_plate
+    from spsc.virtual.gripper import SceneStopped, mujoco_module
+    from spsc.virtual.scene import read_scene
 
+    scene = read_scene(args.scene)
+    out = Path(check_output_dir("--out", args.out))
+    if args.cache is not None:
+        check_output_dir("--cache", args.cache)
+    if args.video:  # offscreen, no display: EGL unless the user picked a backend
+        os.environ.setdefault("MUJOCO_GL", "egl")
+    mujoco_module()  # the extra: refused before any work when missing
+    video = _Video(out / "scene.mp4") if args.video else None
+    sc = scene.scenario
+    cache = Path(args.cache) if args.cache else out.absolute().parent / "spsc-cache"
     t0 = time.perf_counter()
-    m = chamber_map_for(sc)
-    pad = VirtualChambers(m, Circuit(sc.setup_kPa, sc.reservoir_mm3, sc.valve, sc.gas),
-                          sensor=sc.sensor, y0_mm=m.y_range[0], valve_open=sc.valve_open)
+    m = chamber_map_for(sc, cache_dir=cache)
+    count = 2 if scene.kind == "gripper" else 1
+    pads = VirtualChambers(m, Circuit(sc.setup_kPa, sc.reservoir_mm3, sc.valve, sc.gas),
+                           count=count, sensor=sc.sensor, y0_mm=m.y_range[0],
+                           valve_open=sc.valve_open)
     t_map = time.perf_counter() - t0
-    trace = press_plate(pad, lambda t: float(sc.press.force(t)), sc.press.duration,
-                        valve_events=sc.events)
+    stopped = None
+    try:
+        trace = _run(scene, pads, video)
+    except SceneStopped as exc:
+        trace, stopped = exc.trace, str(exc)
+    finally:
+        if video is not None:
+            video.close()
     seconds = time.perf_counter() - t0 - t_map
-    Path(out).mkdir(parents=True, exist_ok=True)
-    _write(trace, Path(out))
-    i = -1
-    print(f"spsc virtual: {scene['kind']} scene, {sc.press.duration:g} s in {seconds:.1f} s "
-          f"(the map {t_map:.1f} s); at the end: travel {trace['y_mm'][i]:.3f} mm, force "
-          f"{trace['force_N'][i]:.3f} N, pressure {trace['pressure_kPa'][i]:.2f} kPa "
-          f"(read {trace['measured_kPa'][i]:.2f})")
-    print(f"written: {Path(out) / 'trace.csv'}, {Path(out) / 'trace.png'}")
+    out.mkdir(parents=True, exist_ok=True)
+    _write(scene, trace, out, {"map_s": t_map, "scene_s": seconds, "stopped": stopped,
+                               "source": str(args.scene)})
+    if stopped:
+        print(f"spsc virtual: stopped: {stopped}; the trace so far is in {out}",
+              file=sys.stderr)
+        return 1
+    if not args.quiet:
+        print(_summary(scene, trace, seconds, t_map))
+        print(f"written: {out / 'trace.parquet'}, {out / 'trace.png'}, {out / 'scene.json'}"
+              + (f", {out / 'scene.mp4'}" if video else ""))
     return 0
 
 
-def _write(trace: dict, out) -> None:
-    import matplotlib
+def _run(scene, pads, video) -> dict:
+    from spsc.dynamics.profile import PressProfile
+    from spsc.virtual.gripper import run_gripper
+    from spsc.virtual.plate import press_plate
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    sc = scene.scenario
+    every = max(1, int(round(1.0 / (FPS * sc.dt))))
+    frame = video.frame if video else None
+    if scene.kind == "gripper":
+        g = sc.chamber.geometry()
+        return run_gripper(pads, scene.obj, scene.grasp, pad_mm=(g.h, g.w, g.w + g.l),
+                           valve_events=sc.events, frame=frame, frame_every=every)
+    if isinstance(sc.press, PressProfile):
+        return press_plate(pads, 0.0, sc.press.duration, valve_events=sc.events,
+                           travel_mm=lambda t: float(sc.press.y(t)))
+    return press_plate(pads, lambda t: float(sc.press.force(t)), sc.press.duration,
+                       valve_events=sc.events)
+
+
+_PROBE = '<mujoco><visual><global offwidth="640" offheight="480"/></visual></mujoco>'
+
+
+class _Video:
+    """Frames rendered offscreen (MuJoCo's renderer) into an MP4 (imageio-ffmpeg)."""
+
+    def __init__(self, path: Path, size=(640, 480)):
+        try:
+            import imageio_ffmpeg
+        except ImportError:
+            raise ParameterError("--video", "imageio-ffmpeg", "the sim extra installed (pip "
+                                 "install spsc[sim])") from None
+        self.path, self.size, self._renderer, self._writer = path, size, None, None
+        self._ffmpeg = imageio_ffmpeg
+        self._renderer_for(_PROBE).close()  # refused before the scene runs, not at its end
+
+    def _renderer_for(self, model):
+        mj = sys.modules["mujoco"]
+        if isinstance(model, str):
+            model = mj.MjModel.from_xml_string(model)
+        try:
+            return mj.Renderer(model, self.size[1], self.size[0])
+        except Exception as exc:  # no OpenGL context here
+            raise ParameterError("--video", "offscreen rendering", "an OpenGL context (EGL "
+                                 "or OSMesa: MUJOCO_GL=egl|osmesa; "
+                                 f"{str(exc)[:60]})") from None
+
+    def frame(self, model, data) -> None:
+        mj = sys.modules["mujoco"]
+        if self._renderer is None:
+            self._renderer = self._renderer_for(model)
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._writer = self._ffmpeg.write_frames(str(self.path), self.size, fps=FPS,
+                                                     macro_block_size=1)
+            self._writer.send(None)
+        cam = mj.mj_name2id(model, mj.mjtObj.mjOBJ_CAMERA, "side")
+        self._renderer.update_scene(data, camera=cam if cam >= 0 else -1)
+        self._writer.send(self._renderer.render().tobytes())
+
+    def close(self) -> None:
+        if self._writer is not None:
+            self._writer.close()
+        if self._renderer is not None:
+            self._renderer.close()
+
+
+def _summary(scene, trace, seconds, t_map) -> str:
+    d = scene.duration_s
+    head = (f"spsc virtual: {scene.kind} scene, {d:g} s in {seconds:.1f} s "
+            f"({d / max(seconds, 1e-9):.2f}x real time; the map {t_map:.1f} s)")
+    if scene.kind == "plate":
+        return (head + f"; at the end: travel {trace['travel_mm_1'][-1]:.3f} mm, force "
+                f"{trace['force_N_1'][-1]:.3f} N, pressure {trace['pressure_kPa_1'][-1]:.2f} kPa "
+                f"(read {trace['sensor_kPa_1'][-1]:.2f})")
+    f = trace["force_N_1"] + trace["force_N_2"]
+    slip = trace["slipping_1"].astype(bool) | trace["slipping_2"].astype(bool)
+    return (head + f"; grip force up to {f.max() / 2:.2f} N per pad, the object lifted "
+            f"{trace['object_z_mm'].max():.1f} mm, slipping {slip.mean() * 100:.0f} % of "
+            f"the time, pad 1 up to {trace['pressure_kPa_1'].max():.2f} kPa")
+
+
+def _write(scene, trace: dict, out: Path, info: dict) -> None:
     import pandas as pd
 
-    pd.DataFrame(trace).to_csv(out / "trace.csv", index=False)
-    fig, ax = plt.subplots(3, 1, figsize=(8, 7), sharex=True, constrained_layout=True)
-    t = trace["t_s"]
-    ax[0].plot(t, trace["y_mm"])
-    ax[0].set_ylabel("plate travel (mm)")
-    ax[1].plot(t, trace["force_N"])
-    ax[1].set_ylabel("pad force (N)")
-    ax[2].plot(t, trace["measured_kPa"], ".", ms=1.5, color="0.6", label="sensor")
-    ax[2].plot(t, trace["pressure_kPa"], label="true")
-    ax[2].set_ylabel("pressure (kPa)")
-    ax[2].set_xlabel("time (s)")
-    ax[2].legend(frameon=False)
-    for a in ax:
-        a.grid(alpha=0.3)
-        for x in t[1:][trace["valve_open"][1:] != trace["valve_open"][:-1]]:
-            a.axvline(x, color="C3", lw=0.8, ls="--")
-    fig.savefig(out / "trace.png", dpi=110)
-    plt.close(fig)
-    sys.stdout.flush()
+    from spsc.core.jsonio import write_json
+    from spsc.core.provenance import provenance
+
+    pd.DataFrame(trace).to_parquet(out / "trace.parquet", index=False)
+    sc, code = scene.scenario, provenance()
+    write_json(out / "scene.json", {
+        "kind": scene.kind, "duration_s": scene.duration_s, "chamber": dict(sc.chamber.params),
+        "material": sc.chamber.material, "model": sc.chamber.model, "setup_kPa": sc.setup_kPa,
+        "reservoir_mm3": sc.reservoir_mm3, "valve_events": [list(e) for e in sc.events],
+        "object": None if scene.obj is None else {
+            "shape": scene.obj.shape, "size_mm": list(scene.obj.size_mm),
+            "mass_g": scene.obj.mass_g,
+            "stiffness_N_per_mm": scene.obj.contact.object_N_per_mm,
+            "friction": scene.obj.contact.mu}, **info,
+        "code": {"commit": code.commit, "clean": code.clean, "describe": code.describe()}})
+    from spsc.virtual.figure import scene_figure
+
+    scene_figure(scene.kind, trace, out / "trace.png")

@@ -317,7 +317,8 @@ def tolerance_cases(f, tmp) -> list[Case]:
 
 def virtual_cases(f, tmp) -> list[Case]:
     """spsc virtual (issue 50): scene files without a scene, with an unknown one, with a press
-    the plate cannot take, unreadable; --out an existing file."""
+    the plate cannot take, unreadable; gripper scenes with a bad object, grasp, valve schedule,
+    design or chamber outside the surrogate; --out an existing file."""
     tmp = Path(tmp)
     base = ('[chamber]\ntype = "B"\nl = 0\nmodel = "surrogate"\n[circuit]\nsetup_kPa = 40\n'
             'reservoir_mm3 = 40000\nvalve = { C = 0.06 }\n')
@@ -325,15 +326,28 @@ def virtual_cases(f, tmp) -> list[Case]:
     files = {"noscene.toml": base + force,
              "kind.toml": base + force + '[scene]\nkind = "gripper"\n',
              "extra.toml": base + force + '[scene]\nkind = "plate"\nmass = 1\n',
-             "profile.toml": base + '[press]\nprofile = [[0, 0], [1, 3]]\n[scene]\n'
-                             'kind = "plate"\n',
+             "spring.toml": base + '[press]\nprofile = [[0, 0], [1, 3]]\nobject_N_per_mm = 2\n'
+                            '[scene]\nkind = "plate"\n',
              "broken.toml": "[scene\n"}
+    grip = base + '[scene]\nkind = "gripper"\n[grasp]\nopening_mm = [[0, 60], [1, 25]]\n'
+    gripper = {  # each names its key
+        "object.shape": grip + '[object]\nshape = "torus"\n',
+        "object.stiffness_N_per_mm": grip + '[object]\nstiffness_N_per_mm = "soft"\n',
+        "grasp.opening_mm": base + '[scene]\nkind = "gripper"\n[grasp]\nlift_mm = [[0, 0]]\n',
+        "events[0].t": grip + '[[events]]\nt = 30\nvalve = "open"\n',
+        "design": grip.replace('type = "B"\nl = 0', 'design = "none.design.json"'),
+        "chamber.l": grip.replace("l = 0", "l = 3"),
+        "[press]": grip + force}
     for name, text in files.items():
         (tmp / f"scene-{name}").write_text(text, encoding="utf-8")
     good = tmp / "scene-good.toml"
     good.write_text(base + force + '[scene]\nkind = "plate"\n', encoding="utf-8")
     cases = [Case(("virtual", str(tmp / f"scene-{name}"), "--out", str(tmp / "virtual")),
                   f"scene file {name}", "scene", "input file") for name in files]
+    for i, (key, text) in enumerate(gripper.items()):
+        (tmp / f"grip-{i}.toml").write_text(text, encoding="utf-8")
+        cases.append(Case(("virtual", str(tmp / f"grip-{i}.toml"), "--out", str(tmp / "virtual")),
+                          f"gripper scene: bad {key}", key, "input file"))
     cases += [Case(("virtual", str(tmp / "missing.toml"), "--out", str(tmp / "virtual")),
                    "missing scene file", "scene", "input file"),
               Case(("virtual", str(good), "--out", str(f["file"])), "--out an existing file",

@@ -33,6 +33,8 @@ _MM3 = 1e-9
 #: millisecond time constant; its flow is linearly implicit (stable at any step) and first
 #: order, 0.02 kPa off the integrator at the valve's opening with 0.1 ms, 0.19 kPa with 1 ms
 SUBSTEP_S = 1e-4
+#: the valve's two sides this close (kPa) take one implicit step per host step, not substeps
+SETTLED_KPA = 0.05
 #: the map's table: travel step (mm) and pressure levels
 TABLE_DY_MM, TABLE_LEVELS = 0.01, 129
 
@@ -115,8 +117,10 @@ class VirtualChambers:
         for _ in range(6):
             v, dv = self.table.lookup(self.table.V, y, p)
             g = (p * 1e3 + _PA) * v - target
-            dg = 1e3 * v + (p * 1e3 + _PA) * dv
-            p = p - g / dg
+            step = g / (1e3 * v + (p * 1e3 + _PA) * dv)
+            p = p - step
+            if np.abs(step).max() < 1e-9:  # kPa: converged (quadratically, from the last P)
+                break
         return p
 
     def _flow(self, pc_pa, pr_pa):
@@ -183,23 +187,38 @@ class VirtualChambers:
         if np.any(y1 < lo - 1e-9) or np.any(y1 > hi + 1e-9):
             raise ValueError(f"plate travel outside the map's {lo:.3g} to {hi:.3g} mm")
         self.valve = np.broadcast_to(np.asarray(valve_open, bool), (self.count,)).copy()
-        # substeps only while a valve is open (its flow is the stiff part)
-        k = max(1, int(math.ceil(dt / self.substep_s - 1e-9))) if self.valve.any() and \
-            self.vr > 0 else 1
+        # substeps only while a valve is open with the two sides apart (its flow is the
+        # stiff part; once they have met, the implicit step follows the slow flow a plate's
+        # motion drives as well as the substeps do)
+        k = max(1, int(math.ceil(dt / self.substep_s - 1e-9))) if self._flowing() else 1
         y0 = self.y.copy()
         for s in range(1, k + 1):
             self._substep(y0 + (y1 - y0) * s / k, dt / k)
         self.t += dt
         return self.read()
 
+    def _flowing(self) -> bool:
+        if self.vr <= 0 or not self.valve.any():
+            return False
+        pr = (self.mr * self.gas.R * self.tr / self.vr - _PA) / 1e3
+        return bool(np.abs(np.where(self.valve, pr - self.p, 0.0)).max() > SETTLED_KPA)
+
+    def force_at(self, y_mm):
+        """(force N, stiffness N/mm) each chamber would have at the travels ``y_mm`` now,
+        its gas's mass and temperature held (no step taken): for a host that solves its
+        contact against the chambers."""
+        y = np.clip(np.broadcast_to(np.asarray(y_mm, float), (self.count,)),
+                    *self.table.y_range)
+        p = self._pressure(y, self.mc, self.tc, self.p)
+        f, _ = self.table.lookup(self.table.F, y, p)
+        y2 = np.minimum(y + 0.02, self.table.y_range[1])
+        f2, _ = self.table.lookup(self.table.F, y2, self._pressure(y2, self.mc, self.tc, p))
+        return f, np.where(y2 > y, (f2 - f) / np.maximum(y2 - y, 1e-12), 0.0)
+
     def read(self) -> dict:
         """What the chambers show now (see :meth:`step`)."""
         f, _ = self.table.lookup(self.table.F, self.y, self.p)
-        dy = 0.02
-        y2 = np.minimum(self.y + dy, self.table.y_range[1])
-        p2 = self._pressure(y2, self.mc, self.tc, self.p)
-        f2, _ = self.table.lookup(self.table.F, y2, p2)
-        stiff = np.where(y2 > self.y, (f2 - f) / np.maximum(y2 - self.y, 1e-12), 0.0)
+        _, stiff = self.force_at(self.y)
         pr = (self.mr * self.gas.R * self.tr / self.vr - _PA) / 1e3 if self.vr > 0 else \
             np.zeros(self.count)
         return {"force_N": f, "pressure_kPa": self.p.copy(), "measured_kPa": self._sense(),

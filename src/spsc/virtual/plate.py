@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from spsc.core.errors import ParameterError
+from .gripper import SceneStopped, mujoco_module
 
 __all__ = ["PLATE_XML", "press_plate"]
 
@@ -27,29 +27,30 @@ PLATE_XML = """
       <geom type="box" size="0.02 0.02 0.002" mass="0.05"/>
     </body>
   </worldbody>
-  <actuator><motor name="press" joint="z" gear="1"/></actuator>
+  <actuator>{actuator}</actuator>
 </mujoco>
 """
+#: the press as a force (N) on the plate, or its travel on a position servo (20 N/mm: the
+#: 50 g plate rings at 100 Hz, well inside a 1 ms step's stable range)
+MOTOR = '<motor name="press" joint="z" gear="1"/>'
+SERVO = '<position name="press" joint="z" kp="2e4" kv="40"/>'
 
 
-def _mujoco():
-    try:
-        import mujoco
-    except ImportError:
-        raise ParameterError("scene", "mujoco", "the MuJoCo extra installed (pip install "
-                             "spsc[sim]; make's environment has it)") from None
-    return mujoco
-
-
-def press_plate(chambers, force_N, t_end_s: float, *, valve_events=(), z0_mm: float = 0.5):
+def press_plate(chambers, force_N, t_end_s: float, *, valve_events=(), z0_mm: float = 0.5,
+                travel_mm=None):
     """Run the plate scene: the actuator pushes down with ``force_N(t)`` (N, a number or a
-    function of t s), the pad (chamber 0 of ``chambers``,
+    function of t s) — or, with ``travel_mm(t)`` (mm past first contact) given, a position
+    servo drives the plate along it (``force_N`` unused) — the pad (chamber 0 of ``chambers``,
     :class:`~spsc.virtual.chambers.VirtualChambers`) pushes back with its force at the
     plate's travel; ``valve_events`` ((t_s, open) pairs) switch its valve. The plate starts
-    ``z0_mm`` above first contact. Returns the trace: ``t_s``, ``y_mm`` (plate travel),
-    ``force_N`` (the pad's), ``pressure_kPa``, ``measured_kPa``, ``valve_open``."""
-    mj = _mujoco()
-    model = mj.MjModel.from_xml_string(PLATE_XML)
+    ``z0_mm`` above first contact. Returns the trace: ``t_s``, ``valve_open``, and for the
+    pad (chamber 1) ``travel_mm_1`` (the plate's travel past first contact), ``force_N_1``,
+    ``pressure_kPa_1``, ``sensor_kPa_1`` (as read), ``stiffness_N_per_mm_1``. Raises
+    :class:`~spsc.virtual.gripper.SceneStopped` (the trace so far kept) when the plate
+    presses past the pad's map."""
+    mj = mujoco_module()
+    model = mj.MjModel.from_xml_string(PLATE_XML.format(
+        actuator=MOTOR if travel_mm is None else SERVO))
     data = mj.MjData(model)
     data.qpos[0] = z0_mm * 1e-3
     dt = model.opt.timestep
@@ -62,17 +63,24 @@ def press_plate(chambers, force_N, t_end_s: float, *, valve_events=(), z0_mm: fl
         t = k * dt
         while events and events[0][0] <= t + 1e-12:
             valve = bool(events.pop(0)[1])
+        mj.mj_step1(model, data)
         y = -data.qpos[0] * 1e3  # mm pressed past first contact
         if y > y_hi:
-            raise ParameterError("press", f"{y:.3g} mm", f"within the pad's map (at most "
-                                 f"{y_hi:.3g} mm): a smaller force")
+            raise SceneStopped(f"the plate pressed {y:.3g} mm at t = {t:.3f} s, past the "
+                               f"pad's map ({y_hi:.3g} mm): a smaller force or a deeper "
+                               "press.max_travel_mm", _columns(rows))
         out = chambers.step(max(y, y_lo), valve, dt)
         f = float(out["force_N"][0]) if y > y_lo else 0.0
         data.qfrc_applied[0] = f  # the pad pushes the plate up
-        data.ctrl[0] = -push(t)
-        mj.mj_step(model, data)
-        rows.append((t + dt, y, f, out["pressure_kPa"][0], out["measured_kPa"][0], valve))
-    cols = list(zip(*rows))
-    return {"t_s": np.array(cols[0]), "y_mm": np.array(cols[1]), "force_N": np.array(cols[2]),
-            "pressure_kPa": np.array(cols[3]), "measured_kPa": np.array(cols[4]),
-            "valve_open": np.array(cols[5], bool)}
+        data.ctrl[0] = -push(t) if travel_mm is None else -1e-3 * float(travel_mm(t))
+        rows.append((t, valve, y, f, out["pressure_kPa"][0], out["measured_kPa"][0],
+                     out["stiffness_N_per_mm"][0]))
+        mj.mj_step2(model, data)
+    return _columns(rows)
+
+
+def _columns(rows) -> dict:
+    names = ("t_s", "valve_open", "travel_mm_1", "force_N_1", "pressure_kPa_1",
+             "sensor_kPa_1", "stiffness_N_per_mm_1")
+    return {k: np.array([r[j] for r in rows], bool if k == "valve_open" else float)
+            for j, k in enumerate(names)}
