@@ -66,8 +66,6 @@ class GraspObject:
 
     def mjcf_geom(self) -> str:
         """Its MuJoCo geom (SI: half sizes in m, mass in kg)."""
-        s = [0.5e-3 * v for v in self.size_mm]
-        size = {"box": f"{s[0]:g} {s[1]:g} {s[2]:g}", "cylinder": f"{s[0]:g} {s[1]:g}",
-                "sphere": f"{s[0]:g}"}[self.shape]
+        size = " ".join(f"{0.5e-3 * v:g}" for v in self.size_mm)  # MuJoCo's half sizes
         return (f'<geom name="object" type="{self.shape}" size="{size}" '
                 f'mass="{self.mass_g * 1e-3:g}" rgba="0.85 0.55 0.2 1" friction="0.6"/>')
