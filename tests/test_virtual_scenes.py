@@ -163,7 +163,8 @@ def test_a_heavy_slippery_object_slips_out(tmp_path):
     (('model = "wall"', 'model = "surrogate"\nl = 3'), "chamber.l"),
     (('shape = "box"', 'shape = "torus"'), "object.shape"),
     (("duration_s = 4.5", "duration_s = 4.5\nspeed = 2"), "grasp.speed"),
-    (("[object]", "[press]\nforce = [[0, 1]]\n[object]"), "[press]")])
+    (("[object]", "[press]\nforce = [[0, 1]]\n[object]"), "[press]"),
+    (("duration_s = 4.5", "duration_s = 4.5\n[output]\ndt = 0.01"), "output.dt")])
 def test_a_bad_scene_is_refused_in_one_line_before_it_runs(tmp_path, capsys, change, says):
     from spsc.cli.main import main
 

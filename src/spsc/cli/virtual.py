@@ -105,12 +105,12 @@ def _run(scene, pads, video) -> dict:
     if scene.kind == "gripper":
         g = sc.chamber.geometry()
         return run_gripper(pads, scene.obj, scene.grasp, pad_mm=(g.h, g.w, g.w + g.l),
-                           valve_events=sc.events, frame=frame, frame_every=every)
+                           valve_events=sc.events, frame=frame, frame_every=every, dt=sc.dt)
     if isinstance(sc.press, PressProfile):
         return press_plate(pads, 0.0, sc.press.duration, valve_events=sc.events,
-                           travel_mm=lambda t: float(sc.press.y(t)))
+                           travel_mm=lambda t: float(sc.press.y(t)), dt=sc.dt)
     return press_plate(pads, lambda t: float(sc.press.force(t)), sc.press.duration,
-                       valve_events=sc.events)
+                       valve_events=sc.events, dt=sc.dt)
 
 
 _PROBE = '<mujoco><visual><global offwidth="640" offheight="480"/></visual></mujoco>'

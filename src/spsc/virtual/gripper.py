@@ -147,10 +147,11 @@ _COLUMNS = ("travel_mm", "overlap_mm", "force_N", "pad_force_N", "pressure_kPa",
 
 
 def run_gripper(pads, obj: GraspObject, grasp: Grasp, *, pad_mm: tuple, valve_events=(),
-                frame=None, frame_every: int = 0) -> dict:
+                frame=None, frame_every: int = 0, dt: float = 1e-3) -> dict:
     """Run the grasp: ``pads`` (two :class:`VirtualChambers`, the pads of jaws 1 and 2),
     the object ``obj``, the motion ``grasp``; ``valve_events`` ((t_s, open) pairs) switch both
-    pads' valves; ``frame(model, data)`` is called every ``frame_every`` steps (a renderer).
+    pads' valves; ``frame(model, data)`` is called every ``frame_every`` steps (a renderer);
+    ``dt`` the physics step (s).
     Returns the trace: ``t_s``, ``valve_open``, ``opening_mm`` (the jaws' faces apart),
     ``lift_mm``, ``object_z_mm`` (its centre's rise above its rest), and per pad i
     ``travel_mm_i`` (the pad's own travel past first contact), ``overlap_mm_i`` (the object's
@@ -158,7 +159,7 @@ def run_gripper(pads, obj: GraspObject, grasp: Grasp, *, pad_mm: tuple, valve_ev
     ``pad_force_N_i`` (the chamber's), ``pressure_kPa_i``, ``sensor_kPa_i`` (as read),
     ``stiffness_N_per_mm_i``, ``slipping_i``. Raises :class:`SceneStopped` (with the trace so
     far) when a pad would press past its map."""
-    sim = _Hand(pads, obj, grasp, pad_mm)
+    sim = _Hand(obj, grasp, pad_mm, dt)
     mj, model, data = sim.mj, sim.model, sim.data
     dt = model.opt.timestep
     c, (y_lo, y_hi) = obj.contact, pads.table.y_range
@@ -217,9 +218,9 @@ class _Hand:
     #: each pad pushes the object along its normal
     NORMAL = np.array([[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]])
 
-    def __init__(self, pads, obj, grasp, pad_mm):
+    def __init__(self, obj, grasp, pad_mm, dt):
         mj = self.mj = mujoco_module()
-        self.model = mj.MjModel.from_xml_string(gripper_xml(obj, pad_mm, grasp))
+        self.model = mj.MjModel.from_xml_string(gripper_xml(obj, pad_mm, grasp, dt))
         self.data = mj.MjData(self.model)
         self.obj, self.half_h = obj, 0.5 * pad_mm[2]
         self.ids = {n: mj.mj_name2id(self.model, mj.mjtObj.mjOBJ_BODY, n)

@@ -20,7 +20,7 @@ __all__ = ["PLATE_XML", "press_plate"]
 #: a second, gravity off (the actuator's force is the press), 1 ms steps
 PLATE_XML = """
 <mujoco model="spsc-plate">
-  <option timestep="0.001" gravity="0 0 0" integrator="implicitfast"/>
+  <option timestep="{dt}" gravity="0 0 0" integrator="implicitfast"/>
   <worldbody>
     <body name="plate" pos="0 0 0">
       <joint name="z" type="slide" axis="0 0 1" damping="20"/>
@@ -37,7 +37,7 @@ SERVO = '<position name="press" joint="z" kp="2e4" kv="40"/>'
 
 
 def press_plate(chambers, force_N, t_end_s: float, *, valve_events=(), z0_mm: float = 0.5,
-                travel_mm=None):
+                travel_mm=None, dt: float = 1e-3):
     """Run the plate scene: the actuator pushes down with ``force_N(t)`` (N, a number or a
     function of t s) — or, with ``travel_mm(t)`` (mm past first contact) given, a position
     servo drives the plate along it (``force_N`` unused) — the pad (chamber 0 of ``chambers``,
@@ -47,10 +47,10 @@ def press_plate(chambers, force_N, t_end_s: float, *, valve_events=(), z0_mm: fl
     pad (chamber 1) ``travel_mm_1`` (the plate's travel past first contact), ``force_N_1``,
     ``pressure_kPa_1``, ``sensor_kPa_1`` (as read), ``stiffness_N_per_mm_1``. Raises
     :class:`~spsc.virtual.gripper.SceneStopped` (the trace so far kept) when the plate
-    presses past the pad's map."""
+    presses past the pad's map. ``dt``: the physics step (s)."""
     mj = mujoco_module()
     model = mj.MjModel.from_xml_string(PLATE_XML.format(
-        actuator=MOTOR if travel_mm is None else SERVO))
+        actuator=MOTOR if travel_mm is None else SERVO, dt=f"{dt:g}"))
     data = mj.MjData(model)
     data.qpos[0] = z0_mm * 1e-3
     dt = model.opt.timestep

@@ -25,6 +25,9 @@ malformed entry a one-line :class:`~spsc.core.errors.ParameterError` naming it.
     duration_s = 3.0
     max_travel_mm = 4         # the pads' map's depth
 
+    [output]
+    dt = 0.001                # the physics step (s, at most 0.002), the trace's rows
+
 The plate scene presses with ``[press] force = [[t_s, N], ...]`` (the plate's actuator) or
 along ``[press] profile = [[t_s, y_mm], ...]`` (the plate on a stiff position servo).
 """
@@ -45,6 +48,8 @@ from .objects import GraspObject
 
 __all__ = ["Scene", "SCENES", "read_scene", "parse_scene"]
 
+#: the longest physics step a scene takes (s)
+MAX_DT_S = 2e-3
 #: the scenes there are
 SCENES = ("plate", "gripper")
 _OBJECT = {"shape", "size_mm", "mass_g", "stiffness_N_per_mm", "friction", "shear_N_per_mm",
@@ -158,6 +163,9 @@ def parse_scene(doc: dict, base: Path = Path(".")) -> Scene:
                 raise ParameterError(f"[{name}]", "in a plate scene", "only in kind = "
                                      "\"gripper\"")
     sc = parse_scenario(doc)
+    if sc.dt > MAX_DT_S:
+        raise ParameterError("output.dt", sc.dt, f"<= {MAX_DT_S:g} s in a scene (the physics "
+                             "step: the jaws' and the plate's servos ring at 100-120 Hz)")
     if scene["kind"] == "plate" and not isinstance(sc.press, (ForceProfile, PressProfile)):
         raise ParameterError("press.object_N_per_mm", "in a plate scene", "a rigid plate: "
                              "force = [[t_s, N], ...] or profile = [[t_s, y_mm], ...]")
