@@ -188,3 +188,27 @@ def test_a_scene_that_presses_past_the_map_stops_and_keeps_its_trace(tmp_path, c
     import pandas as pd
 
     assert len(pd.read_parquet(tmp_path / "w" / "trace.parquet")) > 100
+
+
+def test_a_scene_takes_its_chamber_from_a_design_file(tmp_path):
+    """[chamber] design = FILE (beside the scene file): the design's seven parameters, and
+    the material of spsc design's design.json unless the scene names one."""
+    from spsc.cad.geometry import PARAMS, preset
+    from spsc.virtual.scene import read_scene
+
+    dome = preset("C", l=0)
+    (tmp_path / "designs").mkdir()
+    (tmp_path / "designs" / "design.json").write_text(json.dumps({
+        "schema": "spsc.design", "schema_version": 1,
+        "best": {"trial": 3, "params": {**dome.as_dict(), "material": "elastic50a",
+                                        "pressure": 25.0, "reservoir": 0.0}}}))
+    text = (SCENES / "gripper-soft.toml").read_text().replace(
+        'type = "D"\nmaterial = "tpu60a"\nmodel = "wall"',
+        'design = "designs/design.json"\nmodel = "surrogate"')
+    (tmp_path / "s.toml").write_text(text)
+    sc = read_scene(tmp_path / "s.toml").scenario
+    assert {k: getattr(sc.chamber.geometry(), k) for k in PARAMS} == dome.as_dict()
+    assert sc.chamber.material == "elastic50a"
+    (tmp_path / "t.toml").write_text(text.replace('model = "surrogate"',
+                                                  'model = "surrogate"\nmaterial = "tpu60a"'))
+    assert read_scene(tmp_path / "t.toml").scenario.chamber.material == "tpu60a"
