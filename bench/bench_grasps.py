@@ -60,6 +60,9 @@ def grasp_doc(rng, travel_for) -> dict:
     k = float(np.exp(rng.uniform(np.log(0.3), np.log(30))))
     grip = rng.uniform(1.0, 6.0)
     squeeze = travel_for(grip) + grip / k  # each side: the pad's travel and the object's
+    while width - 2 * squeeze < 6.0:  # a soft, narrow object: squeezed less
+        grip *= 0.8
+        squeeze = travel_for(grip) + grip / k
     close, lift0 = rng.uniform(0.6, 1.2), rng.uniform(1.3, 1.6)
     hold = lift0 + 0.6
     down = hold + rng.uniform(1.0, 1.6)

@@ -54,8 +54,6 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    from spsc.core.progress import progress_bar
-
     from spsc.dynamics.output import write
     from spsc.dynamics.scenario import read_scenario
     from spsc.dynamics.simulate import simulate
@@ -76,23 +74,7 @@ def run(args) -> int:
     material(scenario.chamber.material)
     cache = Path(args.cache) if args.cache else out.absolute().parent / "spsc-cache"
     quiet = args.quiet
-    bars = {}
-
-    def map_progress(done, total):
-        if not quiet:
-            if "map" not in bars:
-                bars["map"] = progress_bar(total=total, desc="chamber map", unit="level",
-                                           file=sys.stderr, leave=False)
-            bars["map"].update(done - bars["map"].n)
-
-    def progress(t, t_end):
-        if not quiet:
-            if "run" not in bars:
-                bars["run"] = progress_bar(total=round(t_end, 6), desc="spsc simulate",
-                                           unit="s", file=sys.stderr, leave=False,
-                                   bar_format="{l_bar}{bar}| {n:.3g}/{total:.3g} s")
-            bars["run"].update(round(t, 6) - bars["run"].n)
-
+    bars, map_progress, progress = _bars(args, scenario)
     if args.bode:
         return _bode(scenario, out, cache, map_progress, bars, quiet, where)
     if args.study:
@@ -105,14 +87,43 @@ def run(args) -> int:
             bar.close()
     files = write(sim, out, csv=args.csv)
     if not quiet:
-        print(f"spsc simulate: {len(sim.trace)} samples in {sim.seconds['integrate']:.2f} s "
-              f"(chamber map {sim.seconds['map']:.2f} s) -> " + ", ".join(f.name for f in files),
-              file=sys.stderr)
+        took = (f"the wall stepped in time {sim.seconds['wall']:.2f} s" if "wall" in sim.seconds
+                else f"{sim.seconds['integrate']:.2f} s (chamber map {sim.seconds['map']:.2f} s)")
+        print(f"spsc simulate: {len(sim.trace)} samples in {took} -> "
+              + ", ".join(f.name for f in files), file=sys.stderr)
     if not sim.complete:
         print(f"spsc {VERB}: {sim.message}", file=sys.stderr)
         return 1
     return 0
 
+
+
+def _bars(args, scenario):
+    """(the open bars, ``map_progress(done, total)``, ``progress(t, t_end)``): the chamber
+    map's levels (the stepped wall's Bode: its frequencies) and the run's seconds."""
+    from spsc.core.progress import progress_bar
+    from spsc.dynamics.wall_time import stepped
+
+    bars, quiet = {}, args.quiet
+    what = ("spsc simulate --bode", "frequency") if args.bode and stepped(scenario) else \
+        ("chamber map", "level")
+
+    def map_progress(done, total):
+        if not quiet:
+            if "map" not in bars:
+                bars["map"] = progress_bar(total=total, desc=what[0], unit=what[1],
+                                           file=sys.stderr, leave=False)
+            bars["map"].update(done - bars["map"].n)
+
+    def progress(t, t_end):
+        if not quiet:
+            if "run" not in bars:
+                bars["run"] = progress_bar(total=round(t_end, 6), desc="spsc simulate",
+                                           unit="s", file=sys.stderr, leave=False,
+                                           bar_format="{l_bar}{bar}| {n:.3g}/{total:.3g} s")
+            bars["run"].update(round(t, 6) - bars["run"].n)
+
+    return bars, map_progress, progress
 
 def _bode(scenario, out, cache, map_progress, bars, quiet, where) -> int:
     from spsc.dynamics.output import write_bode

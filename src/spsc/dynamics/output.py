@@ -28,10 +28,13 @@ def _echo(sim) -> dict:
             "samples": int(len(sim.trace)),
             "valve_switches": [{"t_s": t, "valve": "open" if o else "closed", "why": why}
                                for t, o, why in sim.switches],
-            "chamber_map": {"model": sim.scenario.chamber.model,
-                            "travel_mm": list(m.y_range), "pressure_kPa": list(m.pressure_range),
-                            "levels_kPa": [float(p) for p in m.pressure_kPa],
-                            "travels": int(m.y_mm.size)},
+            "chamber_map": None if m is None else {
+                "model": sim.scenario.chamber.model, "travel_mm": list(m.y_range),
+                "pressure_kPa": list(m.pressure_range),
+                "levels_kPa": [float(p) for p in m.pressure_kPa], "travels": int(m.y_mm.size)},
+            "wall": {"viscous": sim.scenario.chamber.viscous,
+                     "friction": sim.scenario.chamber.friction,
+                     "vented": sim.scenario.vented, "stepped_in_time": m is None},
             "valve": {"C_dm3_s_bar": sim.scenario.valve.C, "b": sim.scenario.valve.b,
                       "m": sim.scenario.valve.m},
             **({"stiffness_steps": sim.stiffness_steps} if sim.stiffness_steps else {})}
@@ -141,16 +144,20 @@ def bode_figure(table, summary, path) -> None:
     for col, (mag, ph, label) in enumerate((
             ("stiffness_N_per_mm", "stiffness_phase_deg", "stiffness F̂/ŷ (N/mm)"),
             ("sensitivity_kPa_per_mm", "sensitivity_phase_deg", "sensitivity P̂/ŷ (kPa/mm)"))):
-        axes[0, col].semilogx(f, table[mag], "C0")
+        style = "o-" if summary.get("wall") else "-"  # the stepped wall: few frequencies
+        axes[0, col].semilogx(f, table[mag], style, color="C0", ms=4)
         axes[0, col].set_ylabel(label)
-        axes[1, col].semilogx(f, table[ph], "C1")
+        axes[1, col].semilogx(f, table[ph], style, color="C1", ms=4)
         axes[1, col].set_ylabel("phase (°)")
         axes[1, col].set_xlabel("frequency (Hz)")
         if summary.get("sensitivity_halfway_Hz"):
             for r in range(2):
                 axes[r, col].axvline(summary["sensitivity_halfway_Hz"], color="0.6", ls=":")
     valve = "open" if summary["valve_open"] else "closed"
+    wall = f"; the wall {summary['wall']}" if summary.get("wall") else ""
+    if "vented" in wall:
+        valve = "none (vented)"
     fig.suptitle(f"small press about y = {summary['y_mm']:.3g} mm, valve {valve}, "
-                 f"{summary['pressure_kPa']:.4g} kPa", fontsize=10)
+                 f"{summary['pressure_kPa']:.4g} kPa{wall}", fontsize=10)
     fig.savefig(path, dpi=110)
     plt.close(fig)

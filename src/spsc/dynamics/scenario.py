@@ -63,13 +63,14 @@ from .leak import LeakSpec
 from .profile import ForceProfile, PressProfile, SpringProfile
 from .sensor import Sensor
 from .valve import Valve, sonic_conductance
+from .wall_time import check_stepped, plate_friction, stepped, vented_circuit
 
 __all__ = ["Scenario", "ChamberSpec", "read_scenario", "parse_scenario"]
 
 _TABLES = {"chamber", "circuit", "press", "events", "output", "bode", "stiffness"}
 _CHAMBER = {"type", "footprint", "material", "model", "mesh_size", "layers",
-            "w", "h", "l", "t0", "n1", "n2", "cy"}
-_CIRCUIT = {"setup_kPa", "reservoir_mm3", "valve", "gas", "sensor", "leak"}
+            "w", "h", "l", "t0", "n1", "n2", "cy", "viscous", "friction"}
+_CIRCUIT = {"setup_kPa", "reservoir_mm3", "valve", "gas", "sensor", "leak", "vented"}
 _VALVE = {"C", "b", "m", "area_mm2", "state"}
 _GAS = {"n", "thermal_time_s", "ambient_K"}
 _SENSOR = {"preset", "rate_Hz", "noise_kPa", "resolution_kPa", "full_scale_kPa", "seed"}
@@ -87,6 +88,8 @@ class ChamberSpec:
     model: str = "wall"
     mesh_size: float | None = None
     layers: int = 2
+    viscous: bool = False  # the material's Prony terms: the wall stepped in time
+    friction: object = None  # None (frictionless), "stick" or a Coulomb μ on the plate
 
     def geometry(self):
         from spsc.cad.geometry import PARAMS, SPSCGeometry, preset
@@ -119,6 +122,7 @@ class Scenario:
     stiffness: object = None  # a StiffnessControl: the reservoir a piston, the valve open
     leak: LeakSpec | None = None  # an orifice to the ambient air (:mod:`.leak`)
     source: dict = field(default_factory=dict, compare=False)
+    vented: bool = False  # the chamber open to the air (gauge 0): the wall stepped in time
 
 
 def _unknown(where: str, table: dict, allowed: set) -> None:
@@ -288,7 +292,9 @@ def _check_reach(spec: ChamberSpec, profile) -> None:
 
 
 #: the scenario's keys that hold text; every other value is a number or a list of numbers
-_TEXT_KEYS = {"type", "footprint", "material", "model", "state", "preset", "valve"}
+_TEXT_KEYS = {"type", "footprint", "material", "model", "state", "preset", "valve", "friction"}
+#: the scenario's keys that hold true or false
+_FLAG_KEYS = {"viscous", "vented"}
 
 
 def _no_quoted_numbers(value, where: str) -> None:
@@ -297,6 +303,11 @@ def _no_quoted_numbers(value, where: str) -> None:
     document would keep the string and fail later (issue 53: 16 internal errors)."""
     if isinstance(value, dict):
         for k, v in value.items():
+            if k in _FLAG_KEYS:
+                if not isinstance(v, bool):
+                    raise ParameterError(f"{where}.{k}" if where else str(k), v,
+                                         "true or false")
+                continue
             if not (k in _TEXT_KEYS and isinstance(v, str)):
                 _no_quoted_numbers(v, f"{where}.{k}" if where else str(k))
     elif isinstance(value, list):
@@ -322,12 +333,13 @@ def parse_scenario(doc: dict) -> Scenario:
         raise ParameterError("chamber.model", model, "wall or surrogate (the static model "
                              "the time domain maps the chamber with)")
     mesh = ch.get("mesh_size")
-    spec = ChamberSpec({k: v for k, v in ch.items() if k in _CHAMBER - {"material", "model",
-                                                                          "mesh_size", "layers"}},
+    spec = ChamberSpec({k: v for k, v in ch.items() if k in _CHAMBER - {
+                           "material", "model", "mesh_size", "layers", "viscous", "friction"}},
                        str(ch.get("material", "tpu60a")), model,
                        None if mesh is None else require("chamber.mesh_size", mesh, gt=0, le=5,
                                                          unit="mm"),
-                       require_integer("chamber.layers", ch.get("layers", 2), ge=1, le=16))
+                       require_integer("chamber.layers", ch.get("layers", 2), ge=1, le=16),
+                       bool(ch.get("viscous", False)), plate_friction(ch.get("friction")))
     g = c.get("gas", {})
     if not isinstance(g, dict):
         raise ParameterError("circuit.gas", g, "an inline table {n = ..., thermal_time_s = ...}")
@@ -346,16 +358,21 @@ def parse_scenario(doc: dict) -> Scenario:
     # a sealed chamber at ambient pressure dips below its map's lowest level (0 kPa) at the
     # plate's first touch: the scenario stopped at its first step (the vented chamber is
     # spsc curve --pressure 0)
-    setup = require("circuit.setup_kPa", c.get("setup_kPa", 40.0), gt=0, le=200,
-                    unit="kPa gauge; a sealed chamber at 0 kPa falls below its map at the "
-                    "first touch (the vented chamber: spsc curve --pressure 0)")
+    vented = vented_circuit(c, timed or triggers, control)
+    setup = 0.0 if vented else require(
+        "circuit.setup_kPa", c.get("setup_kPa", 40.0), gt=0, le=200,
+        unit="kPa gauge; a sealed chamber at 0 kPa falls below its map at the first touch "
+        "(the vented chamber: circuit.vented = true)")
     leak = None if "leak" not in c else LeakSpec.parse(c["leak"], setup)
     if leak is not None and control is not None:
         raise ParameterError("circuit.leak", leak.describe(), "none with [stiffness] (the "
                              "piston's control loop is built for a sealed circuit)")
-    return Scenario(spec, setup, reservoir,
-                    valve, opened or control is not None, Gas(**g), _sensor(c), profile,
-                    timed, triggers, dt, _bode(doc, profile, opened), control, leak, doc)
+    sc = Scenario(spec, setup, reservoir,
+                  valve, opened or control is not None, Gas(**g), _sensor(c), profile,
+                  timed, triggers, dt, _bode(doc, profile, opened), control, leak, doc, vented)
+    if stepped(sc):
+        check_stepped(sc)
+    return sc
 
 
 def read_scenario(path) -> Scenario:

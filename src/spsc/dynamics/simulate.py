@@ -38,7 +38,7 @@ class Simulation:
     scenario: object
     trace: pd.DataFrame
     measured: pd.DataFrame | None
-    chamber_map: ChamberMap
+    chamber_map: ChamberMap | None  # None: the wall stepped in time (:mod:`.wall_time`)
     complete: bool = True
     message: str = "complete"
     seconds: dict = field(default_factory=dict)
@@ -163,7 +163,14 @@ def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None,
     """Run ``scenario`` (:class:`~.scenario.Scenario`): ``progress(t, t_end)`` while
     integrating, ``map_progress(done, total)`` while building the map (on ``workers`` or
     ``scheduler``, :func:`chamber_map_for`)."""
+    from .wall_time import run_stepped, stepped
+
     t0 = time.perf_counter()
+    if stepped(scenario):  # a viscous, rubbing or vented wall: no map holds its history
+        col, complete, message, seconds = run_stepped(scenario, progress)
+        df = pd.DataFrame({c: col[c] for c in COLUMNS})
+        return _sampled(Simulation(scenario, df, None, None, complete, message,
+                                   {"wall": seconds}))
     m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress, workers=workers,
                         scheduler=scheduler)
     t1 = time.perf_counter()
@@ -182,14 +189,18 @@ def simulate(scenario, *, cache_dir=None, progress=None, map_progress=None,
             trace, complete, message = exc.trace, False, str(exc)
         df, switches = _frame(trace), list(trace.switches)
     t2 = time.perf_counter()
-    measured = None
-    if scenario.sensor is not None and len(df):
-        measured = _sample(scenario.sensor, df)
-        # each output instant holds the last sample taken (zero-order hold)
-        k = np.searchsorted(measured.t_s.to_numpy(), df.t_s.to_numpy() + 1e-12, "right") - 1
-        df["pressure_measured_kPa"] = measured.pressure_measured_kPa.to_numpy()[k]
-    return Simulation(scenario, df, measured, m, complete, message,
-                      {"map": t1 - t0, "integrate": t2 - t1}, switches, steps)
+    return _sampled(Simulation(scenario, df, None, m, complete, message,
+                               {"map": t1 - t0, "integrate": t2 - t1}, switches, steps))
+
+
+def _sampled(sim: Simulation) -> Simulation:
+    """``sim`` with its sensor's samples (each output instant holds the last one taken)."""
+    df, sensor = sim.trace, sim.scenario.sensor
+    if sensor is not None and len(df):
+        sim.measured = _sample(sensor, df)
+        k = np.searchsorted(sim.measured.t_s.to_numpy(), df.t_s.to_numpy() + 1e-12, "right") - 1
+        df["pressure_measured_kPa"] = sim.measured.pressure_measured_kPa.to_numpy()[k]
+    return sim
 
 
 def _controlled(m, circuit, scenario, progress):
@@ -222,24 +233,44 @@ def frequency_response(scenario, *, cache_dir=None, map_progress=None,
         raise ParameterError("circuit.leak", scenario.leak.describe(), "none with --bode (a "
                              "leaking chamber has no rest to linearise about)")
     t0 = time.perf_counter()
+    b = scenario.bode
+    from .wall_time import BODE_POINTS, bode_stepped, stepped
+
+    if stepped(scenario):
+        points = b["points"] if "points" in scenario.source.get("bode", {}) else BODE_POINTS
+        freqs = np.logspace(np.log10(b["f_min_Hz"]), np.log10(b["f_max_Hz"]), points)
+        from .wall_time import why_stepped
+
+        table, lin = bode_stepped(scenario, freqs, map_progress)
+        summary = _bode_summary(table, b, lin, freqs, time.perf_counter() - t0)
+        return table, {**summary, "wall": f"{why_stepped(scenario)}, stepped in time (no inertia)"}
     m = chamber_map_for(scenario, cache_dir=cache_dir, progress=map_progress, workers=workers,
                         scheduler=scheduler)
-    b = scenario.bode
     circuit = Circuit(scenario.setup_kPa, scenario.reservoir_mm3, scenario.valve, scenario.gas)
     freqs = np.logspace(np.log10(b["f_min_Hz"]), np.log10(b["f_max_Hz"]), b["points"])
     table = bode(m, circuit, b["y_mm"], b["valve_open"], freqs)
     lin = linearise(m, circuit, b["y_mm"], b["valve_open"])
-    s = table.sensitivity_kPa_per_mm.to_numpy()
+    return table, _bode_summary(table, b, lin, freqs, time.perf_counter() - t0)
+
+
+def _bode_summary(table, b, lin, freqs, seconds) -> dict:
+    """The operating point, the low- and high-frequency limits and the frequency where the
+    sensitivity (the stiffness, when the sensitivity is flat) is halfway between them."""
+    sens = table.sensitivity_kPa_per_mm.to_numpy()
+    s = sens if np.ptp(sens) > 1e-9 * max(abs(sens).max(), 1e-12) else \
+        table.stiffness_N_per_mm.to_numpy()  # vented: no pressure to read
     mid = np.sqrt(s[0] * s[-1])
     cross = np.flatnonzero((s[:-1] - mid) * (s[1:] - mid) <= 0)
-    f_mid = float(np.exp(np.interp(np.log(mid), np.log(s[cross[0]:cross[0] + 2]),
-                                   np.log(freqs[cross[0]:cross[0] + 2])))) \
-        if cross.size and s[-1] != s[0] else None
+    f_mid = None
+    if cross.size and s[-1] != s[0] and mid > 0:
+        pair, fs = s[cross[0]:cross[0] + 2], freqs[cross[0]:cross[0] + 2]
+        order = np.argsort(pair)
+        f_mid = float(np.exp(np.interp(np.log(mid), np.log(pair[order]), np.log(fs[order]))))
     summary = {"y_mm": b["y_mm"], "valve_open": b["valve_open"],
                "pressure_kPa": lin["pressure_kPa"], "force_N": lin["force_N"],
                "stiffness_low_f_N_per_mm": float(table.stiffness_N_per_mm.iloc[0]),
                "stiffness_high_f_N_per_mm": float(table.stiffness_N_per_mm.iloc[-1]),
-               "sensitivity_low_f_kPa_per_mm": float(s[0]),
-               "sensitivity_high_f_kPa_per_mm": float(s[-1]),
-               "sensitivity_halfway_Hz": f_mid, "map_seconds": time.perf_counter() - t0}
-    return table, summary
+               "sensitivity_low_f_kPa_per_mm": float(sens[0]),
+               "sensitivity_high_f_kPa_per_mm": float(sens[-1]),
+               "sensitivity_halfway_Hz": f_mid, "map_seconds": seconds}
+    return summary
