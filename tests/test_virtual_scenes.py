@@ -212,3 +212,32 @@ def test_a_scene_takes_its_chamber_from_a_design_file(tmp_path):
     (tmp_path / "t.toml").write_text(text.replace('model = "surrogate"',
                                                   'model = "surrogate"\nmaterial = "tpu60a"'))
     assert read_scene(tmp_path / "t.toml").scenario.chamber.material == "tpu60a"
+
+
+def test_the_video_is_an_mp4_of_the_scene_or_one_line_without_opengl(tmp_path):
+    """--video (a fresh process, as a user runs it: MuJoCo picks its OpenGL backend when it
+    is first imported): frames rendered offscreen at 30 per second of scene into an MP4 a
+    player opens (its header, and its frame count read back by ffmpeg); without an OpenGL
+    context the refusal is one line, before the scene runs."""
+    import subprocess
+    import sys
+
+    scene = _dome(SCENES / "gripper-soft.toml", tmp_path)
+    scene.write_text(scene.read_text().replace("duration_s = 4.5", "duration_s = 1.0")
+                     .replace("t = 2.2", "t = 0.8"))
+    spsc = Path(sys.executable).parent / "spsc"
+    run = subprocess.run([str(spsc), "virtual", str(scene), "--out", str(tmp_path / "v"),
+                          "--quiet", "--video"], capture_output=True, text=True)
+    if run.returncode == 2:
+        assert "--video" in run.stderr and len(run.stderr.strip().splitlines()) == 1
+        assert not (tmp_path / "v").exists()
+        pytest.skip(f"no OpenGL context here: {run.stderr.strip()}")
+    assert run.returncode == 0, run.stderr
+    mp4 = tmp_path / "v" / "scene.mp4"
+    assert mp4.read_bytes()[4:8] == b"ftyp"
+    import imageio_ffmpeg
+
+    probe = subprocess.run([imageio_ffmpeg.get_ffmpeg_exe(), "-i", str(mp4), "-f", "null", "-"],
+                           capture_output=True, text=True)
+    frames = [ln for ln in probe.stderr.splitlines() if "frame=" in ln]
+    assert frames and int(frames[-1].split("frame=")[1].split()[0]) == 30

@@ -100,17 +100,17 @@ def _run(scene, pads, video) -> dict:
     from spsc.virtual.plate import press_plate
 
     sc = scene.scenario
-    every = max(1, int(round(1.0 / (FPS * sc.dt))))
     frame = video.frame if video else None
     if scene.kind == "gripper":
         g = sc.chamber.geometry()
         return run_gripper(pads, scene.obj, scene.grasp, pad_mm=(g.h, g.w, g.w + g.l),
-                           valve_events=sc.events, frame=frame, frame_every=every, dt=sc.dt)
+                           valve_events=sc.events, frame=frame, fps=FPS, dt=sc.dt)
     if isinstance(sc.press, PressProfile):
         return press_plate(pads, 0.0, sc.press.duration, valve_events=sc.events,
-                           travel_mm=lambda t: float(sc.press.y(t)), dt=sc.dt)
+                           travel_mm=lambda t: float(sc.press.y(t)), dt=sc.dt, frame=frame,
+                           fps=FPS)
     return press_plate(pads, lambda t: float(sc.press.force(t)), sc.press.duration,
-                       valve_events=sc.events, dt=sc.dt)
+                       valve_events=sc.events, dt=sc.dt, frame=frame, fps=FPS)
 
 
 _PROBE = '<mujoco><visual><global offwidth="640" offheight="480"/></visual></mujoco>'

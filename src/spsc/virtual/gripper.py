@@ -147,10 +147,10 @@ _COLUMNS = ("travel_mm", "overlap_mm", "force_N", "pad_force_N", "pressure_kPa",
 
 
 def run_gripper(pads, obj: GraspObject, grasp: Grasp, *, pad_mm: tuple, valve_events=(),
-                frame=None, frame_every: int = 0, dt: float = 1e-3) -> dict:
+                frame=None, fps: float = 30.0, dt: float = 1e-3) -> dict:
     """Run the grasp: ``pads`` (two :class:`VirtualChambers`, the pads of jaws 1 and 2),
     the object ``obj``, the motion ``grasp``; ``valve_events`` ((t_s, open) pairs) switch both
-    pads' valves; ``frame(model, data)`` is called every ``frame_every`` steps (a renderer);
+    pads' valves; ``frame(model, data)`` is called ``fps`` times a second of scene (a renderer);
     ``dt`` the physics step (s).
     Returns the trace: ``t_s``, ``valve_open``, ``opening_mm`` (the jaws' faces apart),
     ``lift_mm``, ``object_z_mm`` (its centre's rise above its rest), and per pad i
@@ -164,7 +164,7 @@ def run_gripper(pads, obj: GraspObject, grasp: Grasp, *, pad_mm: tuple, valve_ev
     dt = model.opt.timestep
     c, (y_lo, y_hi) = obj.contact, pads.table.y_range
     state, valve, events = pads.read(), bool(pads.valve[0]), sorted(valve_events)
-    anchor, was_touching, rows = np.zeros((2, 2)), np.zeros(2, bool), []
+    anchor, was_touching, rows, frames = np.zeros((2, 2)), np.zeros(2, bool), [], 0
     for k in range(int(round(grasp.duration_s / dt))):
         t = k * dt
         while events and events[0][0] <= t + 1e-12:
@@ -191,8 +191,10 @@ def run_gripper(pads, obj: GraspObject, grasp: Grasp, *, pad_mm: tuple, valve_ev
         data.ctrl[:] = (1e-3 * lift, -0.5e-3 * opening, 0.5e-3 * opening)
         rows.append((t, valve, *sim.pose(), y, s, fn, fpad, state["pressure_kPa"],
                      state["measured_kPa"], state["stiffness_N_per_mm"], slipping & touching))
-        if frame is not None and frame_every and k % frame_every == 0:
+        if frame is not None and t + 1e-9 >= frames / fps:
+            sim.squeeze_pads(y)  # drawn compressed by their travel
             frame(model, data)
+            frames += 1
         mj.mj_step2(model, data)
     return _columns(rows)
 
@@ -222,7 +224,7 @@ class _Hand:
         mj = self.mj = mujoco_module()
         self.model = mj.MjModel.from_xml_string(gripper_xml(obj, pad_mm, grasp, dt))
         self.data = mj.MjData(self.model)
-        self.obj, self.half_h = obj, 0.5 * pad_mm[2]
+        self.obj, self.half_h, self.depth = obj, 0.5 * pad_mm[2], 1e-3 * pad_mm[0]
         self.ids = {n: mj.mj_name2id(self.model, mj.mjtObj.mjOBJ_BODY, n)
                     for n in ("object", "jaw_1", "jaw_2")}
         o0, l0 = grasp.at(0.0)
@@ -279,6 +281,14 @@ class _Hand:
             mj.mj_applyFT(self.model, d, force, zero, point, self.ids["object"], d.qfrc_applied)
             mj.mj_applyFT(self.model, d, -force, zero, point, self.ids[f"jaw_{i + 1}"],
                           d.qfrc_applied)
+
+    def squeeze_pads(self, y_mm) -> None:
+        """Draw each pad compressed by its travel ``y_mm`` (its face moved back)."""
+        for i, side in ((0, 1.0), (1, -1.0)):
+            gid = self.mj.mj_name2id(self.model, self.mj.mjtObj.mjOBJ_GEOM, f"pad_{i + 1}")
+            y = 1e-3 * min(max(float(y_mm[i]), 0.0), self.depth - 1e-4)
+            self.model.geom_size[gid][0] = 0.5 * (self.depth - y)
+            self.model.geom_pos[gid][0] = -side * (y + 0.5 * (self.depth - y))
 
     def pose(self) -> tuple:
         """(the jaws' faces apart, the hand's lift, the object's rise above its rest), mm."""

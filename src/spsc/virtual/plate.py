@@ -21,7 +21,15 @@ __all__ = ["PLATE_XML", "press_plate"]
 PLATE_XML = """
 <mujoco model="spsc-plate">
   <option timestep="{dt}" gravity="0 0 0" integrator="implicitfast"/>
+  <asset>
+    <texture type="skybox" builtin="gradient" rgb1="0.93 0.94 0.96" rgb2="0.62 0.66 0.72"
+             width="64" height="64"/>
+  </asset>
   <worldbody>
+    <light pos="0 -0.2 0.3" dir="0 0.6 -0.8"/>
+    <camera name="side" pos="0 -0.12 0.01" xyaxes="1 0 0 0 0 1" fovy="40"/>
+    <geom name="pad" type="box" size="0.0055 0.0055 0.0065" pos="0 0 -0.0065"
+          rgba="0.25 0.55 0.95 0.85" contype="0" conaffinity="0"/>
     <body name="plate" pos="0 0 0">
       <joint name="z" type="slide" axis="0 0 1" damping="20"/>
       <geom type="box" size="0.02 0.02 0.002" mass="0.05"/>
@@ -37,7 +45,7 @@ SERVO = '<position name="press" joint="z" kp="2e4" kv="40"/>'
 
 
 def press_plate(chambers, force_N, t_end_s: float, *, valve_events=(), z0_mm: float = 0.5,
-                travel_mm=None, dt: float = 1e-3):
+                travel_mm=None, dt: float = 1e-3, frame=None, fps: float = 30.0):
     """Run the plate scene: the actuator pushes down with ``force_N(t)`` (N, a number or a
     function of t s) — or, with ``travel_mm(t)`` (mm past first contact) given, a position
     servo drives the plate along it (``force_N`` unused) — the pad (chamber 0 of ``chambers``,
@@ -47,7 +55,8 @@ def press_plate(chambers, force_N, t_end_s: float, *, valve_events=(), z0_mm: fl
     pad (chamber 1) ``travel_mm_1`` (the plate's travel past first contact), ``force_N_1``,
     ``pressure_kPa_1``, ``sensor_kPa_1`` (as read), ``stiffness_N_per_mm_1``. Raises
     :class:`~spsc.virtual.gripper.SceneStopped` (the trace so far kept) when the plate
-    presses past the pad's map. ``dt``: the physics step (s)."""
+    presses past the pad's map. ``dt``: the physics step (s); ``frame(model, data)`` is called
+    ``fps`` times a second of scene (a renderer)."""
     mj = mujoco_module()
     model = mj.MjModel.from_xml_string(PLATE_XML.format(
         actuator=MOTOR if travel_mm is None else SERVO, dt=f"{dt:g}"))
@@ -58,7 +67,7 @@ def press_plate(chambers, force_N, t_end_s: float, *, valve_events=(), z0_mm: fl
     events = sorted(valve_events)
     valve = bool(chambers.valve[0])
     y_lo, y_hi = chambers.table.y_range
-    rows = []
+    rows, frames = [], 0
     for k in range(int(round(t_end_s / dt))):
         t = k * dt
         while events and events[0][0] <= t + 1e-12:
@@ -75,6 +84,12 @@ def press_plate(chambers, force_N, t_end_s: float, *, valve_events=(), z0_mm: fl
         data.ctrl[0] = -push(t) if travel_mm is None else -1e-3 * float(travel_mm(t))
         rows.append((t, valve, y, f, out["pressure_kPa"][0], out["measured_kPa"][0],
                      out["stiffness_N_per_mm"][0]))
+        if frame is not None and t + 1e-9 >= frames / fps:
+            gid = mj.mj_name2id(model, mj.mjtObj.mjOBJ_GEOM, "pad")  # drawn compressed
+            h = 0.0065 - 0.5e-3 * min(max(y, 0.0), 12.0)
+            model.geom_size[gid][2], model.geom_pos[gid][2] = h, -0.013 + h
+            frame(model, data)
+            frames += 1
         mj.mj_step2(model, data)
     return _columns(rows)
 
