@@ -38,6 +38,9 @@ $(STAMP): pyproject.toml
 	mkdir -p $(PIP_TMP)
 	$(PIP) --upgrade pip
 	$(PIP) -e ".[test,docs,sim]"
+	# tests/spsc_support (what tests and benchmarks share) on the environment's path, outside
+	# the installed package
+	$(BIN)/python -c "import pathlib, site; pathlib.Path(site.getsitepackages()[0], 'spsc-tests.pth').write_text('$(CURDIR)/tests\n')"
 	rm -rf $(PIP_TMP)
 	touch $(STAMP)
 

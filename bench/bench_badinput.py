@@ -3,7 +3,7 @@
     .venv/bin/python bench/bench_badinput.py [--fork] [--only TEXT] [--timeout S] [--jobs N]
                                              [--designs N] [--determinism] [--list]
 
-Invalid invocations (the table of ``spsc.testing.fuzz_cases``, over 300) run as subprocesses
+Invalid invocations (the table of ``spsc_support.fuzz_cases``, over 300) run as subprocesses
 (``python -m spsc.cli.main``) with a timeout, and each outcome is counted: a clean one-line
 error with exit 2 naming the option, a clean error not naming it, a traceback, an argparse usage
 dump, a silent exit 0, a timeout, or anything else. ``--fork`` runs each case in a forked copy
@@ -31,7 +31,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from spsc.testing.fuzz_cases import Case, design_argv, invalid_cases, random_design
+from spsc_support.fuzz_cases import Case, design_argv, invalid_cases, random_design
 
 OUTCOMES = ("clean", "clean, not naming the option", "traceback", "internal error (exit 3)",
             "usage dump", "silent exit 0", "timeout", "other")

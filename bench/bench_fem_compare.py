@@ -214,10 +214,10 @@ def _print_qf(rows):
 def axisymmetric(*, mat, type_name="B", pressure=40.0, stroke=4.0, size=1.0, layers=2,
                  axi_meshes=((40, 4), (80, 8)), cache=None):
     """l = 0 dome of ``type_name``: the 3D quarter model (``size``, ``layers``) and the
-    axisymmetric FElupe model (``spsc.testing.verify.axisym_felupe``, ``axi_meshes`` = (profile
+    axisymmetric FElupe model (``spsc_support.verify.axisym_felupe``, ``axi_meshes`` = (profile
     elements, layers) pairs), inflated to ``pressure`` kPa, valve closed, plate to ``stroke``
     mm in 1 mm increments. One row per model."""
-    from spsc.testing.verify.axisym_felupe import AxisymmetricDome
+    from spsc_support.verify.axisym_felupe import AxisymmetricDome
 
     g = preset(type_name, l=0.0)
     n = int(round(stroke))

@@ -24,7 +24,7 @@ from spsc.dynamics.circuit import Circuit, Trigger, integrate
 from spsc.dynamics.profile import PressProfile
 from spsc.sensing.chamber import chamber_map
 from spsc.sensing.haptic import HapticLoop, calibrate
-from spsc.testing import sense_traces as st
+from spsc_support import sense_traces as st
 
 SETUP, RES = 10.0, 40000.0
 CALIBRATION = [[0, -0.3], [0.3, -0.3], [0.8, 3.0], [1.2, 3.0], [1.7, -0.3], [2.0, -0.3]]

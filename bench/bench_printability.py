@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from spsc.testing.printability_agreement import compare, random_chamber
+from spsc_support.printability_agreement import compare, random_chamber
 
 
 def summarize(rows: list[dict], seed: int) -> bool:

@@ -43,7 +43,7 @@ from spsc.dynamics.circuit import CircuitFailure
 from spsc.sensing import DenseMap, EstimatorParams, SenseParams, SenseStream
 from spsc.sensing.chamber import chamber_map
 from spsc.sensing.detectors import ComplianceParams, ContactParams
-from spsc.testing import sense_traces as st
+from spsc_support import sense_traces as st
 
 RES, SETUP, STROKE = 40000.0, 40.0, 3.0
 #: the air the traces are generated with, and the one the estimator assumes (--gas, --sense-gas)

@@ -13,7 +13,7 @@ from spsc.cad.check import check_mesh, parse_design
 from spsc.core.errors import ParameterError
 from spsc.cad.process import PROCESSES, process
 
-from spsc.testing.check_shapes import (BORE, R_IN, R_OUT, M, arrays, bladder, face_plane_radius,
+from spsc_support.check_shapes import (BORE, R_IN, R_OUT, M, arrays, bladder, face_plane_radius,
                           port_design)
 
 

@@ -8,7 +8,7 @@ import json
 import numpy as np
 import pytest
 
-from spsc.testing.check_shapes import R_OUT, M, arrays, bladder, port_design, write_stl
+from spsc_support.check_shapes import R_OUT, M, arrays, bladder, port_design, write_stl
 from spsc.cad.check import check_mesh, design_path_for, parse_design
 from spsc.core.errors import ParameterError
 from spsc.cli.main import main

@@ -12,7 +12,7 @@ from spsc.materials import material
 
 pytest.importorskip("felupe")
 
-from spsc.testing.verify.axisym_felupe import AxisymmetricDome  # noqa: E402
+from spsc_support.verify.axisym_felupe import AxisymmetricDome  # noqa: E402
 
 MAT = material("tpu60a")
 MU = MAT.shear_modulus

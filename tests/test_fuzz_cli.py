@@ -1,5 +1,5 @@
 """Fuzz test of the error contract over every verb: each invalid invocation of
-``spsc.testing.fuzz_cases`` (a bad number, a cross-parameter limit, a bad choice, an output that
+``spsc_support.fuzz_cases`` (a bad number, a cross-parameter limit, a bad choice, an output that
 cannot be written, a bad input file, an argparse mistake) ends in exit 2 and exactly one line on
 stderr that names the option at fault — no traceback, no usage dump, and no work started: every
 function that builds, solves or checks raises if it is called (and a case still running after
@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from spsc.testing.fuzz_cases import KINDS, Case, classes, invalid_cases
+from spsc_support.fuzz_cases import KINDS, Case, classes, invalid_cases
 from spsc.cli.main import COMMANDS, main
 
 #: Seconds a case may take in-process: validation is milliseconds; importing the CAD kernel

@@ -16,7 +16,7 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
-from spsc.testing.fuzz_cases import random_design
+from spsc_support.fuzz_cases import random_design
 from spsc.cad import meshtopo
 from spsc.cad.bladder import BladderSpec, FlangeSpec, PortSpec, build_bladder
 from spsc.cad.check import check_mesh

@@ -1,5 +1,5 @@
 """The box-scheme solver against an independent discretisation of the same membrane problem
-(``spsc.testing.verify.membrane_fe``: linear finite elements on the CAD polyline, total-potential
+(``spsc_support.verify.membrane_fe``: linear finite elements on the CAD polyline, total-potential
 minimisation with the relaxed (tension-field) energy, plate as a bound, nodal reactions).
 
 Both are second order in the mesh size, so their difference must fall fourfold each time both
@@ -15,7 +15,7 @@ import pytest
 from spsc.cad.geometry import preset
 from spsc.materials import material, mooney_rivlin
 from spsc.membrane.solver import SolverSettings, inflate, solve
-from spsc.testing.verify.membrane_fe import AxisymmetricFE
+from spsc_support.verify.membrane_fe import AxisymmetricFE
 
 TPU = material("tpu60a")
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from spsc.testing.part_shapes import dome, dome_port
+from spsc_support.part_shapes import dome, dome_port
 from spsc.cad.export import TriMesh, write_stl
 from spsc.core.errors import ParameterError
 from spsc.fem.solid.mesh import TetMesh
@@ -372,7 +372,7 @@ def test_a_dome_part_agrees_with_the_structured_chamber_mesh(tmp_path):
     meshes it differently from run to run: over six runs the part's force was 1.7–2.8 % and its
     pressure rise 1.3–2.6 % above the structured mesh's (at 0.5 and 1 mm), so 4 % holds that
     spread with a margin; a wrong stiffness, gas or plate is off by far more."""
-    from spsc.testing.part_shapes import dome_geometry
+    from spsc_support.part_shapes import dome_geometry
     from spsc.fem.part.run import run_part
     from spsc.fem.solid.chamber import chamber_run, run_chamber
 

@@ -386,7 +386,7 @@ def test_design_search_falls_back_on_the_same_rule():
 
 
 def _agree(designs):
-    from spsc.testing.printability_agreement import compare
+    from spsc_support.printability_agreement import compare
 
     rows = [compare(d) | {"design": d} for d in designs]
     judged = [r for r in rows if "invalid" not in r]
@@ -416,7 +416,7 @@ def test_gate_and_sweep_agree_on_the_issue_case_and_random_designs():
     200."""
     import numpy as np
 
-    from spsc.testing.printability_agreement import random_chamber
+    from spsc_support.printability_agreement import random_chamber
 
     rng = np.random.default_rng(7)
     judged = _agree(ISSUE_30 + [random_chamber(rng) for _ in range(3)])
@@ -431,7 +431,7 @@ def test_gate_and_sweep_agree_on_twenty_random_designs():
     """As above on 20 random designs (~4-10 s each: the gate)."""
     import numpy as np
 
-    from spsc.testing.printability_agreement import random_chamber
+    from spsc_support.printability_agreement import random_chamber
 
     rng = np.random.default_rng(2030)
     judged = _agree([random_chamber(rng) for _ in range(20)])

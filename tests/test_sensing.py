@@ -28,7 +28,7 @@ from spsc.sensing import DenseMap, EstimatorParams, SenseParams, SenseStream
 from spsc.sensing.chamber import chamber_map
 from spsc.sensing.detectors import ComplianceParams, ContactParams
 from spsc.sensing.table import PA_KPA
-from spsc.testing import sense_traces as st
+from spsc_support import sense_traces as st
 
 DOME = {"type": "B", "l": 0}
 RES = 40000.0

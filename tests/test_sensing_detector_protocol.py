@@ -26,7 +26,7 @@ from spsc.sensing.chamber import chamber_map
 from spsc.sensing.detectors import (DETECTORS, ComplianceParams, ContactParams, LeakParams,
                                     SlipParams)
 from spsc.sensing.output import DEFAULT_COLOUR, figure
-from spsc.testing import sense_traces as st
+from spsc_support import sense_traces as st
 
 CHAMBER = ["--type", "B", "--l", "0", "--pressure", "40", "--reservoir", "40000", "--stroke",
            "3", "--mesh-size", "1.0", "--quiet"]

@@ -19,7 +19,7 @@ from numpy.testing import assert_allclose
 from spsc.sensing.contact import ContactParams, CusumContact
 from spsc.sensing.detectors import SlipDetector, SlipParams
 from spsc.sensing.rest import RestTracker
-from spsc.testing import sense_traces as st
+from spsc_support import sense_traces as st
 
 SIGMA, REST, DT = 0.086, 40.0, 1e-3
 

@@ -15,7 +15,7 @@ from spsc.core.errors import ParameterError
 from spsc.dynamics.chamber_map import ChamberMap
 from spsc.dynamics.circuit import Trigger
 from spsc.sensing.haptic import HapticCalibration, HapticLoop, calibrate
-from spsc.testing import sense_traces as st
+from spsc_support import sense_traces as st
 
 
 def linear_map(v0=3000.0, a=400.0, K=300.0, setup=10.0):

@@ -28,7 +28,7 @@ from spsc.sensing.chamber import chamber_map
 from spsc.sensing.log import start_of
 from spsc.sensing.table import PA_KPA
 from spsc.sensing.thermal import energy, invariant, iso_pressure, relax_invariant
-from spsc.testing import sense_traces as st
+from spsc_support import sense_traces as st
 
 AIR = Gas(1.4, 0.5)
 RES = 40000.0

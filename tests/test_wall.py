@@ -197,7 +197,7 @@ def test_a_snapping_thin_vented_wall_is_reported_not_stepped_over():
 
 @pytest.mark.parametrize("t", ["B", "C"])
 def test_wall_agrees_with_the_independent_felupe_axisymmetric_model(t):
-    from spsc.testing.verify.axisym_felupe import AxisymmetricDome
+    from spsc_support.verify.axisym_felupe import AxisymmetricDome
 
     g = preset(t, l=0.0)
     ref = AxisymmetricDome(g, material("tpu60a"), n_profile=40, layers=4)

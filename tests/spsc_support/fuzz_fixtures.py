@@ -66,7 +66,7 @@ def fixtures(tmp: Path) -> dict[str, Path]:
 def _part_fixtures(f) -> None:
     """A closed dome part (one cavity), the same with a triangle missing, and with an open
     inlet bore (no enclosed cavity without its design file)."""
-    from spsc.testing.part_shapes import dome
+    from .part_shapes import dome
     from spsc.cad.export import TriMesh, write_stl
 
     v, fc = dome()
