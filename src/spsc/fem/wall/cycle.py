@@ -56,40 +56,46 @@ class CycleResult:
 def wall_cycle(geometry, material, prony, *, stroke_mm: float = 6.0, speed_mm_s: float = 1.0,
                points: int = 25, pressure_kPa: float = 0.0, reservoir_mm3: float = 0.0,
                settings: WallSettings | None = None, friction=None,
-               snaps: bool = False) -> CycleResult:
+               snaps: bool = False, mullins=None, cycles: int = 1) -> CycleResult:
     """Squeeze by ``stroke_mm`` and release at ``speed_mm_s``, ``points`` travels each way
     (0 and the stroke included), with the ``prony`` terms (None: the relaxed law, which
     retraces itself unless something else dissipates). ``friction``: None (frictionless),
     ``"stick"`` or a Coulomb coefficient μ on the plate, both ways; ``snaps``: follow the
     snap-throughs on the way down and back up (:mod:`spsc.fem.engine.snap`: a jump's energy
     is dissipated, a hysteresis without any viscosity; an elastic, frictionless wall only —
-    the descent needs the wall's potential)."""
+    the descent needs the wall's potential). ``mullins``: the first loading's softening
+    (:class:`~spsc.fem.mullins.MullinsParams`); ``cycles``: squeeze–release repeated, the
+    result the last one's (the first of a Mullins wall dissipates, later ones less)."""
     require("stroke", stroke_mm, gt=0, le=12, unit="mm")
     require("speed", speed_mm_s, gt=0, le=1e4, unit="mm/s")
     require("points", points, ge=3, le=500)
     if friction not in (None, "stick"):
         friction = require("friction", friction, ge=0, le=1e6) or None  # 0: frictionless
-    if snaps and (prony is not None or friction is not None):
+    require("cycles", cycles, ge=1, le=20)
+    if snaps and (prony is not None or friction is not None or mullins is not None):
         from spsc.core.errors import ParameterError
 
         raise ParameterError("snaps", True, "with an elastic, frictionless wall only (a jump "
                              "is found by descending the wall's potential, which a viscous "
-                             "wall or a sliding plate has not)")
+                             "or softening wall or a sliding plate has not)")
     from threadpoolctl import threadpool_limits
 
     # one BLAS thread, as wall_curve: on small blocks threads spin (10-20x slower under load)
     with threadpool_limits(limits=1, user_api="blas"):
         return _cycle(geometry, material, prony, stroke_mm, speed_mm_s, int(points),
-                      pressure_kPa, reservoir_mm3, settings, friction, snaps)
+                      pressure_kPa, reservoir_mm3, settings, friction, snaps, mullins,
+                      int(cycles))
 
 
 def _cycle(geometry, material, prony, stroke_mm, speed_mm_s, points, pressure_kPa,
-           reservoir_mm3, settings, friction=None, snaps=False) -> CycleResult:
+           reservoir_mm3, settings, friction=None, snaps=False, mullins=None,
+           cycles=1) -> CycleResult:
     t0 = time.perf_counter()
-    model = WallModel(geometry, material, settings, prony=prony)
+    model = WallModel(geometry, material, settings, prony=prony, mullins=mullins)
     s = dataclasses.replace(model.default_settings(), snap_through=bool(snaps))
     y = np.linspace(0.0, stroke_mm, int(points))
-    travels = np.concatenate([y, y[-2::-1]])
+    travels = np.concatenate([y] + [np.concatenate([y[-2::-1], y[1:]])] * (cycles - 1)
+                             + [y[-2::-1]])
     times = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(travels)))]) / speed_mm_s
     steps = []
     if pressure_kPa > 0:
@@ -99,6 +105,7 @@ def _cycle(geometry, material, prony, stroke_mm, speed_mm_s, points, pressure_kP
     cycle = Cycle(tuple(times), tuple(travels), stick=friction is not None, mu=mu)
     res = solve(model, steps + [cycle], settings=s)
     pressed = [r for r in res.records if r.kind == "press"]
+    pressed = pressed[2 * (len(y) - 1) * (cycles - 1):]  # the last cycle's
     n = len(y)
     F = np.full(2 * n - 1, np.nan)
     P = np.full(2 * n - 1, np.nan)

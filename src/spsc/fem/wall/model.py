@@ -25,6 +25,7 @@ from ..engine.settings import SEMISMOOTH_CONTACT, Settings
 from ..engine.steps import Load
 from ..material import NearlyIncompressible
 from ..material_kernel import determinant
+from ..mullins import MullinsLaw
 from ..viscous import ViscousLaw
 from .pattern import Pattern
 from .section import section_mesh
@@ -148,10 +149,13 @@ class WallModel:
 
     def __init__(self, geometry: SPSCGeometry, material: Material,
                  settings: WallSettings | None = None, *, base: str = "clamped",
-                 stadium: bool | None = None, prony=None):
+                 stadium: bool | None = None, prony=None, mullins=None):
         self.geometry, self.material = geometry, material
         self.settings = settings = settings or WallSettings()
         law = NearlyIncompressible(material, settings.bulk_ratio)
+        #: the first-loading softening (:mod:`spsc.fem.mullins`) with ``mullins`` constants
+        self.mullins = None if mullins is None else MullinsLaw(law, mullins)
+        law = self.mullins or law
         #: the rate-dependent law (:mod:`spsc.fem.viscous`) with ``prony`` terms, else None
         self.viscous = None if prony is None else ViscousLaw(law, prony)
         law = self.viscous or law
@@ -247,10 +251,15 @@ class WallModel:
         return _Evaluation(r - pressure * g, rp, K, G, g, c, pressure, volume)
 
     def commit(self, x, load) -> None:
-        """Close a converged step of a rate-dependent wall (its internal variables)."""
+        """Close a converged step of a wall with a history (its internal variables)."""
+        if self.viscous is None and self.mullins is None:
+            return
+        F = self.solid.deformation(self.displacements(x))
         if self.viscous is not None:
             self.viscous.set_time(load.time)
-            self.viscous.commit(self.solid.deformation(self.displacements(x)))
+            self.viscous.commit(F)
+        if self.mullins is not None:
+            self.mullins.commit(F)
 
     def reuse(self, ev: "_Evaluation", tangent_ev: "_Evaluation") -> "_Evaluation":
         """ev's residuals with ``tangent_ev``'s tangent and coupling blocks: the condensed
