@@ -102,3 +102,22 @@ def test_a_wall_reloaded_retraces_its_first_unloading():
     assert first.hysteresis_N > 0.3 and first.dissipated_mJ > 0.5
     assert second.dissipated_mJ < 0.02 * first.dissipated_mJ
     assert_allclose(second.force_load_N[1:], first.force_unload_N[1:], rtol=0.02, atol=0.02)
+
+
+def test_a_material_file_carries_its_own_constants(tmp_path):
+    import json
+
+    from spsc.materials.catalogue import softening
+
+    prm, source = softening("tpu60a")
+    assert prm == MullinsParams(2.0, 0.02, 0.0) and "ASSUMED" in source
+    f = tmp_path / "m.json"
+    rec = {"schema": "spsc.material", "schema_version": 1, "name": "mine",
+           "law": "neo-hookean", "constants": {"C10": 0.8},
+           "mullins": {"r": 3.0, "m": 0.1, "source": "my cyclic test"}}
+    f.write_text(json.dumps(rec))
+    assert softening(str(f)) == (MullinsParams(3.0, 0.1, 0.0), "my cyclic test")
+    rec["mullins"] = {"r": 3.0}
+    f.write_text(json.dumps(rec))
+    with pytest.raises(ParameterError, match="mullins"):
+        softening(str(f))

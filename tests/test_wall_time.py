@@ -37,6 +37,8 @@ def test_the_example_is_a_stepped_vented_viscous_wall():
     assert not stepped(plain)
     assert parse_scenario(_doc(chamber={"friction": 0.3})).chamber.friction == 0.3
     assert parse_scenario(_doc(chamber={"friction": 0})).chamber.friction is None
+    soft = parse_scenario(_doc(chamber={"viscous": False, "mullins": True}))
+    assert stepped(soft) and soft.chamber.mullins and not soft.chamber.viscous
 
 
 @pytest.mark.parametrize("tables, says", [
@@ -52,6 +54,9 @@ def test_the_example_is_a_stepped_vented_viscous_wall():
     ({"chamber": {"friction": "slippery"}}, "chamber.friction"),
     ({"chamber": {"friction": -0.2}}, "chamber.friction"),
     ({"chamber": {"material": "elastic50a"}}, "chamber.viscous"),
+    ({"chamber": {"material": "elastic50a", "viscous": False, "mullins": True}},
+     "chamber.mullins"),
+    ({"chamber": {"mullins": "yes"}}, "chamber.mullins"),
     ({"press": {"profile": [[0, 0], [6, 6]], "object_N_per_mm": 2}}, "press")])
 def test_what_the_stepped_wall_cannot_run_is_one_line(tables, says):
     with pytest.raises(ParameterError) as e:

@@ -69,7 +69,7 @@ __all__ = ["Scenario", "ChamberSpec", "read_scenario", "parse_scenario"]
 
 _TABLES = {"chamber", "circuit", "press", "events", "output", "bode", "stiffness"}
 _CHAMBER = {"type", "footprint", "material", "model", "mesh_size", "layers",
-            "w", "h", "l", "t0", "n1", "n2", "cy", "viscous", "friction"}
+            "w", "h", "l", "t0", "n1", "n2", "cy", "viscous", "friction", "mullins"}
 _CIRCUIT = {"setup_kPa", "reservoir_mm3", "valve", "gas", "sensor", "leak", "vented"}
 _VALVE = {"C", "b", "m", "area_mm2", "state"}
 _GAS = {"n", "thermal_time_s", "ambient_K"}
@@ -90,6 +90,7 @@ class ChamberSpec:
     layers: int = 2
     viscous: bool = False  # the material's Prony terms: the wall stepped in time
     friction: object = None  # None (frictionless), "stick" or a Coulomb μ on the plate
+    mullins: bool = False  # the material's first-loading softening (Ogden–Roxburgh)
 
     def geometry(self):
         from spsc.cad.geometry import PARAMS, SPSCGeometry, preset
@@ -294,7 +295,7 @@ def _check_reach(spec: ChamberSpec, profile) -> None:
 #: the scenario's keys that hold text; every other value is a number or a list of numbers
 _TEXT_KEYS = {"type", "footprint", "material", "model", "state", "preset", "valve", "friction"}
 #: the scenario's keys that hold true or false
-_FLAG_KEYS = {"viscous", "vented"}
+_FLAG_KEYS = {"viscous", "vented", "mullins"}
 
 
 def _no_quoted_numbers(value, where: str) -> None:
@@ -334,12 +335,14 @@ def parse_scenario(doc: dict) -> Scenario:
                              "the time domain maps the chamber with)")
     mesh = ch.get("mesh_size")
     spec = ChamberSpec({k: v for k, v in ch.items() if k in _CHAMBER - {
-                           "material", "model", "mesh_size", "layers", "viscous", "friction"}},
+                           "material", "model", "mesh_size", "layers", "viscous", "friction",
+                           "mullins"}},
                        str(ch.get("material", "tpu60a")), model,
                        None if mesh is None else require("chamber.mesh_size", mesh, gt=0, le=5,
                                                          unit="mm"),
                        require_integer("chamber.layers", ch.get("layers", 2), ge=1, le=16),
-                       bool(ch.get("viscous", False)), plate_friction(ch.get("friction")))
+                       bool(ch.get("viscous", False)), plate_friction(ch.get("friction")),
+                       bool(ch.get("mullins", False)))
     g = c.get("gas", {})
     if not isinstance(g, dict):
         raise ParameterError("circuit.gas", g, "an inline table {n = ..., thermal_time_s = ...}")

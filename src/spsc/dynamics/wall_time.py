@@ -35,12 +35,12 @@ MAX_DY_MM, MAX_DT_S = 0.25, 0.1
 def stepped(scenario) -> bool:
     """Whether ``scenario`` runs the wall model stepped in time (viscous, friction, vented)."""
     ch = scenario.chamber
-    return bool(ch.viscous or ch.friction is not None or scenario.vented)
+    return bool(ch.viscous or ch.mullins or ch.friction is not None or scenario.vented)
 
 
 def why_stepped(scenario) -> str:
     ch = scenario.chamber
-    return " and ".join(w for w, on in (("viscous", ch.viscous),
+    return " and ".join(w for w, on in (("viscous", ch.viscous), ("softening", ch.mullins),
                                          ("friction", ch.friction is not None),
                                          ("vented", scenario.vented)) if on)
 
@@ -97,6 +97,13 @@ def check_stepped(scenario) -> None:
         if prony is None:
             raise ParameterError("chamber.viscous", True, f"a material with Prony terms "
                                  f"({source})")
+    if scenario.chamber.mullins:
+        from spsc.materials.catalogue import softening
+
+        prm, source = softening(scenario.chamber.material)
+        if prm is None:
+            raise ParameterError("chamber.mullins", True, f"a material with Mullins constants "
+                                 f"({source})")
 
 
 def _wall(scenario, valve_open: bool):
@@ -105,14 +112,16 @@ def _wall(scenario, valve_open: bool):
     from spsc.fem.engine import CloseValve, Inflate
     from spsc.fem.wall.model import WallModel, WallSettings
     from spsc.materials import material
-    from spsc.materials.catalogue import viscosity
+    from spsc.materials.catalogue import softening, viscosity
 
     ch, sc = scenario.chamber, scenario
     prony = viscosity(ch.material)[0] if ch.viscous else None
+    mullins = softening(ch.material)[0] if ch.mullins else None
 
     def fresh():
         return WallModel(ch.geometry(), material(ch.material),
-                         WallSettings(mesh_size_mm=ch.mesh_size, layers=ch.layers), prony=prony)
+                         WallSettings(mesh_size_mm=ch.mesh_size, layers=ch.layers), prony=prony,
+                         mullins=mullins)
 
     n = 1.0 if sc.gas.isothermal else sc.gas.n
     steps = [] if sc.vented else [

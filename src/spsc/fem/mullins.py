@@ -24,40 +24,11 @@ with W_m held over a step and updated when the step is committed (:meth:`commit`
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
-
 import numpy as np
-from scipy.special import erf
 
-from spsc.core.errors import require
+from spsc.materials.mullins import MullinsParams
 
 __all__ = ["MullinsParams", "MullinsLaw"]
-
-
-@dataclass(frozen=True)
-class MullinsParams:
-    """Ogden–Roxburgh constants: ``r`` (> 1, the softening's extent), ``m`` (MPa, > 0, its
-    spread in energy) and ``beta`` (≥ 0, its growth with the largest energy)."""
-
-    r: float
-    m: float
-    beta: float = 0.0
-
-    def __post_init__(self):
-        require("mullins r", self.r, gt=1, le=1e3)
-        require("mullins m", self.m, gt=0, le=100, unit="MPa")
-        require("mullins beta", self.beta, ge=0, le=10)
-
-    def eta(self, w0, w_max):
-        """(η, ∂η/∂W₀) at the isochoric energies ``w0`` and their largest so far ``w_max``
-        (MPa; arrays), eq. (M1)."""
-        w_m = np.maximum(w_max, w0)
-        s = self.m + self.beta * w_m
-        a = (w_m - w0) / s
-        eta = 1.0 - erf(a) / self.r
-        d = np.where(w_m > w0, 2.0 * np.exp(-a * a) / (self.r * math.sqrt(math.pi) * s), 0.0)
-        return eta, d
 
 
 class MullinsLaw:

@@ -6,6 +6,7 @@ from __future__ import annotations
 from spsc.core.errors import ParameterError
 from .file import load_material
 from .law import Material, neo_hookean, yeoh
+from .mullins import MullinsParams
 from .prony import Prony
 
 __all__ = ["CATALOGUE", "PRONY", "FATIGUE_TESTS", "material", "viscosity"]
@@ -88,6 +89,41 @@ def viscosity(name) -> tuple[Prony | None, str]:
     material(text)  # a catalogue name, or the one-line error
     got = PRONY.get(text.lower())
     return (got[0], got[1]) if got else (None, f"the catalogue has no Prony terms for {text}")
+
+
+#: Ogden–Roxburgh constants of the first loading's softening (:mod:`.mullins`), with where
+#: they come from
+MULLINS: dict[str, tuple[MullinsParams, str]] = {
+    "tpu60a": (MullinsParams(2.0, 0.02, 0.0), "ASSUMED: r = 2, m = 0.02 MPa (a third of the "
+               "Table 1 walls' largest energy density at 6 mm), beta = 0; no cyclic test of "
+               "printed TPU 60A with these constants used (bench/bench_mullins.py shows what "
+               "they give)"),
+}
+
+
+def softening(name) -> tuple[MullinsParams | None, str]:
+    """(the Mullins constants of ``name``, where they come from): the catalogue's, or the
+    ``mullins`` entry ``{r, m, beta, source}`` of a material file; (None, why) without."""
+    text = str(name).strip()
+    if text.lower().endswith(".json"):
+        from pathlib import Path
+
+        from spsc.core.errors import ParameterError
+
+        from .file import read_material_file
+
+        record = read_material_file(text)
+        if "mullins" not in record:
+            return None, f"{Path(text).name} has no mullins entry"
+        m = record["mullins"]
+        if not isinstance(m, dict) or not {"r", "m"} <= set(m) or \
+                set(m) - {"r", "m", "beta", "source"}:
+            raise ParameterError(f"{Path(text).name}: mullins", m, "{r, m[, beta, source]}")
+        return MullinsParams(m["r"], m["m"], m.get("beta", 0.0)), str(m.get("source", ""))
+    material(text)
+    got = MULLINS.get(text.lower())
+    return (got[0], got[1]) if got else (None, f"the catalogue has no Mullins constants for "
+                                               f"{text}")
 
 
 #: The paper's fatigue test of each catalogue material (Table 2: a Type B chamber at
