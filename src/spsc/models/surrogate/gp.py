@@ -23,8 +23,8 @@ __all__ = ["matern52", "Block", "FieldModel", "NEIGHBOURS", "RISK_FLAG"]
 NEIGHBOURS = 8
 #: training designs whose snap-throughs make a query's snap risk, and the risk flagged
 RISK_NEIGHBOURS, RISK_FLAG = 5, 0.45
-#: designs evaluated together (bounds the m × n × kernels temporaries to about 40 MB)
-CHUNK = 128
+#: designs evaluated together (bounds the m × n temporaries to a few MB each)
+CHUNK = 512
 
 
 def matern52(A: np.ndarray, B: np.ndarray, ell: np.ndarray) -> np.ndarray:
@@ -97,8 +97,13 @@ class FieldModel:
                     j = len(self._kernels) - 1
                 self._serves[j].append((name, kn.cols, kn.alpha))
         self._alpha = [np.hstack([a for _, _, a in serves]) for serves in self._serves]
-        self._inv_ell2 = np.array([1.0 / kn.ell**2 for kn in self._kernels]).T  # d × K
-        self._amp = np.array([kn.amp for kn in self._kernels])
+        # each kernel's training designs scaled by its lengths (√5 folded in), and their
+        # squared norms: r² = |x̃|² + |X̃|² − 2 x̃·X̃ is one matrix product per chunk
+        # (centred on the training designs' mean: the expansion cancels less)
+        self._centre = self.X.mean(axis=0)
+        self._scaled = [(self.X - self._centre) * (np.sqrt(5.0) / kn.ell)
+                        for kn in self._kernels]
+        self._norms = [(Xs * Xs).sum(axis=1) for Xs in self._scaled]
 
     def coefficients(self, x: np.ndarray, chunk: int = CHUNK) -> dict:
         """{block: mode coefficients (m × k)} at the unit inputs ``x`` (m × d): every distinct
@@ -107,11 +112,19 @@ class FieldModel:
         out = {name: np.empty((x.shape[0], b.s.size)) for name, b in self.blocks.items()}
         for a in range(0, x.shape[0], chunk):
             xs = x[a:a + chunk]
-            diff2 = (xs[:, None, :] - self.X[None, :, :]) ** 2  # m × n × d
-            r = np.sqrt(np.maximum(diff2 @ self._inv_ell2, 0.0) * 5.0)  # m × n × K
-            k = self._amp * (1.0 + r + r * r / 3.0) * np.exp(-r)
             for j, serves in enumerate(self._serves):
-                c = k[:, :, j] @ self._alpha[j]
+                kn, Xs = self._kernels[j], self._scaled[j]
+                q = (xs - self._centre) * (np.sqrt(5.0) / kn.ell)
+                r = q @ Xs.T  # m × n: −2 x̃·X̃ + |x̃|² + |X̃|² in place, then √ (≥ 0)
+                r *= -2.0
+                r += (q * q).sum(axis=1)[:, None]
+                r += self._norms[j][None, :]
+                np.maximum(r, 0.0, out=r)
+                np.sqrt(r, out=r)
+                k = np.exp(-r)
+                k *= 1.0 + r * (1.0 + r / 3.0)
+                k *= kn.amp
+                c = k @ self._alpha[j]
                 start = 0
                 for name, cols, alpha in serves:
                     out[name][a:a + chunk, cols] = c[:, start:start + alpha.shape[1]]
