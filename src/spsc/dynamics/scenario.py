@@ -9,9 +9,7 @@ press and the valve events, read from TOML and checked, every malformed entry a 
     material = "tpu60a"       # catalogue name or a material file (.json)
     model = "wall"            # the static model that maps the chamber (or "surrogate")
     mesh_size = 0.5           # optional, mm; layers = 2
-    # viscous = true          # the material's Prony terms, mullins = true its softening,
-    # friction = 0.3          # or "stick" on the plate: the wall model stepped in time
-    #                         # (spsc.dynamics.wall_time), a travel profile, no valve events
+    # viscous = true; mullins = true; friction = 0.3 | "stick": the wall stepped in time
 
     [circuit]
     setup_kPa = 40            # chamber and reservoir filled together at rest (gauge)
@@ -20,7 +18,7 @@ press and the valve events, read from TOML and checked, every malformed entry a 
     gas = { n = 1.0, thermal_time_s = inf }             # n = 1: isothermal; 1.4: air
     sensor = { rate_Hz = 1000, noise_kPa = 0.1 }        # or preset = "elvh"
     leak = { drop_kPa = 1, over_s = 1800 }              # or C = 5e-9; or area_mm2 = 1e-5
-    # vented = true           # open to the air (gauge 0, no setup_kPa): the wall stepped in time
+    # vented = true           # open to the air (gauge 0): the wall stepped in time
 
     [press]
     profile = [[0, 0], [0.5, 3], [2, 3], [2.5, 0]]      # [t_s, y_mm], piecewise linear
