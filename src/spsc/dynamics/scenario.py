@@ -64,6 +64,7 @@ from .gas import Gas
 from .leak import LeakSpec
 from .profile import ForceProfile, PressProfile, SpringProfile
 from .sensor import Sensor
+from .stiffness import parse_stiffness
 from .valve import Valve, sonic_conductance
 from .wall_time import check_stepped, plate_friction, stepped, vented_circuit
 
@@ -249,38 +250,6 @@ def _press(press: dict) -> PressProfile | ForceProfile | SpringProfile:
     return ForceProfile.of(press["force"], depth)
 
 
-def _stiffness(doc: dict, press, reservoir: float, timed, triggers):
-    from .stiffness import StiffnessControl
-
-    st = doc.get("stiffness")
-    if st is None:
-        return None
-    if not isinstance(st, dict):
-        raise ParameterError("[stiffness]", st, "a table")
-    _unknown("stiffness", st, {"target", "reservoir_mm3", "actuator_time_s", "rate_mm3_s"})
-    if not isinstance(press, PressProfile):
-        raise ParameterError("[stiffness]", "with a force press", "a travel profile (press."
-                             "profile): the controller is for a press of known travel")
-    if timed or triggers:
-        raise ParameterError("[[events]]", "with [stiffness]", "none: the valve stays open "
-                             "while the piston controls the stiffness")
-    try:
-        target = tuple((float(t), float(k)) for t, k in st.get("target", []))
-    except (TypeError, ValueError):
-        raise ParameterError("stiffness.target", st.get("target"),
-                             "a list of [t_s, N_per_mm] pairs") from None
-    stroke = st.get("reservoir_mm3", [1000.0, 40000.0])
-    if not (isinstance(stroke, list) and len(stroke) == 2):
-        raise ParameterError("stiffness.reservoir_mm3", stroke, "[min, max] (mm³)")
-    ctl = StiffnessControl(target, (float(stroke[0]), float(stroke[1])),
-                           float(st.get("actuator_time_s", 0.05)),
-                           float(st.get("rate_mm3_s", float("inf"))))
-    if not (stroke[0] <= reservoir <= stroke[1]):
-        raise ParameterError("circuit.reservoir_mm3", reservoir, f"within the piston's stroke "
-                             f"[{stroke[0]:g}, {stroke[1]:g}] mm³ (where it starts)")
-    return ctl
-
-
 def _check_reach(spec: ChamberSpec, profile) -> None:
     """The press stays above the chamber's base plane, as ``spsc curve --stroke`` does: the
     map is built over every travel the profile names (the far end's, on a spring), so a
@@ -359,7 +328,7 @@ def parse_scenario(doc: dict) -> Scenario:
     reservoir = require("circuit.reservoir_mm3", c.get("reservoir_mm3", 0.0), ge=0, le=1e7,
                         unit="mm³")
     timed, triggers = _events(doc, profile.duration)
-    control = _stiffness(doc, profile, reservoir, timed, triggers)
+    control = parse_stiffness(doc.get("stiffness"), profile, reservoir, timed or triggers)
     # a sealed chamber at ambient pressure dips below its map's lowest level (0 kPa) at the
     # plate's first touch: the scenario stopped at its first step (the vented chamber is
     # spsc curve --pressure 0)

@@ -39,7 +39,7 @@ from spsc.core.errors import ParameterError, require
 from .chamber import Chamber
 from .circuit import _MG, _rates, initial_state
 
-__all__ = ["StiffnessControl", "stiffness", "reservoir_for", "pooled_pressure", "set_point",
+__all__ = ["StiffnessControl", "parse_stiffness", "stiffness", "reservoir_for", "pooled_pressure", "set_point",
            "integrate_controlled", "step_metrics"]
 
 _PA_KPA = P_AMB_KPA
@@ -256,3 +256,40 @@ def step_metrics(t, k, t_step: float, band: float = 0.02) -> dict:
         else (0.0 if not outside.size else math.nan)
     return {"before": before, "final": final, "rise_s": rise, "settle_s": settle,
             "overshoot": float(max(frac.max() - 1.0, 0.0))}
+
+
+def parse_stiffness(st, press, reservoir: float, events):
+    """The scenario's ``[stiffness]`` table ``st`` (None: no control) as a
+    :class:`StiffnessControl`, checked against the ``press`` (a travel profile), the
+    ``reservoir`` it starts at (mm³) and the valve ``events`` (none allowed)."""
+    from .profile import PressProfile
+
+    if st is None:
+        return None
+    if not isinstance(st, dict):
+        raise ParameterError("[stiffness]", st, "a table")
+    extra = sorted(set(st) - {"target", "reservoir_mm3", "actuator_time_s", "rate_mm3_s"})
+    if extra:
+        raise ParameterError(f"stiffness.{extra[0]}", st[extra[0]], "one of the keys "
+                             "actuator_time_s, rate_mm3_s, reservoir_mm3, target")
+    if not isinstance(press, PressProfile):
+        raise ParameterError("[stiffness]", "with a force press", "a travel profile (press."
+                             "profile): the controller is for a press of known travel")
+    if events:
+        raise ParameterError("[[events]]", "with [stiffness]", "none: the valve stays open "
+                             "while the piston controls the stiffness")
+    try:
+        target = tuple((float(t), float(k)) for t, k in st.get("target", []))
+    except (TypeError, ValueError):
+        raise ParameterError("stiffness.target", st.get("target"),
+                             "a list of [t_s, N_per_mm] pairs") from None
+    stroke = st.get("reservoir_mm3", [1000.0, 40000.0])
+    if not (isinstance(stroke, list) and len(stroke) == 2):
+        raise ParameterError("stiffness.reservoir_mm3", stroke, "[min, max] (mm³)")
+    ctl = StiffnessControl(target, (float(stroke[0]), float(stroke[1])),
+                           float(st.get("actuator_time_s", 0.05)),
+                           float(st.get("rate_mm3_s", float("inf"))))
+    if not (stroke[0] <= reservoir <= stroke[1]):
+        raise ParameterError("circuit.reservoir_mm3", reservoir, f"within the piston's stroke "
+                             f"[{stroke[0]:g}, {stroke[1]:g}] mm³ (where it starts)")
+    return ctl
