@@ -71,3 +71,22 @@ def test_instants_keep_the_knots_and_the_step_bounds():
     assert np.all(np.diff(t) <= MAX_DT_S + 1e-12) and np.all(np.abs(np.diff(y)) <= MAX_DY_MM + 1e-12)
     assert y.min() == 0.0  # above the chamber the plate touches nothing: travel 0
     np.testing.assert_allclose(y, np.maximum(prof.y(t), 0.0), rtol=0, atol=1e-12)
+
+
+def test_the_stepped_walls_gas_is_its_polytrope():
+    """A closed dome (viscous wall, n = 1.4 without heat exchange) pressed 2 mm and back:
+    (P + Pₐ) Vⁿ holds to the interpolation between instants (1e-5), the temperature is the
+    adiabat's, the mass does not change."""
+    from spsc.core.constants import P_AMB_KPA
+    from spsc.dynamics.simulate import simulate
+
+    sc = parse_scenario(_doc(chamber={"type": "B", "l": 0},
+                             circuit={"vented": False, "setup_kPa": 40, "gas": {"n": 1.4}},
+                             press={"profile": [[0, 0], [1, 2], [2, 0]]}))
+    d = simulate(sc).trace
+    inv = (d.pressure_kPa + P_AMB_KPA) * d.volume_mm3 ** 1.4
+    assert inv.max() / inv.min() - 1 < 1e-5
+    adiabat = 293.15 * ((d.pressure_kPa + P_AMB_KPA) / (40 + P_AMB_KPA)) ** (0.4 / 1.4)
+    np.testing.assert_allclose(d.chamber_K, adiabat, rtol=1e-5)
+    np.testing.assert_allclose(d.chamber_mg, d.chamber_mg.iloc[0], rtol=1e-12)
+    assert d.pressure_kPa.max() > 43.0  # it was pressed (3.2 kPa at 2 mm)

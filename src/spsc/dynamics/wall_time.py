@@ -16,7 +16,6 @@ leak, the stiffness controller) is refused before anything runs, in one line.
 
 from __future__ import annotations
 
-import dataclasses
 import time
 
 import numpy as np
@@ -177,26 +176,35 @@ def run_stepped(scenario, progress=None) -> tuple[dict, bool, str, float]:
     a = np.array([0.0] + [r.contact_area for r in pressed])
     t_out = np.arange(0.0, times[k - 1] + 0.5 * sc.dt, sc.dt)
     t_out = t_out[t_out <= times[k - 1] + 1e-12]
-    col = {"t_s": t_out, "y_mm": np.interp(t_out, times, sc.press.y(times))}
+    col = {"t_s": t_out, "y_mm": sc.press.y(t_out)}
     for name, values in (("force_N", f), ("pressure_kPa", p), ("volume_mm3", v),
                          ("contact_mm2", a)):
         col[name] = np.interp(t_out, times[:k], values)
-    col["reservoir_kPa"] = col["pressure_kPa"] if (pooled and not sc.vented) else \
-        np.full(t_out.size, 0.0 if sc.vented else sc.setup_kPa)
-    col["valve_open"] = np.full(t_out.size, int(sc.valve_open and not sc.vented))
-    temp = sc.gas.ambient_K
-    col["chamber_K"] = col["reservoir_K"] = np.full(t_out.size, temp)
-    mass = lambda pk, vol: (pk + P_AMB_KPA) * 1e3 * vol * 1e-9 / (sc.gas.R * temp) * 1e6  # mg
-    col["chamber_mg"] = mass(col["pressure_kPa"], col["volume_mm3"])
-    col["reservoir_mg"] = mass(col["reservoir_kPa"], np.full(t_out.size, sc.reservoir_mm3))
+    col.update(_gas_columns(sc, col["pressure_kPa"], col["volume_mm3"], pooled,
+                            float(p[0]), float(v[0])))
     return col, bool(res.converged), res.message if not res.converged else "complete", seconds
 
 
-def with_profile(scenario, times, travels):
-    """``scenario`` pressing along the knots (``times``, ``travels``)."""
-    from .profile import PressProfile
+def _gas_columns(sc, p, v, pooled, p0, v0) -> dict:
+    """The trace's reservoir, valve, temperature and mass columns of the wall's gas: closed at
+    rest (``p0`` kPa, ``v0`` mm³, ambient temperature) with the ``pooled`` reservoir volume,
+    P Vⁿ = const — its temperature from the gas law at that mass; vented: ambient air."""
+    R, t_amb, n = sc.gas.R, sc.gas.ambient_K, p.size
 
-    return dataclasses.replace(scenario, press=PressProfile.of(list(zip(times, travels))))
+    def mg(pk, vol, temp):
+        return (pk + P_AMB_KPA) * 1e3 * vol * 1e-9 / (R * temp) * 1e6
+
+    if sc.vented:
+        temp = np.full(n, t_amb)
+    else:
+        m_total = mg(p0, v0 + pooled, t_amb)
+        temp = (p + P_AMB_KPA) * 1e3 * (v + pooled) * 1e-9 / (R * m_total * 1e-6)
+    r_kPa = p if pooled and not sc.vented else np.full(n, 0.0 if sc.vented else sc.setup_kPa)
+    r_K = temp if pooled and not sc.vented else np.full(n, t_amb)
+    return {"reservoir_kPa": r_kPa, "valve_open": np.full(n, int(sc.valve_open and
+                                                                  not sc.vented)),
+            "chamber_K": temp, "reservoir_K": r_K, "chamber_mg": mg(p, v, temp),
+            "reservoir_mg": mg(r_kPa, np.full(n, sc.reservoir_mm3), r_K)}
 
 
 #: the stepped wall's Bode: the sinusoid's amplitude (mm), its periods (the last one read)
