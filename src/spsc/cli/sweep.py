@@ -73,6 +73,7 @@ def register(subparsers) -> None:
                    "setup, cycles by its material's fatigue law calibrated on Table 2 "
                    "(docs/guides/durability.md; one wall solve a design: 0.3 s a dome, 3 s a "
                    "stadium): life_cycles, peak_stretch, energy_amplitude_MPa")
+    _band_options(m)
     m.add_argument("--stroke", type=number("stroke", "mm"), default=6.0, metavar="MM",
                    help="plate travel of the metrics, mm (default 6, the paper's)")
     o = p.add_argument_group("outputs and where it runs (checked before any work)")
@@ -143,9 +144,34 @@ def prepare(args):
 
         check_life_materials([m for a in space.axes if a.name == "material" for m in a.values]
                              or ["tpu60a"])
+    args.band = _band(args)
     if args.scheduler is not None:
         args.scheduler = check_scheduler(args.scheduler)
     return space
+
+
+def _band_options(group) -> None:
+    group.add_argument("--tolerance", default=None, metavar="FILE.toml",
+                       help="each design's band too, under this tolerance file "
+                       "(docs/guides/tolerance.md; --model surrogate): the P5, P50, P95 of its "
+                       "stiffness and sensitivity in both modes (stiffness_high_p5, ...)")
+    group.add_argument("--band-samples", type=integer("band samples"), default=32,
+                       metavar="N", help="Saltelli's base samples N of each design's band "
+                       "(N (D + 2) setups a mode; default 32)")
+
+
+def _band(args):
+    """The tolerance of each design's band (None without --tolerance), checked."""
+    if args.tolerance is None:
+        if args.band_samples != 32:
+            raise ParameterError("band-samples", args.band_samples, "only with --tolerance")
+        return None
+    from spsc.study.tolerance import read_tolerance
+    from spsc.sweep.band import check_band_model
+
+    check_band_model(args.model)
+    require("band-samples", args.band_samples, ge=4, le=4096)
+    return read_tolerance(args.tolerance)
 
 
 def run(args) -> int:
@@ -159,7 +185,8 @@ def run(args) -> int:
     df = sweep.run_sweep(space, model=args.model, process=args.process, points=args.points,
                          stroke_mm=args.stroke, out=args.out, workers=args.workers,
                          scheduler=args.scheduler, progress=not args.quiet, csv=args.csv,
-                         life_stroke_mm=args.stroke if args.life else None)
+                         life_stroke_mm=args.stroke if args.life else None,
+                         tolerance=args.band, band_samples=args.band_samples)
     code = summary(df, args)
     if args.html is not None:
         from spsc.report.sweep_page import write_page

@@ -204,3 +204,36 @@ def _input_label(name: str) -> str:
     unit = {"pressure": "kPa", "reservoir": "mm³"}.get(name, "mm" if name in
                                                          ("w", "h", "l", "t0") else "")
     return f"{name} ({unit})" if unit else name
+
+
+def _has_band(row: dict) -> bool:
+    v = row.get("stiffness_high_p50")
+    return v is not None and v == v  # a missing metric is NaN
+
+
+def band_figure(path, rows: list[dict], by: str | None) -> Path | None:
+    """Each design's nominal stiffness and sensitivity (high mode, low mode) with its band
+    under the sweep's tolerance: P5–P95 bars about the P50, against the nominal value (the
+    bars' length is what the prints spread). None without bands."""
+    plt = _plt()
+    rows = [r for r in _computed(rows) if _has_band(r)]
+    if not rows:
+        return None
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.4), constrained_layout=True)
+    for a, (metric, unit) in zip(ax, (("stiffness", "N/mm"), ("sensitivity", "kPa/mm"))):
+        for i, (label, group) in enumerate(_groups(rows, by)):
+            for j, mode in enumerate(("high", "low")):
+                x = np.array([r[f"{metric}_{mode}"] for r in group], float)
+                mid = np.array([r[f"{metric}_{mode}_p50"] for r in group], float)
+                lo = mid - np.array([r[f"{metric}_{mode}_p5"] for r in group], float)
+                hi = np.array([r[f"{metric}_{mode}_p95"] for r in group], float) - mid
+                a.errorbar(x, mid, yerr=[lo, hi], fmt=_MARKERS[j % len(_MARKERS)], ms=3,
+                           color=f"C{(2 * i + j) % 10}", elinewidth=0.8, alpha=0.8,
+                           label=f"{label + ', ' if label else ''}{mode} mode")
+        lim = a.get_xlim()
+        a.plot(lim, lim, color="0.6", lw=0.8, ls="--")
+        a.set_xlabel(f"nominal {metric} ({unit})")
+        a.set_ylabel(f"its prints: P50 and P5–P95 ({unit})")
+        a.grid(alpha=0.3)
+    ax[0].legend(fontsize=7)
+    return _save(fig, path)

@@ -53,7 +53,8 @@ def write_page(df, out, *, model: str, process: str, stroke_mm: float, points: i
     figures, notes = draw_figures(figs, [("modes", f.modes_figure, rows, by),
                                          ("front", f.front_figure, rows, front, mask, by),
                                          ("effects", f.effects_figure, rows, varied, by),
-                                         ("parallel", f.parallel_figure, rows, varied, front)])
+                                         ("parallel", f.parallel_figure, rows, varied, front),
+                                         ("band", f.band_figure, rows, by)])
     on_front = sorted((r for r, m in zip(rows, mask) if m), key=lambda r: r[front.metrics[0]],
                       reverse=front.senses[0] == "max")
     ctx = {"model": model, "process": process, "stroke_mm": stroke_mm, "points": points,
@@ -65,7 +66,8 @@ def write_page(df, out, *, model: str, process: str, stroke_mm: float, points: i
            "ranges": _ranges(rows, varied + by_type),
            "front_rows": [_with_rerun(r, model, points, stroke_mm) for r in on_front],
            "top": _top(rows, good, front), "problems": _problems(rows),
-           "life": any(r.get("life_cycles") is not None for r in rows)}
+           "life": any(r.get("life_cycles") is not None for r in rows),
+           "band": any(f._has_band(r) for r in rows)}
     path = out / "index.html"
     path.write_text(render_page(ctx, "sweep.html.j2"), encoding="utf-8")
     for n in notes:

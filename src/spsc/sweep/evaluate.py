@@ -40,10 +40,15 @@ __all__ = ["INPUTS", "METRICS", "COLUMNS", "STATUSES", "DONE", "resolve_design",
 INPUTS = ("type",) + PARAMS + ("material", "pressure", "reservoir")
 #: The metrics of a design (N/mm, N/mm, kPa/mm, kPa/mm, mm, mm³): DesignMetrics' fields.
 METRICS = tuple(f.name for f in fields(DesignMetrics))
+#: The columns a row with a band gains (:mod:`.band`): each metric's P5, P50, P95 in each
+#: mode, the samples the model ran, how many draws made no chamber or left its domain.
+BAND_COLUMNS = tuple(f"{m}_{mode}_p{q}" for mode in ("high", "low")
+                     for m in ("stiffness", "sensitivity") for q in (5, 50, 95)) + \
+    ("band_samples", "band_refused")
 #: Every column of a sweep's table, in order.
 COLUMNS = INPUTS + METRICS + ("printable", "printability", "status", "message", "seconds",
                               "key", "life_cycles", "energy_amplitude_MPa", "peak_stretch",
-                              "life_message")
+                              "life_message") + BAND_COLUMNS
 #: ok: both modes converged; partial: a solve stopped early (metrics over what it reached);
 #: invalid: the models refuse the design (ParameterError); failed: anything else.
 STATUSES = ("ok", "partial", "invalid", "failed")
@@ -249,14 +254,16 @@ def failed_row(design: dict, message: str, *, key: str = "", seconds: float = ma
 
 
 def design_key(design: dict, model: str, process: str, points: int | None = None,
-               stroke_mm: float | None = None, *, life_stroke_mm: float | None = None) -> str:
+               stroke_mm: float | None = None, *, life_stroke_mm: float | None = None,
+               band: str | None = None) -> str:
     """A stable hash (20 hex digits) of what a row depends on: the design's inputs (numbers
     as floats, the type upper-case, a catalogue name lower-case, a material file by its
     content), the model and its code version (the source files it imports: a changed model is
     computed again, never read back from an older table), the process, the plate positions and
     the stroke (mm; None: the model's default), and the life's stroke when the row carries a
-    life (:mod:`.life`; None: no life, the key of a row without one). The same design asked
-    twice, or in a re-run of the same code, has the same key."""
+    life (:mod:`.life`; None: no life, the key of a row without one), and the band's digest
+    when the row carries a band (:mod:`.band`). The same design asked twice, or in a re-run of
+    the same code, has the same key."""
     entry = MODELS.get(model)
     if entry is not None:
         points = entry.points if points is None else points
@@ -266,6 +273,8 @@ def design_key(design: dict, model: str, process: str, points: int | None = None
                  points=_canonical("points", points), stroke_mm=_canonical("stroke", stroke_mm))
     if life_stroke_mm is not None:
         facts["life_stroke_mm"] = _canonical("stroke", life_stroke_mm)
+    if band is not None:
+        facts["band"] = str(band)
     text = json.dumps(facts, sort_keys=True, allow_nan=True)
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]
 

@@ -50,7 +50,7 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
               stroke_mm: float | None, out, workers: int | None = None,
               scheduler: str | None = None, progress: bool = True, csv=None,
               task=evaluate, checkpoint_s: float = CHECKPOINT_S, batch: int = BATCH,
-              life_stroke_mm: float | None = None):
+              life_stroke_mm: float | None = None, tolerance=None, band_samples: int = 32):
     """Evaluate ``designs`` (an iterable of design dicts, iterated twice; see
     :mod:`.sweep_space`) with ``model`` and the printability of ``process``, ``points`` plate
     positions over ``stroke_mm`` (mm; None: the model's defaults), and write the table to
@@ -65,7 +65,8 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
     done earlier, evaluated, retried_killed, workers) and seconds (start_s: the cluster,
     compute_s: first submission to last row, seconds: all). ``life_stroke_mm``: each row also
     carries the design's life squeezed to that stroke (:mod:`.life`: one wall solve a design,
-    its rows keyed apart from the rows without a life).
+    its rows keyed apart from the rows without a life). ``tolerance``: each row also carries
+    its band under it (:mod:`.band`, ``band_samples`` Saltelli base samples), keyed apart.
     """
     import pandas  # noqa: F401  (the table's writers, loaded now: missing, the sweep stops
     import pyarrow  # noqa: F401  before any work; present, the client's memory is set at start)
@@ -74,12 +75,7 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
     if iter(designs) is designs:  # a one-shot iterator: it is walked twice
         designs = list(designs)
     settings = (model, process, points, stroke_mm)
-    if life_stroke_mm is not None:
-        from spsc.sweep.life import life_row
-
-        task = functools.partial(life_row, base=task, life_stroke_mm=life_stroke_mm)
-    key_of = functools.partial(design_key, life_stroke_mm=life_stroke_mm) \
-        if life_stroke_mm is not None else design_key
+    task, key_of = _task_and_key(task, life_stroke_mm, tolerance, band_samples)
     done = store.done()
     keys, todo = _keys(designs, settings, done, key_of)
     stats = {"designs": len(keys), "skipped": len(keys) - todo, "evaluated": 0,
@@ -101,6 +97,24 @@ def run_sweep(designs, *, model: str, process: str, points: int | None,
         df = store.write(keys, csv)
     df.attrs["sweep"] = stats
     return df
+
+
+def _task_and_key(task, life_stroke_mm, tolerance, band_samples):
+    """(the task a design runs, the key of its row): ``task`` with the life (:mod:`.life`)
+    and the band (:mod:`.band`) columns where asked for, the key telling those rows apart."""
+    key_of = design_key
+    if life_stroke_mm is not None:
+        from spsc.sweep.life import life_row
+
+        task = functools.partial(life_row, base=task, life_stroke_mm=life_stroke_mm)
+        key_of = functools.partial(design_key, life_stroke_mm=life_stroke_mm)
+    if tolerance is not None:
+        from spsc.sweep.band import band_digest, band_row
+
+        key_of = functools.partial(key_of, band=band_digest(tolerance, band_samples))
+        task = functools.partial(band_row, base=task, tolerance=tolerance,
+                                 samples=band_samples, key_of=key_of)
+    return task, key_of
 
 
 def _keys(designs, settings, done, key_of) -> tuple[list, int]:

@@ -16,7 +16,7 @@ import json
 import os
 from pathlib import Path
 
-from spsc.sweep.evaluate import COLUMNS, DONE, INPUTS, METRICS
+from spsc.sweep.evaluate import BAND_COLUMNS, COLUMNS, DONE, INPUTS, METRICS
 
 __all__ = ["SweepStore", "journal_path", "read_table"]
 
@@ -111,7 +111,7 @@ def frame(rows):
 
     df = pd.DataFrame(list(rows), columns=list(COLUMNS))
     for c in INPUTS + METRICS + ("seconds", "life_cycles", "energy_amplitude_MPa",
-                                 "peak_stretch"):
+                                 "peak_stretch") + BAND_COLUMNS:
         if c not in ("type", "material"):
             df[c] = pd.to_numeric(df[c], errors="coerce").astype("float64")
     for c in ("type", "material", "printability", "status", "message", "key", "life_message"):
