@@ -67,8 +67,10 @@ def run(args) -> int:
     t0 = time.perf_counter()
     m = chamber_map_for(sc, cache_dir=cache)
     count = 2 if scene.kind == "gripper" else 1
-    pads = VirtualChambers(m, Circuit(sc.setup_kPa, sc.reservoir_mm3, sc.valve, sc.gas),
-                           count=count, sensor=sc.sensor, y0_mm=m.y_range[0],
+    from spsc.dynamics.simulate import leak_valve
+
+    pads = VirtualChambers(m, Circuit(sc.setup_kPa, sc.reservoir_mm3, sc.valve, sc.gas,
+                                      leak_valve(sc, m)), count=count, sensor=sc.sensor, y0_mm=m.y_range[0],
                            valve_open=sc.valve_open)
     t_map = time.perf_counter() - t0
     stopped = None

@@ -77,7 +77,8 @@ class MapTable:
 class VirtualChambers:
     """``count`` chambers of one design on ``chamber_map`` in the circuit ``circuit``
     (:class:`~spsc.dynamics.circuit.Circuit`: setup pressure, reservoir, valve, gas), each
-    with ``sensor`` (None: a perfect one) seeded apart, at rest at the setup pressure with the
+    with ``sensor`` (None: a perfect one) seeded apart, the circuit's leak to the air if it has
+    one, at rest at the setup pressure with the
     plate at ``y0_mm`` (default: the map's first travel, above the chamber) and the valve
     ``valve_open``; ``substep_s`` the gas's step while a valve is open (:data:`SUBSTEP_S`:
     accuracy against speed).
@@ -89,6 +90,7 @@ class VirtualChambers:
                  y0_mm: float | None = None, valve_open: bool = False, table=None,
                  substep_s: float = SUBSTEP_S):
         self.table = table or MapTable(chamber_map)
+        self.leak = circuit.leak  # an orifice to the air (:mod:`spsc.dynamics.leak`) or None
         self.circuit, self.gas, self.count = circuit, circuit.gas, int(count)
         self.sensor, self.substep_s = sensor, float(substep_s)
         n = self.count
@@ -123,6 +125,14 @@ class VirtualChambers:
                 break
         return p
 
+    def _leak(self, pc_pa):
+        """ISO 6358 mass flow (kg/s) from the ambient air into each chamber through its leak
+        (negative: out; zero when sealed), explicit: a leak empties a chamber in minutes."""
+        if self.leak is None:
+            return np.zeros(self.count)
+        return self.leak.mass_flows(np.full(self.count, _PA), pc_pa,
+                                    np.full(self.count, self.gas.ambient_K), self.tc)
+
     def _flow(self, pc_pa, pr_pa):
         """ISO 6358 mass flow (kg/s) reservoir → chamber, per chamber (0 where shut)."""
         if self.vr <= 0 or self.circuit.valve is None:
@@ -150,7 +160,8 @@ class VirtualChambers:
             dpc_dm = gas.R * self.tc / ((v + pc_pa * dv * 1e-3) * _MM3)
             dpr_dm = gas.R * self.tr / self.vr
             q = q / (1.0 + h * G * (dpc_dm + dpr_dm))
-        mc = self.mc + h * q
+        q_leak = self._leak(pc_pa)  # kg/s into the chamber from the air (< 0: out)
+        mc = self.mc + h * (q + q_leak)
         if gas.isothermal:
             tc = self.tc
             p = self._pressure(y_new, mc, tc, self.p)
@@ -158,6 +169,8 @@ class VirtualChambers:
             cv, cp = gas.cv, gas.n * gas.cv
             v_old, _ = self.table.lookup(self.table.V, self.y, self.p)
             inflow = np.where(q >= 0, q * (cp * self.tr - cv * self.tc), q * gas.R * self.tc)
+            inflow = inflow + np.where(q_leak >= 0, q_leak * (cp * gas.ambient_K - cv * self.tc),
+                                       q_leak * gas.R * self.tc)
             heat = 0.0 if math.isinf(gas.thermal_time_s) else \
                 self.mc * cv * (gas.ambient_K - self.tc) / gas.thermal_time_s
             p = self.p

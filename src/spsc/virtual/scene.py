@@ -172,9 +172,6 @@ def parse_scene(doc: dict, base: Path = Path(".")) -> Scene:
     if sc.triggers or sc.stiffness is not None:
         raise ParameterError("events", "pressure triggers or [stiffness]", "timed valve events "
                              "only in a scene")
-    if sc.leak is not None:
-        raise ParameterError("circuit.leak", sc.leak.describe(), "none in a scene (the "
-                             "virtual chambers are sealed; spsc simulate runs a leak)")
     return Scene(scene["kind"], sc, obj, grasp)
 
 
