@@ -6,7 +6,7 @@ statistics and Drucker stability, a figure, and a material file every model take
         [--law neo-hookean|mooney-rivlin|yeoh|ogden|all] [--ogden-terms N] [--range LMIN:LMAX]
         [--strain-unit -|%|stretch] [--stress-unit MPa|kPa|Pa|psi|kgf/cm2]
         [--weighting relative|absolute] [--name NAME] [--json F] [--png F] [--out MATERIAL.json]
-        [--relaxation RELAX.csv | --cyclic CYCLE.csv]
+        [--relaxation RELAX.csv | --cyclic CYCLE.csv] [--mullins SOFTEN.csv]
     spsc fit-material --list-catalogue
 
 ``--relaxation`` fits a Prony series (the wall's viscoelasticity, :mod:`spsc.materials.prony`)
@@ -69,6 +69,10 @@ def register(subparsers) -> None:
                    help="list the catalogue materials (law, constants, provenance) and exit")
     p.add_argument("--relaxation", metavar="RELAX.csv", default=None, help="a relaxation test "
                    "(t_s and stress or modulus): fit Prony terms into the material file")
+    p.add_argument("--mullins", metavar="SOFTEN.csv", default=None, help="a loading-unloading "
+                   "uniaxial test of the virgin material (stretch, stress_MPa, in the order "
+                   "measured): the Ogden-Roxburgh softening's r, m, beta over the fitted law "
+                   "(spsc.materials.mullins_fit), a 'mullins' entry of the material file")
     p.add_argument("--cyclic", metavar="CYCLE.csv", default=None, help="a cyclic uniaxial test "
                    "(t_s, stretch, stress_MPa: loaded and unloaded, at two rates): fit Prony "
                    "terms over the fitted law into the material file")
@@ -177,6 +181,7 @@ def run(args) -> int:
         raise ParameterError("cyclic", args.cyclic, "without --relaxation (one test gives "
                              "the Prony terms)")
     cyclic = _read_cyclic(args.cyclic)
+    soften = _read_mullins(args.mullins)
     prony = _relaxation(args.relaxation)
     for line in notes:
         print(f"spsc {VERB}: read {line}", file=sys.stderr)
@@ -198,7 +203,9 @@ def run(args) -> int:
 
     if cyclic is not None and chosen is not None:
         prony = _cyclic(cyclic, chosen, tests, rng, args)
-    write_outputs(args, tests, fits, chosen, why, rng, notes, prony=prony)
+    mullins = _mullins(soften, chosen, tests, rng, args) if soften is not None and \
+        chosen is not None else None
+    write_outputs(args, tests, fits, chosen, why, rng, notes, prony=prony, mullins=mullins)
     return _verdict(fits, chosen)
 
 
@@ -239,6 +246,36 @@ def _cyclic(test, chosen, tests, rng, args):
     print(f"prony ({data['file']}, {data['points']} points, over {chosen.name}): {terms}; "
           f"rms {fit.rms_relative:.2%} of the largest stress")
     return cyclic_record(fit, data)
+
+
+def _read_mullins(path):
+    """The loading-unloading test at ``path`` (None without one), read before any fit."""
+    if path is None:
+        return None
+    from spsc.materials.mullins_fit import read_mullins
+
+    return read_mullins(path)
+
+
+def _mullins(test, chosen, tests, rng, args):
+    """The ``mullins`` entry fitted to the loading-unloading ``test`` over the ``chosen``
+    law, printed."""
+    from spsc.materials.file import material_from_record
+    from spsc.materials.fit.report import material_file_record
+    from spsc.materials.mullins_fit import fit_mullins, mullins_record
+
+    if getattr(chosen, "kind", "invariants") != "invariants" and not hasattr(chosen, "dW"):
+        raise ParameterError("--mullins", args.mullins, "over a law in the invariants (the "
+                             "fit's uniaxial stress is written in them)")
+    record = material_file_record(chosen, tests, name="mullins", rng=rng,
+                                  weighting=args.weighting, why="")
+    lam, stress, data = test
+    fit = fit_mullins(material_from_record(record), lam, stress)
+    prm = fit.params
+    print(f"mullins ({data['file']}, {fit.softened_points} softened points, over "
+          f"{chosen.name}): r {prm.r:.4g}, m {prm.m:.4g} MPa, beta {prm.beta:.4g}; rms "
+          f"{fit.rms_relative:.2%} of the largest stress")
+    return mullins_record(fit, data)
 
 
 def _verdict(fits, chosen) -> int:

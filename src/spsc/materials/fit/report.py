@@ -73,14 +73,17 @@ def fit_report(fits: dict, tests, *, chosen, why: str, rng, weighting: str, note
                               "path": None if material_path is None else str(material_path)}}
 
 
-def write_outputs(args, tests, fits, chosen, why, rng, notes, prony=None) -> None:
+def write_outputs(args, tests, fits, chosen, why, rng, notes, prony=None,
+                  mullins=None) -> None:
     """Write what the options ask for (their paths were checked before the fit); ``prony``
-    the material file's Prony entry (:func:`~.prony.prony_record`) or None."""
+    the material file's Prony entry (:func:`~.prony.prony_record`) or None; ``mullins`` its
+    softening's entry (:func:`~spsc.materials.mullins_fit.mullins_record`) or None."""
     if args.out is not None and chosen is not None:
         name = args.name or Path(args.out).stem
         record = material_file_record(chosen, tests, name=name, rng=rng,
                                       weighting=args.weighting, why=why)
-        write_json(args.out, record if prony is None else dict(record, prony=prony))
+        extra = {k: v for k, v in (("prony", prony), ("mullins", mullins)) if v is not None}
+        write_json(args.out, dict(record, **extra))
         print(f"material file {args.out} ({chosen.name}, name {name!r}): use it as "
               f"--material {args.out}")
     if args.json is not None:
