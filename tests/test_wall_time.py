@@ -44,8 +44,10 @@ def test_the_example_is_a_stepped_vented_viscous_wall():
 @pytest.mark.parametrize("tables, says", [
     ({"chamber": {"model": "surrogate", "l": 0}}, "chamber.model"),
     ({"press": {"force": [[0, 0], [1, 5]]}}, "press"),
-    ({"events": [{"t": 1.0, "valve": "open"}], "circuit": {"vented": False, "setup_kPa": 40}},
-     "[[events]]"),
+    ({"events": [{"pressure_above_kPa": 45, "valve": "open"}],
+      "circuit": {"vented": False, "setup_kPa": 40}}, "[[events]]"),
+    ({"events": [{"t": 1.0, "valve": "open"}],
+      "circuit": {"vented": False, "setup_kPa": 40, "gas": {"n": 1.4}}}, "circuit.gas.n"),
     ({"circuit": {"vented": False, "setup_kPa": 40,
                   "gas": {"n": 1.4, "thermal_time_s": 0.5}}}, "circuit.gas.thermal_time_s"),
     ({"circuit": {"setup_kPa": 40}}, "circuit.setup_kPa"),

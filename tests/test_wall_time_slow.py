@@ -63,3 +63,55 @@ def test_the_walls_bode_runs_from_its_relaxed_to_its_instantaneous_response():
     assert np.all(np.diff(k) > 0) and k[-1] == pytest.approx(k[-2], rel=5e-3)
     assert ph[2] > 10.0 and np.all(ph > -0.5)
     assert point["force_N"] == pytest.approx(float(c.force_N[20]), rel=0.01)
+
+
+def test_a_valve_switched_under_the_stepped_wall_is_the_maps(tmp_path):
+    """An elastic wall stepped in time (a Prony term of β = 1e-9) pressed 3 mm, the valve to
+    40 cm³ opened at 3 s and closed at 5 s, released: the instantly pooled gas of the stepped
+    wall against spsc simulate's map with its ISO 6358 valve — pressure within 0.01 kPa and
+    force within 0.5 % of the largest (the map's interpolation along y) at the wall's instants
+    once the valve's milliseconds are past, mass conserved by the pool."""
+    import json
+    import tomllib
+
+    from spsc.dynamics.scenario import parse_scenario
+
+    rec = {"schema": "spsc.material", "schema_version": 1, "name": "tpu-elastic",
+           "law": "neo-hookean", "constants": {"C10": 5.0 / 6.0},
+           "prony": {"terms": [[1e-9, 1.0]], "source": "test: an elastic wall in time"}}
+    (tmp_path / "m.json").write_text(json.dumps(rec))
+    text = """
+[chamber]
+type = "B"
+l = 0
+viscous = true
+[circuit]
+setup_kPa = 40
+reservoir_mm3 = 40000
+[press]
+profile = [[0, 0], [2, 3], [6, 3], [8, 0]]
+[[events]]
+t = 3.0
+valve = "open"
+[[events]]
+t = 5.0
+valve = "close"
+"""
+    doc = tomllib.loads(text)
+    doc["chamber"]["material"] = str(tmp_path / "m.json")
+    stepped = simulate(parse_scenario(doc)).trace
+    doc["chamber"].pop("viscous")
+    mapped = simulate(parse_scenario(doc), cache_dir=tmp_path / "cache").trace
+    t = stepped.t_s.to_numpy()
+    after = (t < 2.99) | (t > 3.05)  # the valve's milliseconds aside
+    after &= (t < 4.99) | (t > 5.05)
+    after &= np.isclose(np.round(t, 1), t, rtol=0, atol=1e-9)  # the wall's instants (between
+    # them the trace is linear in time)
+    np.testing.assert_allclose(stepped.pressure_kPa[after], mapped.pressure_kPa[after],
+                               rtol=0, atol=0.01)
+    # the map's force is interpolated along y on its 0.25 mm grid (worst at first touch)
+    np.testing.assert_allclose(stepped.force_N[after], mapped.force_N[after], rtol=0,
+                               atol=0.005 * mapped.force_N.max())
+    total = stepped.chamber_mg + stepped.reservoir_mg
+    np.testing.assert_allclose(total, total.iloc[0], rtol=1e-6)
+    assert stepped.valve_open.iloc[4000] == 1 and stepped.valve_open.iloc[6000] == 0

@@ -9,9 +9,12 @@ alone (the valve closed) or with the reservoir (the valve open from the start) �
 polytropic law P·Vⁿ = const of the wall model (isothermal: n = 1); a vented chamber stays at
 ambient pressure. The plate follows the press's travel profile through instants no more than
 :data:`MAX_DY_MM` of travel and :data:`MAX_DT_S` apart (the profile's knots among them); the
-trace is linear in time between them, on the output's grid. What the stepped wall cannot run
-(valve events, a force-controlled press, a gas that exchanges heat with a time constant, a
-leak, the stiffness controller) is refused before anything runs, in one line.
+trace is linear in time between them, on the output's grid. Timed valve events cut the path
+into :class:`~spsc.fem.engine.Cycle` steps with a :class:`~spsc.fem.engine.SwitchValve`
+between them (the gases pooled at once, mixed isothermally). What the stepped wall cannot run
+(pressure thresholds, events with n > 1, a force-controlled press, a gas that exchanges heat
+with a time constant, a leak, the stiffness controller) is refused before anything runs, in
+one line.
 """
 
 from __future__ import annotations
@@ -78,10 +81,13 @@ def check_stepped(scenario) -> None:
     if type(scenario.press) is not PressProfile:  # a SpringProfile is one too
         raise ParameterError("press", "force or a spring-borne object", f"a travel profile "
                              f"= [[t_s, y_mm], ...] with {why} (the wall follows the plate)")
-    if scenario.events or scenario.triggers:
-        raise ParameterError("[[events]]", "valve events", f"none with {why}: the valve keeps "
-                             "its state (circuit.valve.state) while the wall is stepped")
+    if scenario.triggers:
+        raise ParameterError("[[events]]", "pressure thresholds", f"timed valve events only "
+                             f"with {why} (the wall's instants are set before it runs)")
     gas = scenario.gas
+    if scenario.events and not gas.isothermal:
+        raise ParameterError("circuit.gas.n", gas.n, f"1 (isothermal) with valve events and "
+                             f"{why}: the valve pools the two gases at once, mixed isothermally")
     if not gas.isothermal and np.isfinite(gas.thermal_time_s):
         raise ParameterError("circuit.gas.thermal_time_s", gas.thermal_time_s, f"inf (a "
                              f"polytropic gas) or n = 1 with {why}: the wall model's gas "
@@ -129,10 +135,13 @@ def _wall(scenario, valve_open: bool):
     return fresh, steps, prony
 
 
-def instants(profile, max_dy: float = MAX_DY_MM, max_dt: float = MAX_DT_S):
-    """(times s, travels mm ≥ 0) the wall is solved at: the profile's knots, each segment cut
-    so no step moves more than ``max_dy`` or lasts more than ``max_dt``."""
-    t, y = np.asarray(profile.t_s, float), np.maximum(np.asarray(profile.y_mm, float), 0.0)
+def instants(profile, max_dy: float = MAX_DY_MM, max_dt: float = MAX_DT_S, at=()):
+    """(times s, travels mm ≥ 0) the wall is solved at: the profile's knots and the instants
+    ``at`` (valve events), each segment cut so no step moves more than ``max_dy`` or lasts
+    more than ``max_dt``."""
+    knots = np.union1d(np.asarray(profile.t_s, float),
+                       [a for a in at if 0.0 < a < profile.duration])
+    t, y = knots, np.maximum(profile.y(knots), 0.0)
     times, travels = [t[0]], [y[0]]
     for k in range(1, t.size):
         n = max(1, int(np.ceil(max(abs(y[k] - y[k - 1]) / max_dy,
@@ -147,25 +156,26 @@ def run_stepped(scenario, progress=None) -> tuple[dict, bool, str, float]:
     """(the trace's columns on the output grid — :data:`~.simulate.COLUMNS` —, complete,
     message, the seconds the wall took) of ``scenario`` with the wall model stepped in
     time."""
-    from spsc.fem.engine import Cycle, solve
+    from spsc.fem.engine import solve
     from threadpoolctl import threadpool_limits
 
     check_stepped(scenario)
-    ch, sc = scenario.chamber, scenario
+    sc = scenario
     fresh, steps, _ = _wall(scenario, sc.valve_open)
     model = fresh()
     pooled = sc.reservoir_mm3 if sc.valve_open else 0.0
-    times, travels = instants(sc.press)
-    friction = ch.friction
-    cycle = Cycle(tuple(times), tuple(travels), stick=friction is not None,
-                  mu=None if friction in (None, "stick") else float(friction))
+    events = [(t, o) for t, o in sc.events if 0.0 < t < sc.press.duration]
+    # the event and an instant 1 ms after it: the pool settles within the valve's
+    # milliseconds, which the trace then shows rather than a ramp over a whole step
+    times, travels = instants(sc.press, at=[t + d for t, _ in events for d in (0.0, 1e-3)])
     total = len(steps) and model.settings.inflate_increments
+    steps = steps + _segments(sc, times, travels, events)
     report = None if progress is None else \
         (lambda done, _n: progress(float(times[min(max(done - total, 0), times.size - 1)]),
                                    float(times[-1])))
     t0 = time.perf_counter()
     with threadpool_limits(limits=1, user_api="blas"):
-        res = solve(model, steps + [cycle], settings=model.default_settings(), progress=report)
+        res = solve(model, steps, settings=model.default_settings(), progress=report)
     seconds = time.perf_counter() - t0
     rest = [r for r in res.records if r.kind != "press"][-1]
     pressed = [r for r in res.records if r.kind == "press"]
@@ -180,9 +190,59 @@ def run_stepped(scenario, progress=None) -> tuple[dict, bool, str, float]:
     for name, values in (("force_N", f), ("pressure_kPa", p), ("volume_mm3", v),
                          ("contact_mm2", a)):
         col[name] = np.interp(t_out, times[:k], values)
+    valve = _valve_states(sc, times[:k], events, strict=True)
     col.update(_gas_columns(sc, col["pressure_kPa"], col["volume_mm3"], pooled,
                             float(p[0]), float(v[0])))
+    if events:  # the valve switched: where open the pool's pressure, where shut the held one
+        open_ = _valve_states(sc, t_out, events, strict=True)
+        held = _held_reservoir(sc, times[:k], p, valve)
+        prev = np.clip(np.searchsorted(times[:k], t_out, "right") - 1, 0, k - 1)
+        col["reservoir_kPa"] = np.where(open_, col["pressure_kPa"], held[prev])
+        col["valve_open"] = open_.astype(int)
+        col["reservoir_mg"] = (col["reservoir_kPa"] + P_AMB_KPA) * 1e3 * sc.reservoir_mm3 * \
+            1e-9 / (sc.gas.R * sc.gas.ambient_K) * 1e6
     return col, bool(res.converged), res.message if not res.converged else "complete", seconds
+
+
+def _segments(sc, times, travels, events) -> list:
+    """The plate's path as Cycle steps between the valve's events (each measuring its
+    travels from where the last left the plate, its clock from the event), a
+    :class:`SwitchValve` at each event."""
+    from spsc.fem.engine import Cycle, SwitchValve
+
+    friction, n = sc.chamber.friction, 1.0 if sc.gas.isothermal else sc.gas.n
+    state = {"pressure": sc.setup_kPa * 1e-3}  # the reservoir's gauge pressure (MPa)
+    cuts = [0] + [int(np.argmin(np.abs(times - t))) for t, _ in events] + [times.size - 1]
+    out = []
+    for k, (a, b) in enumerate(zip(cuts, cuts[1:])):
+        if k:
+            out.append(SwitchValve(events[k - 1][1], sc.reservoir_mm3, n, state))
+        out.append(Cycle(tuple(times[a:b + 1] - times[a]), tuple(travels[a:b + 1] - travels[a]),
+                         stick=friction is not None,
+                         mu=None if friction in (None, "stick") else float(friction),
+                         start_s=float(times[a])))
+    return out
+
+
+def _valve_states(sc, times, events, strict: bool = False) -> np.ndarray:
+    """The valve at each instant: an event switches it from its instant on (``strict``: just
+    after it — the trace's sample at the event holds the wall solved before the switch)."""
+    state = np.full(times.size, bool(sc.valve_open))
+    for t, opened in events:
+        state[times > t + 1e-12 if strict else times >= t - 1e-12] = opened
+    return state
+
+
+def _held_reservoir(sc, times, p, valve) -> np.ndarray:
+    """The reservoir's gauge pressure (kPa) at each instant while shut: the setup pressure
+    until it first opens, then the pool's pressure where it was last shut."""
+    held = np.empty(times.size)
+    last = sc.setup_kPa
+    for i in range(times.size):
+        if valve[i]:
+            last = p[i]
+        held[i] = last
+    return held
 
 
 def _gas_columns(sc, p, v, pooled, p0, v0) -> dict:
@@ -194,7 +254,7 @@ def _gas_columns(sc, p, v, pooled, p0, v0) -> dict:
     def mg(pk, vol, temp):
         return (pk + P_AMB_KPA) * 1e3 * vol * 1e-9 / (R * temp) * 1e6
 
-    if sc.vented:
+    if sc.vented or sc.gas.isothermal:  # (valve events pool isothermally: n = 1 there)
         temp = np.full(n, t_amb)
     else:
         m_total = mg(p0, v0 + pooled, t_amb)

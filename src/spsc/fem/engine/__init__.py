@@ -12,8 +12,9 @@ changes numbers, :class:`~.settings.Settings` names the choice and each discreti
 from .newton import Converged, newton
 from .result import NewtonFailure, Record, Result, Stop
 from .settings import Settings
-from .steps import CloseValve, Cycle, Inflate, Load, Press, load_steps
+from .steps import CloseValve, Cycle, Inflate, Load, Press, SwitchValve, load_steps
 from .walk import solve
 
-__all__ = ["CloseValve", "Converged", "Cycle", "Inflate", "Load", "NewtonFailure", "Press", "Record",
+__all__ = ["CloseValve", "Converged", "Cycle", "Inflate", "Load", "NewtonFailure", "Press",
+           "Record", "SwitchValve",
            "Result", "Settings", "Stop", "load_steps", "newton", "solve"]

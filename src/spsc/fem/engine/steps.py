@@ -13,16 +13,17 @@ for a step that records nothing): the walk asks nothing else of it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
 
-from spsc.core.constants import to_MPa
+from spsc.core.constants import P_AMB, to_MPa
 from spsc.core.errors import ParameterError
 from spsc.core.gaslaw import GasLaw
 
-__all__ = ["Inflate", "CloseValve", "Press", "Cycle", "Load", "Path", "load_steps"]
+__all__ = ["Inflate", "CloseValve", "SwitchValve", "Press", "Cycle", "Load", "Path",
+           "load_steps"]
 
 
 @dataclass(frozen=True)
@@ -91,6 +92,38 @@ class CloseValve:
         (``volume()``, mm³) trapped with the reservoir."""
         gas = GasLaw(load.pressure, volume(), self.reservoir, self.polytropic_n)
         return Load(gas=gas, plate=load.plate, indenter=load.indenter)
+
+    def path(self, load: Load, contact_height: Callable, settings) -> None:
+        return None
+
+
+@dataclass(frozen=True)
+class SwitchValve:
+    """Switch the valve mid-walk (the wall stepped in time, :mod:`spsc.dynamics.wall_time`).
+    ``opened``: the cavity's gas and the reservoir's (``reservoir`` mm³ at the gauge pressure
+    ``state["pressure"]``, MPa) pooled at once and mixed isothermally, (P_c + Pₐ) V_c +
+    (P_r + Pₐ) V_r = (P + Pₐ)(V_c + V_r), then P·Vⁿ = const of the pool — the valve's
+    milliseconds are below the walk's steps; closed: the cavity's gas alone from its current
+    pressure, the reservoir keeping it (written to ``state``)."""
+
+    opened: bool
+    reservoir: float
+    polytropic_n: float = 1.0
+    state: dict = field(default_factory=dict, compare=False)
+    increments = 0  # no recorded point: the walk only changes its load
+
+    def begin(self, load: Load, volume: Callable) -> Load:
+        v = volume()
+        p = float(load.gas.pressure(v)) if load.gas is not None else float(load.pressure)
+        pa = load.gas.p_amb if load.gas is not None else P_AMB
+        if self.opened:
+            pr = float(self.state.get("pressure", p))
+            p = ((p + pa) * v + (pr + pa) * self.reservoir) / (v + self.reservoir) - pa
+            gas = GasLaw(p, v, self.reservoir, self.polytropic_n)
+        else:
+            self.state["pressure"] = p
+            gas = GasLaw(p, v, 0.0, self.polytropic_n)
+        return Load(pressure=p, gas=gas, plate=load.plate, indenter=load.indenter)
 
     def path(self, load: Load, contact_height: Callable, settings) -> None:
         return None
@@ -180,6 +213,8 @@ class Cycle(_Ramp):
     travels: tuple
     stick: bool = False
     mu: float | None = None
+    #: the time (s) of this step's t = 0 on the walk's clock (a cycle cut by valve events)
+    start_s: float = 0.0
 
     def __post_init__(self):
         t = tuple(float(v) for v in self.times)
@@ -210,9 +245,9 @@ class Cycle(_Ramp):
             speed = max(abs(b - a) / (tb - ta) for a, b, ta, tb in
                         zip(self.travels, self.travels[1:], self.times, self.times[1:]))
             span = settings.stick_increment / speed if speed > 0 else None
-        return Path(lambda t: Load(load.pressure, load.gas, z0 - self.travel_at(t), t,
-                                   self.stick), "press", self.targets(), self.travel_at,
-                    mu=self.mu, span=span)
+        return Path(lambda t: Load(load.pressure, load.gas, z0 - self.travel_at(t),
+                                   self.start_s + t, self.stick), "press", self.targets(),
+                    self.travel_at, mu=self.mu, span=span)
 
 
 @dataclass(frozen=True)
