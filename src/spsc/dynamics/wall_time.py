@@ -212,11 +212,15 @@ def _segments(sc, times, travels, events) -> list:
 
     friction, n = sc.chamber.friction, 1.0 if sc.gas.isothermal else sc.gas.n
     state = {"pressure": sc.setup_kPa * 1e-3}  # the reservoir's gauge pressure (MPa)
-    cuts = [0] + [int(np.argmin(np.abs(times - t))) for t, _ in events] + [times.size - 1]
+    at = {int(np.argmin(np.abs(times - t))): opened for t, opened in events}
+    # a cut 1 ms after each event too: the walk's increments start at a Cycle's first spacing,
+    # so the millisecond the pool settles in is a Cycle of its own
+    after = {int(np.argmin(np.abs(times - t - 1e-3))) for t, _ in events}
+    cuts = sorted({0, times.size - 1} | set(at) | after)
     out = []
-    for k, (a, b) in enumerate(zip(cuts, cuts[1:])):
-        if k:
-            out.append(SwitchValve(events[k - 1][1], sc.reservoir_mm3, n, state))
+    for a, b in zip(cuts, cuts[1:]):
+        if a in at:
+            out.append(SwitchValve(at[a], sc.reservoir_mm3, n, state))
         out.append(Cycle(tuple(times[a:b + 1] - times[a]), tuple(travels[a:b + 1] - travels[a]),
                          stick=friction is not None,
                          mu=None if friction in (None, "stick") else float(friction),

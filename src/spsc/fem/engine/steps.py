@@ -123,7 +123,7 @@ class SwitchValve:
         else:
             self.state["pressure"] = p
             gas = GasLaw(p, v, 0.0, self.polytropic_n)
-        return Load(pressure=p, gas=gas, plate=load.plate, indenter=load.indenter)
+        return Load(gas=gas, plate=load.plate, indenter=load.indenter)
 
     def path(self, load: Load, contact_height: Callable, settings) -> None:
         return None
