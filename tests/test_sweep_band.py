@@ -48,6 +48,7 @@ def test_each_design_carries_its_band(tmp_path, capsys):
     assert not set(plain.key) & set(df.key)
 
 
+@pytest.mark.slow
 def test_a_vanishing_spread_is_the_nominal_design(tmp_path):
     """sd 1e-6 mm, 1e-6 kPa, cv 1e-6: every print is the design itself; its band collapses
     onto the row's own metrics (the band and the row run the same model)."""

@@ -93,6 +93,7 @@ def _run(path, tmp_path, *extra):
     return pd.read_parquet(out / "trace.parquet"), json.loads((out / "scene.json").read_text())
 
 
+@pytest.mark.slow
 def test_the_plate_scene_is_the_static_curve_and_simulates_switch(tmp_path):
     """Pressed slowly along a travel profile (isothermal, valve closed), the pad's force and
     pressure at the plate's travel are spsc curve's (the same surrogate) within 1 % of the

@@ -75,6 +75,7 @@ def test_instants_keep_the_knots_and_the_step_bounds():
     np.testing.assert_allclose(y, np.maximum(prof.y(t), 0.0), rtol=0, atol=1e-12)
 
 
+@pytest.mark.slow
 def test_the_stepped_walls_gas_is_its_polytrope():
     """A closed dome (viscous wall, n = 1.4 without heat exchange) pressed 2 mm and back:
     (P + Pₐ) Vⁿ holds to the interpolation between instants (1e-5), the temperature is the
