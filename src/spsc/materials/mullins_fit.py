@@ -93,29 +93,12 @@ def read_mullins(path) -> tuple[np.ndarray, np.ndarray, dict]:
     """(stretch, nominal stress MPa, the file's record) of a loading–unloading test: a CSV
     with the columns ``stretch`` and ``stress_MPa`` in the order they were measured; one-line
     :class:`ParameterError` naming the file otherwise."""
-    import hashlib
-    from pathlib import Path
+    from .testcsv import read_columns
 
-    import pandas as pd
-
-    p = Path(path)
-    try:
-        raw = p.read_bytes()
-        df = pd.read_csv(p, comment="#")
-    except (OSError, ValueError) as exc:
-        raise ParameterError("--mullins", str(path), "a readable CSV with stretch and "
-                             f"stress_MPa ({str(exc).splitlines()[0]})") from None
-    missing = [c for c in ("stretch", "stress_MPa") if c not in df.columns]
-    if missing:
-        raise ParameterError("--mullins", p.name, "a CSV with the columns stretch and "
-                             f"stress_MPa; it lacks {', '.join(missing)}")
-    cols = [pd.to_numeric(df[c], errors="coerce").to_numpy(float)
-            for c in ("stretch", "stress_MPa")]
-    if not all(np.all(np.isfinite(c)) for c in cols) or np.any(cols[0] < 1.0):
-        raise ParameterError("--mullins", p.name, "numbers in every row, stretches >= 1 "
-                             "(a tension test)")
-    return (*cols, {"file": p.name, "sha256": hashlib.sha256(raw).hexdigest(),
-                    "points": int(cols[0].size)})
+    lam, stress, data = read_columns(path, "--mullins", ("stretch", "stress_MPa"))
+    if np.any(lam < 1.0):
+        raise ParameterError("--mullins", data["file"], "stretches >= 1 (a tension test)")
+    return lam, stress, data
 
 
 def mullins_record(fit: MullinsFit, data: dict) -> dict:

@@ -169,29 +169,9 @@ def read_cyclic(path) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict]:
     """(t_s, stretch, nominal stress MPa, the file's record) of a cyclic test: a CSV with the
     columns ``t_s``, ``stretch`` and ``stress_MPa``; one-line :class:`ParameterError` naming
     the file otherwise."""
-    import hashlib
-    from pathlib import Path
+    from .testcsv import read_columns
 
-    import pandas as pd
-
-    p = Path(path)
-    try:
-        raw = p.read_bytes()
-        df = pd.read_csv(p, comment="#")
-    except (OSError, ValueError) as exc:
-        raise ParameterError("--cyclic", str(path), "a readable CSV with t_s, stretch and "
-                             f"stress_MPa ({str(exc).splitlines()[0]})") from None
-    missing = [c for c in ("t_s", "stretch", "stress_MPa") if c not in df.columns]
-    if missing:
-        raise ParameterError("--cyclic", p.name, "a CSV with the columns t_s, stretch and "
-                             f"stress_MPa; it lacks {', '.join(missing)}")
-    cols = [pd.to_numeric(df[c], errors="coerce").to_numpy(float)
-            for c in ("t_s", "stretch", "stress_MPa")]
-    if not all(np.all(np.isfinite(c)) for c in cols):
-        raise ParameterError("--cyclic", p.name, "numbers in every row (a row is empty or not "
-                             "a number)")
-    return (*cols, {"file": p.name, "sha256": hashlib.sha256(raw).hexdigest(),
-                    "points": int(cols[0].size)})
+    return read_columns(path, "--cyclic", ("t_s", "stretch", "stress_MPa"))
 
 
 def cyclic_record(fit: CyclicFit, data: dict) -> dict:
