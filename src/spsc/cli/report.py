@@ -29,6 +29,7 @@ it is NOT REPRODUCIBLE.
 
 from __future__ import annotations
 
+import argparse
 import os
 import re
 import shlex
@@ -57,6 +58,7 @@ def register(subparsers) -> None:
                    help="no 3D FEM: the membrane, simplified and wall models only")
     p.add_argument("--no-sweep", action="store_true",
                    help="no design-space sweep (its section and page)")
+    _add_band_options(p)
     p.add_argument("--fingertip", metavar="DIR", default=None,
                    help="the fingertip FEM study to show (spsc fingertip --fem's OUT/fem; "
                    "default build/fingertip/fem when it exists)")
@@ -102,6 +104,16 @@ def register(subparsers) -> None:
     p.set_defaults(func=run)
 
 
+def _add_band_options(p) -> None:
+    p.add_argument("--band", action=argparse.BooleanOptionalAction, default=None,
+                   help="the headline's band under a tolerance set: the wall model on a grid "
+                   "of it, 25-30 x 32 curves (default: on, off with --quick)")
+    p.add_argument("--band-tolerance", metavar="FILE.toml", default=None,
+                   help="the band's tolerance set (at most two inputs, no [friction]; default "
+                   "the report's declared one: t0 0.9-1.1 mm, the material between the two "
+                   "readings of the FilaFlex 60A tests)")
+
+
 def run(args) -> int:
     from spsc.study.cache import Cache
     from spsc.study.provenance import committed_report_dir, provenance
@@ -122,6 +134,7 @@ def run(args) -> int:
     if types:
         study = study.replace(types=types)
     bench = _bench(args)
+    band_tolerance = _band_tolerance(args)
     committed = _same_dir(out, committed_report_dir())
     if committed and not args.allow_dirty and not _clean_or_say_why(provenance()):
         return 2
@@ -132,6 +145,12 @@ def run(args) -> int:
         from spsc.report.sweep import run_report_sweep
 
         sweep = run_report_sweep(study, cache.root, progress=not args.quiet, **where)
+    band = None
+    if band_tolerance is not None:
+        from spsc.study.headline_band import run_headline_band
+
+        band = run_headline_band(study, cache.root, band_tolerance, progress=not args.quiet,
+                                 **where)
     source = provenance()  # as it is when the report is written: the tree may have changed
     if committed and not args.allow_dirty and not _clean_or_say_why(source):
         return 2
@@ -142,7 +161,8 @@ def run(args) -> int:
                         executor=executor, sweep=sweep, fingertip=_fingertip(args),
                         molds=tuple(study.types), haptic=_haptic(args),
                         time_study=_time(args), gap=_gap(args),
-                        surrogate=_surrogate(args), durability=_durability(args))
+                        surrogate=_surrogate(args), durability=_durability(args),
+                        band=band)
     failed = [r.label for r, o in outcomes.items() if not o.ok]
     cached = sum(o.cached for o in outcomes.values())
     print(f"spsc report: {path} ({len(outcomes)} runs, {cached} from the cache, "
@@ -169,6 +189,24 @@ _STUDIES = (("fingertip", "a fingertip study's summary.json (spsc fingertip --fe
              "writes build/surrogate-check)"),
             ("durability", "the durability study's summary.json (make durability-study "
              "writes build/durability)"))
+
+
+def _band_tolerance(args):
+    """The band's tolerance (None: no band), read and checked before any work."""
+    on = (not args.quick) if args.band is None else args.band
+    if not on:
+        if args.band_tolerance is not None:
+            raise ParameterError("band-tolerance", args.band_tolerance,
+                                 "only with the band (not with --no-band; with --quick add "
+                                 "--band)")
+        return None
+    from spsc.study.headline_band import check_band_tolerance, declared_tolerance
+    from spsc.study.tolerance import read_tolerance
+
+    tol = (declared_tolerance() if args.band_tolerance is None
+           else read_tolerance(args.band_tolerance))
+    check_band_tolerance(tol)
+    return tol
 
 
 def _check_studies(args) -> None:
@@ -295,6 +333,10 @@ def _reconstruct(args) -> str:
         parts.append("--no-fem")
     if args.no_sweep:
         parts.append("--no-sweep")
+    if args.band is not None:
+        parts.append("--band" if args.band else "--no-band")
+    if args.band_tolerance is not None:
+        parts += ["--band-tolerance", str(args.band_tolerance)]
     for opt in ("workers", "scheduler"):
         if getattr(args, opt) is not None:
             parts += [f"--{opt}", str(getattr(args, opt))]

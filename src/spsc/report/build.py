@@ -46,7 +46,7 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
                  wall_seconds: float | None = None, render: bool = True, fig_cache=None,
                  source: Provenance | None = None, bench=None, executor: str = "",
                  sweep=None, fingertip=None, molds=(), haptic=None, time_study=None,
-                 gap=None, surrogate=None, durability=None) -> Path:
+                 gap=None, surrogate=None, durability=None, band=None) -> Path:
     """Write ``out_dir/index.html`` with ``figures/``, ``data/`` and ``summary.json`` beside
     it; returns the HTML path. ``outcomes`` is :func:`~.runner.run_all`'s result;
     ``fig_cache``: a directory where figures are kept by a hash of what they show (None:
@@ -64,7 +64,8 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
     the folder of the time-domain study (:mod:`.time`; as ``fingertip``); ``gap``: the folder
     of the bench-gap study (:mod:`.gap`), ``surrogate`` the surrogate's check
     (:mod:`.surrogate`), ``durability`` the durability study (:mod:`.durability`): as
-    ``fingertip``."""
+    ``fingertip``; ``band``: the headline band's record
+    (:func:`~spsc.study.headline_band.run_headline_band`; None: no band)."""
     out = Path(out_dir)
     figs, data = out / "figures", out / "data"
     for d in [figs, data] + [out / k for k in SECTION_DIRS]:
@@ -93,8 +94,9 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
                       surrogate=surrogate, durability=durability)}
     ctx["overview"] = overview_section(study, ctx["headline"], ctx["comparison"],
                                        ctx["convergence"], ctx["paper"])
+    ctx["band"] = _band(band, study, ctx["paper"])
     drawn, ctx["figure_notes"] = draw_figures(
-        figs, [("bench-gap", bench_gap_figure, ctx["overview"]["bench_gap"])])
+        figs, [("bench-gap", bench_gap_figure, ctx["overview"]["bench_gap"], ctx["band"])])
     ctx["overview"]["figure"] = drawn.get("bench-gap")
     write_json(out / "summary.json", _summary(ctx))
     path = out / "index.html"
@@ -106,6 +108,20 @@ def build_report(study: Study, outcomes: dict, out_dir, *, command: str = "",
 _STUDY_SECTIONS = {"fingertip": fingertip_section, "haptic": haptic_section,
                    "time": time_section, "gap": gap_section, "surrogate": surrogate_section,
                    "durability": durability_section}
+
+
+def _band(record, study, paper) -> dict | None:
+    """The headline band's section (None: no band asked for or not the paper's material)."""
+    if record is None or study.materials[0] != paper.material:
+        return None
+    from spsc.report.band import band_section
+    from spsc.study.headline_band import DECLARED_SOURCES, DECLARED
+
+    source = Path(record["tolerance"]["source"])
+    declared = source.resolve() == DECLARED.resolve()
+    name = ("the report's declared set (spsc/report/data/" + DECLARED.name + ")" if declared
+            else source.name)
+    return band_section(record, paper, DECLARED_SOURCES if declared else None, name)
 
 
 def _studies(out, **folders) -> dict:
@@ -141,6 +157,7 @@ def _summary(ctx: dict) -> dict:
             "haptic": ctx["haptic"],
             "time": ctx["time"],
             "gap": ctx["gap"],
+            "band": ctx["band"],
             "versions": ctx["versions"]}
 
 
