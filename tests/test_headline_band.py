@@ -56,7 +56,9 @@ def _record(p5, p50, p95):
     keys = [f"{a}_{m}" for a in ("stiffness", "sensitivity") for m in ("high", "low")]
     return {"tolerance": declared_tolerance().to_dict(), "quantiles": {k: q for k in keys},
             "sobol": {k: si for k in keys}, "method": "m", "samples": 8, "clipped_share": 0.0,
-            "curves": 1, "compute_seconds": 1.0, "check_error_max": 0.001, "checks": [{}]}
+            "curves": 1, "compute_seconds": 1.0, "check_error_max": 0.02,
+            "checks": [{k: {"wall": 2.0, "interpolated": 2.0 * (1 + 0.01 * (i + 1))}
+                        for i, k in enumerate(keys)}]}
 
 
 def test_the_section_says_where_each_bench_mean_falls():
@@ -71,6 +73,10 @@ def test_the_section_says_where_each_bench_mean_falls():
     assert rows["sensitivity_low"]["verdict"] == "below"
     assert_allclose(rows["sensitivity_low"]["outside"], 0.5 / 4.0 - 1, rtol=1e-12)
     assert rows["stiffness_high"]["dominant"] == "material"
+    # the interpolant's error at the checks, per quantity (1 %, 2 %, 3 %, 4 % above)
+    assert_allclose([rows[k]["check_error"] for k in ("stiffness_high", "stiffness_low",
+                                                       "sensitivity_high", "sensitivity_low")],
+                    [0.01, 0.02, 0.03, 0.04], rtol=1e-12)
     assert "14 % above the band's P95 (7" in s["sentence"] and "inside" in s["sentence"]
     assert "record" not in s and "not_computed" not in s
     assert band_section({"not_computed": "a node failed"}, bench) == {

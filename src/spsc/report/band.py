@@ -44,7 +44,10 @@ def band_section(record: dict, paper, sources: dict | None = None, name: str = "
             st = record["sobol"][key]["ST"]
             top = max(st, key=st.get)
             verdict, off = _verdict(b.value, qs) if b else ("", 0.0)
+            checks = [abs(c[key]["interpolated"] / c[key]["wall"] - 1.0)
+                      for c in record["checks"] if c[key]["wall"]]
             rows.append({"quantity": label, "key": key, "mode": mode,
+                         "check_error": max(checks) if checks else float("nan"),
                          "unit": b.unit if b else "", "bench": b.value if b else None,
                          "printed": b.printed if b else "", **qs, "verdict": verdict,
                          "outside": off, "dominant": top, "dominant_ST": st[top],
