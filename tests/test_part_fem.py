@@ -539,3 +539,35 @@ def test_the_mesh_cache_key_is_the_same_for_a_design_in_memory_and_read_from_its
     other = part_run(str(stl), MAT, "z<=0", mesh_size_mm=2.0,
                      design={"port": {**port, "radius": 0.8}})
     assert _cache_path(other, tmp_path) != _cache_path(read, tmp_path)
+
+
+# -- the part model of the registry (issue 47) ----------------------------------------------
+def test_the_part_model_is_in_the_registry_and_takes_only_parts(capsys, dome_stl):
+    from spsc.cad.geometry import preset
+    from spsc.core.loadcase import check_load
+    from spsc.core.setup import Contact, Setup
+    from spsc.fem.part import Part
+    from spsc.models import MODELS, PARAMETRIC
+
+    model = MODELS["part"]
+    assert "part" not in PARAMETRIC and {"membrane", "wall", "fem"} <= set(PARAMETRIC)
+    assert not (model.parametric or model.sweep or model.study or model.fast)
+    # spsc curve offers the parametric chamber's models only
+    assert main(["curve", "--model", "part", "--type", "B"]) == 2
+    assert "--model: invalid choice: 'part'" in capsys.readouterr().err
+    chamber = Setup.of(preset("B"), MAT, pressure_kPa=40, stroke_mm=2, points=3)
+    with pytest.raises(ParameterError, match="body = 'SPSCGeometry' is invalid: allowed a part"):
+        model.check(chamber, model.Options(), verb="fem", quiet=True)
+    # a part setup is checked against its surface before any meshing, by the model
+    load = check_load(None, pressure_kPa=40, reservoir_mm3=0, stroke_mm=2, points=3,
+                      polytropic_n=1.0)
+    part = Setup(Part(dome_stl, "z>-9"), MAT, load, Contact())
+    with pytest.raises(ParameterError, match="leaves part of the surface free"):
+        model.check(part, model.Options(mesh_size=SIZE), verb="fem", quiet=True)
+    stick = Setup(Part(dome_stl, "z<=0"), MAT, load, Contact.of("plate", "stick"))
+    with pytest.raises(ParameterError, match="--friction = 'stick' is invalid: allowed not "
+                       "with --part"):
+        model.check(stick, model.Options(mesh_size=SIZE), verb="fem", quiet=True)
+    ok = Setup(Part(dome_stl, "z<=0"), MAT, load, Contact())
+    model.check(ok, model.Options(mesh_size=SIZE), verb="fem", quiet=True)
+    assert model.load_steps(ok, model.Options()) == 2 + 4

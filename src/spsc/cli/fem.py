@@ -141,17 +141,7 @@ def _refuse_friction(args) -> None:
                                  "--plate-normal)")
 
 
-def part_run_from_args(args):
-    """The PartRun of an invocation: every check before any work (one-line ParameterError)."""
-    from spsc.fem.part.run import ContactPatch, part_run
-    from spsc.materials import material
-
-    for dest in _CHAMBER_ONLY:
-        if getattr(args, dest, None) not in (None, False):
-            raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
-                                 "not with --part (the part file is the geometry; the mesh "
-                                 "size is --mesh-size)")
-    _refuse_friction(args)
+def _check_outputs(args) -> None:
     for opt, path in (("--json", args.json), ("--csv", args.csv)):
         if path is not None:
             check_output_file(opt, path)
@@ -161,15 +151,11 @@ def part_run_from_args(args):
         check_output_dir("--vtu", args.vtu)
     if args.cache is not None:
         check_output_dir("--cache", args.cache)
-    part = Path(args.part)
-    if not part.is_file():
-        raise ParameterError("part", str(part), "an existing .stl, .3mf or .step file")
-    design, _ = _design_of(args)
-    fem = (design or {}).get("fem") or {}
-    fix = args.fix if args.fix is not None else fem.get("mount")
-    if fix is None:
-        raise ParameterError("fix", None, "a selector of the nodes to clamp, e.g. --fix 'z<=0' "
-                             "(the design file names no mount)")
+
+
+def _placement(args, design) -> tuple:
+    """(the plate's direction or None, the point it first touches or None): ``--plate-at``
+    a point or a site of the design file (whose normal is the default direction)."""
     normal, at = args.plate_normal, None
     if args.plate_at is not None:
         sites = _sites(design)
@@ -184,89 +170,82 @@ def part_run_from_args(args):
                 names = ", ".join(sites) or "none in the design file"
                 raise ParameterError("plate-at", args.plate_at,
                                      f"X,Y,Z in mm or a site name ({names})") from None
+    return normal, at
+
+
+def part_setup_from_args(args):
+    """The :class:`~spsc.core.setup.Setup` (its body a :class:`~spsc.fem.part.Part`) and the
+    part model's options of an invocation, every check before any work (one-line
+    ParameterError; the run's own against the part's surface are the model's ``check``)."""
+    from spsc.core.loadcase import check_load
+    from spsc.core.setup import Contact, Setup
+    from spsc.fem.part import ContactPatch, Part
+    from spsc.materials import material
+    from spsc.models import MODELS
+
+    for dest in _CHAMBER_ONLY:
+        if getattr(args, dest, None) not in (None, False):
+            raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
+                                 "not with --part (the part file is the geometry; the mesh "
+                                 "size is --mesh-size)")
+    _refuse_friction(args)
+    _check_outputs(args)
+    part = Path(args.part)
+    if not part.is_file():
+        raise ParameterError("part", str(part), "an existing .stl, .3mf or .step file")
+    design, _ = _design_of(args)
+    fem = (design or {}).get("fem") or {}
+    fix = args.fix if args.fix is not None else fem.get("mount")
+    if fix is None:
+        raise ParameterError("fix", None, "a selector of the nodes to clamp, e.g. --fix 'z<=0' "
+                             "(the design file names no mount)")
+    normal, at = _placement(args, design)
     contacts = tuple(ContactPatch(p["name"], tuple(p["center"]), tuple(p["normal"]),
                                   float(p["radius"]), float(p.get("insert_mm", 0.0)))
                      for p in fem.get("contacts", ()))
-    mesh_size = args.mesh_size if args.mesh_size is not None else 1.0
-    stroke = args.stroke if args.stroke is not None else 4.0
-    points = args.points if args.points is not None else 11
-    return part_run(str(part), material(args.material), fix,
-                   plate_normal=normal if normal is not None else (0.0, 0.0, -1.0),
-                   plate_at=at, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
-                   stroke_mm=stroke, points=points, mesh_size_mm=mesh_size,
-                   polytropic_n=args.polytropic_n, design=design, contacts=contacts,
-                   motor=bool(args.motor), indenter=args.indenter or "plate")
-
-
-def _estimate(run, surface) -> dict:
-    """Unknowns of the part mesh before meshing: fTetWild fills the solid at about 20 / size³
-    tetrahedra per mm³ (measured on a dome and Type B at 1 mm: 17–22), 1.45 P2 nodes each."""
-    from spsc.cad.meshtopo import signed_volume
-
-    volume = abs(signed_volume(surface.vertices, surface.faces))
-    tets = 20.0 * volume / run.mesh_size_mm ** 3
-    nodes = 1.45 * tets
-    return {"tetrahedra": int(tets), "nodes": int(nodes), "unknowns": int(3 * nodes + tets / 5)}
-
-
-def _read_body(indenter) -> None:
-    """A body from a file is read (its lower surface) before the part is meshed: a file that
-    is no body was refused only after meshing, leaving the mesh in the cache."""
-    from spsc.cad.heightfield import resolve
-    from spsc.core.indenter import parse_indenter
-
-    resolve(parse_indenter(indenter))
+    model = MODELS["part"]
+    load = check_load(None, pressure_kPa=args.pressure, reservoir_mm3=args.reservoir,
+                      stroke_mm=args.stroke if args.stroke is not None else model.stroke_mm,
+                      points=args.points if args.points is not None else model.points,
+                      polytropic_n=args.polytropic_n)
+    body = Part(str(part), fix, plate_normal=normal if normal is not None else (0.0, 0.0, -1.0),
+                plate_at=at, design=design, contacts=contacts, motor=bool(args.motor))
+    setup = Setup(body, material(args.material), load, Contact.of(args.indenter or "plate"))
+    options = model.Options(mesh_size=args.mesh_size if args.mesh_size is not None else 1.0,
+                            force=bool(args.force), solver=args.solver or "auto",
+                            vtu=args.vtu)
+    model.run_of(setup, options)  # the run's own checks (normal, selector, motor, ...)
+    return setup, options
 
 
 def run_part_cli(args) -> int:
     from spsc.core.progress import progress_bar
+    from spsc.models import MODELS
 
-    from spsc.fem.part import load_part
-    from spsc.fem.part.run import check_part_run, part_curve, part_model, write_part_vtu
-    from spsc.fem.engine import Settings, solve
-    from spsc.fem.engine.settings import PART_CONTACT
-
-    from spsc.models.resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
-
-    verb = "fem"
-    run = part_run_from_args(args)
-    surface = load_part(run.part, run.design)
-    check_part_run(run, surface)
-    _read_body(run.indenter)
-    counts = _estimate(run, surface)
-    steps = run.points - 1 + (run.inflate_increments if run.pressure_kPa > 0 else 0)
-    check_size(verb, counts, steps, limit=FEM_MAX_UNKNOWNS,
-               gib=fem_memory_gib(counts["unknowns"]), force=bool(args.force), quiet=bool(args.quiet), mesh_size=run.mesh_size_mm,
-               points=run.points)
+    verb, model = "fem", MODELS["part"]
+    setup, options = part_setup_from_args(args)
+    model.check(setup, options, verb=verb, quiet=bool(args.quiet))
     if not args.quiet:
-        print(f"spsc {verb}: meshing {Path(run.part).name} (cavity "
+        from spsc.models.part import part_surface_of
+
+        surface = part_surface_of(model.run_of(setup, options))
+        print(f"spsc {verb}: meshing {Path(setup.body.path).name} (cavity "
               f"{surface.cavity_volume:.1f} mm³{', port plugged' if surface.capped else ''})",
               file=sys.stderr)
-    import time
-
-    t0 = time.perf_counter()
-    model, R, surface = part_model(run, surface=surface, cache_dir=output_cache_dir(args))
-    mesh_seconds = time.perf_counter() - t0
-    bar = progress_bar(total=steps, desc=f"spsc {verb}", unit="step",
-                       disable=bool(args.quiet), file=sys.stderr)
+    bar = progress_bar(total=model.load_steps(setup, options), desc=f"spsc {verb}",
+                       unit="step", disable=bool(args.quiet), file=sys.stderr)
 
     def progress(done, total):
         bar.total = total
         bar.update(done - bar.n)
 
     try:
-        body = run.body(model, R)
-        result = solve(model, run.steps(body), settings=Settings(solver=args.solver or "auto",
-                                                             **PART_CONTACT),
-                       progress=progress)
+        out = model.curve(setup, options, progress=progress, cache_dir=output_cache_dir(args))
     finally:
         bar.close()
-    curve = part_curve(run, model, result, surface, mesh_seconds=mesh_seconds)
-    extra = {}
-    if args.vtu:
-        extra["vtu"] = [p.name for p in write_part_vtu(model, result, R, args.vtu, body)]
+    curve = out.curve
     if args.json:
-        curve.to_json(args.json, extra=extra or None)
+        curve.to_json(args.json, extra=out.extra or None)
     if args.csv:
         curve.to_csv(args.csv)
     if args.png:

@@ -4,18 +4,20 @@ response — membrane, simplified, wall, fem, surrogate — is a :class:`~.base.
 fused estimate reach models only through it.
 
 Adding a model is one module (its class and its options dataclass) and one line of
-:data:`MODELS`.
+:data:`MODELS`. :data:`PARAMETRIC` are the models of the parametric chamber (Types A–D), the
+ones ``spsc curve`` offers; the ``part`` model takes a part file (``spsc fem --part``).
 """
 
 from spsc.core.errors import ParameterError
 from .base import CurveModel, ModelBase, Outcome, cli_options, option, options_from
 from .fem import FEMCurveModel
 from .membrane import MembraneModel
+from .part import PartCurveModel
 from .simplified import SimplifiedModel
 from .surrogate.model import SurrogateCurveModel
 from .wall import WallCurveModel
 
-__all__ = ["MODELS", "CurveModel", "ModelBase", "Outcome", "cli_options", "get", "option", "options_from"]
+__all__ = ["MODELS", "PARAMETRIC", "CurveModel", "ModelBase", "Outcome", "cli_options", "get", "option", "options_from"]
 
 #: Every model, in the order the report shows them.
 MODELS: dict[str, CurveModel] = {m.name: m for m in (
@@ -24,7 +26,12 @@ MODELS: dict[str, CurveModel] = {m.name: m for m in (
     WallCurveModel(),
     FEMCurveModel(),
     SurrogateCurveModel(),
+    PartCurveModel(),
 )}
+
+
+#: the models of the parametric chamber, in :data:`MODELS`' order
+PARAMETRIC: tuple[str, ...] = tuple(n for n, m in MODELS.items() if m.parametric)
 
 
 def get(name: str) -> CurveModel:

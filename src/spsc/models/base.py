@@ -65,6 +65,9 @@ class CurveModel(Protocol):
     zero_stroke : it computes the inflation alone (stroke 0, one plate position).
     contact : it takes a contact other than the frictionless rigid plate (friction, a
         spring-borne object, another body: :class:`~spsc.core.setup.Contact`).
+    parametric : its body is the parametric chamber (an
+        :class:`~spsc.cad.geometry.SPSCGeometry`; False: a part file's
+        :class:`~spsc.fem.part.Part`).
     """
 
     name: str
@@ -83,6 +86,7 @@ class CurveModel(Protocol):
     seconds_per_point: float
     zero_stroke: bool
     contact: bool
+    parametric: bool
 
     def load_steps(self, setup, options) -> int:
         """The load steps the solve reports through ``progress`` (0: it reports none)."""
@@ -110,7 +114,7 @@ class ModelBase:
     """What most models share, for a model to override: no bending, no mesh, fast, run at every
     setup pressure by the report, no stroke-0 inflation, no progress to report and no limits of
     its own beyond the load case's, and the paper's contact only (the frictionless rigid
-    plate)."""
+    plate), and the parametric chamber as its body."""
 
     bending: bool = False
     meshed: bool = False
@@ -119,6 +123,7 @@ class ModelBase:
     study: bool = True
     zero_stroke: bool = False
     contact: bool = False
+    parametric: bool = True
     color: str = "C4"
     style: str = "-"
     seconds_per_point: float = 0.1

@@ -83,33 +83,33 @@ def _part(out: Path) -> tuple[Path, dict]:
 
 
 def _fem_case(study, stl, design, site, mode, pressure, path: Path, vtu: Path | None, log):
-    from spsc.fem.part.run import ContactPatch, part_run, part_curve, part_model, write_part_vtu
-    from spsc.fem.engine import Settings, solve
-    from spsc.fem.engine.settings import PART_CONTACT
+    """One press of the fingertip: the part model of the registry (its settings those of
+    ``spsc fem --part``)."""
+    from spsc.core.loadcase import check_load
+    from spsc.core.setup import Contact, Setup
+    from spsc.fem.part import ContactPatch, Part
     from spsc.materials import material
+    from spsc.models import MODELS
 
     fem = design["fem"]
     s = fem["sites"][site]
     contacts = tuple(ContactPatch(c["name"], tuple(c["center"]), tuple(c["normal"]),
                                   c["radius"], c["insert_mm"]) for c in fem["contacts"])
-    run = part_run(str(stl), material(study.material), fem["mount"],
-                  plate_normal=tuple(s["normal"]), plate_at=tuple(s["at"]),
-                  pressure_kPa=pressure,
-                  reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
-                  stroke_mm=study.stroke_mm, points=study.points,
-                  mesh_size_mm=study.mesh_size_mm, design=design, contacts=contacts)
+    body = Part(str(stl), fem["mount"], plate_normal=tuple(s["normal"]), plate_at=tuple(s["at"]),
+                design=design, contacts=contacts)
+    load = check_load(None, pressure_kPa=pressure,
+                      reservoir_mm3=LOW_RESERVOIR_MM3 if mode == "low" else 0.0,
+                      stroke_mm=study.stroke_mm, points=study.points, polytropic_n=1.0)
+    setup = Setup(body, material(study.material), load, Contact())
+    model = MODELS["part"]
+    options = model.Options(mesh_size=study.mesh_size_mm, vtu=vtu)
     t0 = time.perf_counter()
-    model, R, surface = part_model(run)
-    mesh_s = time.perf_counter() - t0
-    log(f"  {path.stem}: {model.disc.n:,} unknowns, {model.mesh.n_tets:,} tetrahedra "
-        f"(mesh {mesh_s:.0f} s)")
-    result = solve(model, run.steps(run.body(model, R)), settings=Settings(**PART_CONTACT),
-                   progress=lambda d, n: log(f"    step {d}/{n} ({time.perf_counter() - t0:.0f} s)"))
-    curve = part_curve(run, model, result, surface, mesh_seconds=mesh_s)
-    extra = {}
-    if vtu is not None:
-        paths = write_part_vtu(model, result, R, vtu)
-        extra["vtu"] = [str(p) for p in paths]
+    out = model.curve(setup, options, progress=lambda d, n: log(
+        f"    step {d}/{n} ({time.perf_counter() - t0:.0f} s)"))
+    curve = out.curve
+    log(f"  {path.stem}: {curve.solver.details.get('dofs', 0):,} unknowns "
+        f"(mesh {curve.solver.details.get('mesh_seconds', float('nan')):.0f} s)")
+    extra = {"vtu": [str(Path(vtu) / v) for v in out.extra["vtu"]]} if vtu is not None else {}
     curve.to_json(path, extra=extra or None)
     return curve
 
@@ -167,7 +167,7 @@ def run_study(study: FingertipStudy, out, *, stl=None, design=None, spec=None,
         path = out / "curves" / f"fem-{name}.json"
         t0 = time.perf_counter()
         fem, keyed = _kept(path, {**case, "part": part, "design": design},
-                           ("spsc.fem.part.run", "spsc.fem.engine"))
+                           ("spsc.models.part", "spsc.fem.engine"))
         if fem is None:
             log(f"fingertip FEM {name}")
             vtu = out / "vtu" / name if (site, mode, p) in RENDERED else None

@@ -1,6 +1,8 @@
 """What a part run is asked: the part file and its design, the mount's selector, the plate's
 direction and first touch, the load case every model shares, the mesh size, named contact
-patches and the motor (:class:`PartRun`, built from keywords by :func:`part_run`)."""
+patches and the motor (:class:`PartRun`, built from keywords by :func:`part_run`, or from a
+:class:`~spsc.core.setup.Setup` whose body is a :class:`Part` by :meth:`PartRun.of`: the
+registry's ``part`` model, :mod:`spsc.models.part`)."""
 
 from __future__ import annotations
 
@@ -15,7 +17,7 @@ from spsc.materials import Material
 from ..engine import load_steps
 from .selector import parse_selector
 
-__all__ = ["ContactPatch", "PartRun", "part_run"]
+__all__ = ["ContactPatch", "Part", "PartRun", "part_run"]
 
 
 @dataclass(frozen=True)
@@ -37,6 +39,23 @@ class ContactPatch:
         h = d @ n
         rho = np.linalg.norm(d - h[:, None] * n, axis=1)
         return (np.abs(h) <= tol) & (rho <= self.radius + tol)
+
+
+@dataclass(frozen=True)
+class Part:
+    """A part as the body of a :class:`~spsc.core.setup.Setup`: the file (.stl, .3mf, .step),
+    the mount's selector ``fix``, the plate's direction of travel and the point it first
+    touches (None: wherever it first touches), the design dict (plugs the port, names sites,
+    pockets and the motor), the named contact patches and whether the motor is held. Checked
+    with the load case and the mesh size where the model builds its :class:`PartRun`."""
+
+    path: str
+    fix: str
+    plate_normal: tuple = (0.0, 0.0, -1.0)
+    plate_at: tuple | None = None
+    design: dict | None = field(default=None, compare=False)
+    contacts: tuple = ()
+    motor: bool = False
 
 
 @dataclass(frozen=True)
@@ -97,6 +116,20 @@ class PartRun(WithLoadCase):
                 raise ParameterError("plate-normal", self.plate_normal,
                                      "0,0,-1 with --motor (the motor translates along its own "
                                      "axis, z: a press along it)")
+
+    @classmethod
+    def of(cls, setup, mesh_size_mm: float = 1.0) -> "PartRun":
+        """The run of ``setup`` (its body a :class:`Part`, its contact's body the indenter)
+        meshed at ``mesh_size_mm``; checked as :class:`PartRun` is."""
+        part = setup.body
+        if not isinstance(part, Part):
+            raise ParameterError("body", type(part).__name__, "a part (spsc.fem.part.Part: "
+                                 "spsc fem --part FILE); the parametric chamber is the fem "
+                                 "model's")
+        return cls(str(part.path), setup.material, part.fix, setup.load,
+                   plate_normal=part.plate_normal, plate_at=part.plate_at,
+                   mesh_size_mm=mesh_size_mm, design=part.design, contacts=part.contacts,
+                   motor=part.motor, indenter=setup.contact.indenter.spec)
 
     def body(self, model, R):
         """The :class:`~spsc.core.indenter.Indenter` placed in the press frame of ``model``
