@@ -114,7 +114,7 @@ class SwitchValve:
 
     def begin(self, load: Load, volume: Callable) -> Load:
         v = volume()
-        p = float(load.gas.pressure(v)) if load.gas is not None else float(load.pressure)
+        p = load.cavity_pressure(v)[0]
         pa = load.gas.p_amb if load.gas is not None else P_AMB
         if self.opened:
             pr = float(self.state.get("pressure", p))
@@ -264,6 +264,14 @@ class Load:
     time: float | None = None
     stick: bool = False
     indenter: object | None = None
+
+    def cavity_pressure(self, volume: float) -> tuple[float, float]:
+        """(gauge pressure p, MPa; its slope dp/dV, MPa/mm³) on the cavity at the gas volume
+        ``volume`` (mm³): the prescribed pressure with slope 0, or the closed gas's P·Vⁿ law
+        (paper eqs. 6–7). The one place every discretisation reads the gas from."""
+        if self.gas is None:
+            return float(self.pressure), 0.0
+        return float(self.gas.pressure(volume)), float(self.gas.dpressure(volume))
 
 
 def load_steps(load, inflate_increments: int = 4, *, stick: bool = False,

@@ -220,11 +220,8 @@ class FEMModel:
         d = self.disc
         u = self.displacement(x)
         volume = self.cavity.volume(d.X, u) - self.displaced
-        if load.gas is not None:
-            p = load.gas.pressure(volume)
-            c = -load.gas.dpressure(volume) * self.symmetry
-        else:
-            p, c = float(load.pressure), 0.0
+        p, dpdv = load.cavity_pressure(volume)
+        c = -dpdv * self.symmetry if dpdv else 0.0
         if tangent:
             gn, H = self.cavity.gradient(d.X, u)
             extra = [(-p * H, self.cavity_slots)] if p != 0.0 else []

@@ -234,11 +234,8 @@ class WallModel:
         if self.viscous is not None:
             self.viscous.set_time(load.time)
         volume = self.volume(x)
-        if load.gas is None:
-            pressure, c = float(load.pressure), 0.0
-        else:
-            pressure = float(load.gas.pressure(volume))
-            c = -float(load.gas.dpressure(volume))
+        pressure, dpdv = load.cavity_pressure(volume)
+        c = -dpdv if dpdv else 0.0
         u, pc = self.displacements(x), self.pressures(x)
         K = G = None
         if tangent:
