@@ -131,6 +131,7 @@ class ToyModel:
     seconds_per_point: float = 1e-3
     zero_stroke: bool = False
     contact: bool = False
+    parametric: bool = True
 
     def load_steps(self, setup, options) -> int:
         return 0

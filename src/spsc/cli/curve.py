@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from spsc.core.errors import ParameterError
-from spsc.models import MODELS, PARAMETRIC, cli_options, options_from
+from spsc.models import MODELS, cli_options, options_from, parametric
 from spsc.models.meshed import ContactOptions
 
 from spsc.cli.figure import contact_words, plot, title  # noqa: F401  (spsc fem, the tests)
@@ -129,7 +129,7 @@ def add_curve_parser(subparsers, verb: str, *, models: tuple[str, ...], help: st
 
 
 def register(subparsers) -> None:
-    add_curve_parser(subparsers, "curve", models=PARAMETRIC,
+    add_curve_parser(subparsers, "curve", models=parametric(),
                      help="the Curve F, p, A, dV(y) of a chamber with any model",
                      description=__doc__.split("\n\n")[0])
 

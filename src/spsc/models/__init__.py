@@ -4,7 +4,7 @@ response — membrane, simplified, wall, fem, surrogate — is a :class:`~.base.
 fused estimate reach models only through it.
 
 Adding a model is one module (its class and its options dataclass) and one line of
-:data:`MODELS`. :data:`PARAMETRIC` are the models of the parametric chamber (Types A–D), the
+:data:`MODELS`. :func:`parametric` gives the models of the parametric chamber (Types A–D), the
 ones ``spsc curve`` offers; the ``part`` model takes a part file (``spsc fem --part``).
 """
 
@@ -17,7 +17,7 @@ from .simplified import SimplifiedModel
 from .surrogate.model import SurrogateCurveModel
 from .wall import WallCurveModel
 
-__all__ = ["MODELS", "PARAMETRIC", "CurveModel", "ModelBase", "Outcome", "cli_options", "get", "option", "options_from"]
+__all__ = ["MODELS", "parametric", "CurveModel", "ModelBase", "Outcome", "cli_options", "get", "option", "options_from"]
 
 #: Every model, in the order the report shows them.
 MODELS: dict[str, CurveModel] = {m.name: m for m in (
@@ -30,8 +30,10 @@ MODELS: dict[str, CurveModel] = {m.name: m for m in (
 )}
 
 
-#: the models of the parametric chamber, in :data:`MODELS`' order
-PARAMETRIC: tuple[str, ...] = tuple(n for n, m in MODELS.items() if m.parametric)
+def parametric() -> tuple[str, ...]:
+    """The models of the parametric chamber (``parametric``), in :data:`MODELS`' order, as
+    the registry holds them now (a model registered later is among them)."""
+    return tuple(n for n, m in MODELS.items() if m.parametric)
 
 
 def get(name: str) -> CurveModel:
