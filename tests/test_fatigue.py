@@ -45,7 +45,7 @@ def test_spsc_fatigue_predicts_a_dome_from_the_type_b_calibration(tmp_path, caps
     out, png = tmp_path / "f.json", tmp_path / "f.png"
     assert main(["fatigue", "--type", "B", "--l", "0", "--json", str(out), "--png", str(png),
                  "--quiet"]) == 0
-    doc = json.loads(out.read_text())
+    doc = json.loads(out.read_text(encoding="utf-8"))
     law = doc["law"]
     assert law["calibration_cycles"] == 4100.0 and law["exponent"] == 4.0
     w = doc["energy_amplitude_MPa"]
@@ -67,7 +67,7 @@ def test_a_run_out_gives_a_lower_bound(tmp_path, capsys):
     out = tmp_path / "f.json"
     assert main(["fatigue", "--type", "B", "--l", "0", "--material", "as40", "--json",
                  str(out), "--quiet"]) == 0
-    doc = json.loads(out.read_text())
+    doc = json.loads(out.read_text(encoding="utf-8"))
     assert doc["life_is_lower_bound"] and "life at least" in capsys.readouterr().out
 
 

@@ -225,7 +225,8 @@ def test_a_bom_is_read_and_a_deep_toml_is_one_line(tmp_path, capsys):
     deep ended in a RecursionError."""
     from spsc.dynamics.scenario import read_scenario
 
-    text = (Path(__file__).parents[1] / "examples" / "press-hold-switch.toml").read_text()
+    text = (Path(__file__).parents[1] / "examples" / "press-hold-switch.toml").read_text(
+        encoding="utf-8")
     bom = tmp_path / "bom.toml"
     bom.write_bytes(b"\xef\xbb\xbf" + text.encode("utf-8"))
     assert read_scenario(bom).setup_kPa == 40.0
