@@ -113,7 +113,8 @@ def test_spsc_report_refuses_the_committed_report_from_a_dirty_tree(tmp_path, mo
     monkeypatch.setattr(provenance, "committed_report_dir", lambda *a: tmp_path / "committed")
     ran = []
     monkeypatch.setattr(runner, "run_all", lambda runs, *a, **k: ran.append(1) or {})
-    args = ["report", "--no-fem", "--no-sweep", "--types", "C", "--cache", str(tmp_path / "c"),
+    args = ["report", "--no-fem", "--no-sweep", "--no-band", "--types", "C", "--cache",
+            str(tmp_path / "c"),
             "--quiet"]
     assert main(args + ["--out", str(tmp_path / "committed")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
@@ -302,7 +303,8 @@ def test_spsc_report_runs_on_the_cluster_its_options_name(tmp_path, monkeypatch)
     seen = []
     monkeypatch.setattr(runner, "run_all",
                         lambda runs, *a, cluster=None, **k: seen.append(cluster) or {})
-    base = ["report", "--no-fem", "--no-sweep", "--types", "C", "--cache", str(tmp_path / "c"),
+    base = ["report", "--no-fem", "--no-sweep", "--no-band", "--types", "C", "--cache",
+            str(tmp_path / "c"),
             "--quiet", "--out", str(tmp_path / "r")]
     from distributed import LocalCluster
 
