@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .base import ModelBase, Outcome, option
-from .meshed import force_option, layers_option, mesh_size_option
+from .meshed import force_option, layers_option, mesh_size_option, solver_option, vtu_option
 
 __all__ = ["FEMCurveModel", "FEMOptions"]
 
@@ -23,11 +23,8 @@ class FEMOptions:
     force: bool = force_option()
     full: bool = option(False, "--full", "full model instead of the quarter on the symmetry "
                         "planes", kind="flag")
-    solver: str = option("auto", "--solver", "sparse linear solver (default auto: pardiso if "
-                         "installed)", kind="choice",
-                         choices=("auto", "pardiso", "superlu", "superlu-mmd"))
-    vtu: str | None = option(None, "--vtu", "write one VTU per converged step into this "
-                             "folder (for ParaView)", kind="value", metavar="DIR")
+    solver: str = solver_option()
+    vtu: str | None = vtu_option()
 
 
 @dataclass(frozen=True)

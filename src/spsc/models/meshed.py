@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 from .base import option
 
-__all__ = ["mesh_size_option", "layers_option", "force_option", "friction_option",
+__all__ = ["mesh_size_option", "layers_option", "force_option", "solver_option", "vtu_option", "friction_option",
            "object_stiffness_option", "indenter_option", "ContactOptions"]
 
 
@@ -32,6 +32,18 @@ def force_option():
     return option(False, "--force", "run a model beyond the size limits (the estimate of "
                   "unknowns, memory and load steps is printed and checked before the run)",
                   kind="flag", group="discretisation")
+
+
+def solver_option():
+    """The sparse linear solver of the 3D FEM (:mod:`spsc.fem.engine.linsolve`)."""
+    return option("auto", "--solver", "sparse linear solver (default auto: pardiso if "
+                  "installed)", kind="choice", choices=("auto", "pardiso", "superlu", "superlu-mmd"))
+
+
+def vtu_option():
+    """A folder for one VTU per converged step."""
+    return option(None, "--vtu", "write one VTU per converged step into this folder (for "
+                  "ParaView)", kind="value", metavar="DIR")
 
 
 def friction_option():

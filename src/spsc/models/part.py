@@ -16,8 +16,8 @@ from dataclasses import dataclass
 
 from spsc.core.errors import ParameterError
 
-from .base import ModelBase, Outcome, option
-from .meshed import force_option, mesh_size_option
+from .base import ModelBase, Outcome
+from .meshed import force_option, mesh_size_option, solver_option, vtu_option
 
 __all__ = ["PartCurveModel", "PartOptions", "estimate_counts", "part_surface_of"]
 
@@ -30,11 +30,8 @@ class PartOptions:
 
     mesh_size: float = mesh_size_option(1.0)
     force: bool = force_option()
-    solver: str = option("auto", "--solver", "sparse linear solver (default auto: pardiso if "
-                         "installed)", kind="choice",
-                         choices=("auto", "pardiso", "superlu", "superlu-mmd"))
-    vtu: str | None = option(None, "--vtu", "write one VTU per converged step into this "
-                             "folder (for ParaView)", kind="value", metavar="DIR")
+    solver: str = solver_option()
+    vtu: str | None = vtu_option()
 
 
 def estimate_counts(run, surface) -> dict:
