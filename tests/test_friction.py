@@ -39,8 +39,8 @@ def _press(model, stick, pressure_kPa=40.0, y=Y, **settings):
 
 def _on_plate(model, rec):
     """The contact unknowns on the plate at a record (height within 1e-9 mm of it)."""
-    dofs = model.contact_dofs
-    h = model.contact_height[dofs] + rec.x[dofs]
+    dofs = model.surface.dofs
+    h = model.surface.height[dofs] + rec.x[dofs]
     return dofs[np.abs(h - rec.plate) < 1e-9]
 
 

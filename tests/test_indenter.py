@@ -189,7 +189,7 @@ def test_the_reduced_tangent_is_the_derivative_of_the_reduced_residual(dome, pre
     rec = pressed["sphere"].of("press")[-1]
     load = Load(pressure=rec.pressure, plate=rec.plate, indenter=SPHERE)
     x = rec.x
-    dofs = m.contact_dofs
+    dofs = m.surface.dofs
     active = dofs[np.abs(heights(m, x, dofs, SPHERE) - rec.plate) < 1e-9]
     S, dS, d2S, lat = surface(m, x, active, SPHERE)
     con = Constraints(len(m.fixed), np.zeros(0, int), np.zeros(0), np.zeros(0, int),
@@ -241,7 +241,7 @@ def test_nodes_on_the_sphere_lie_on_it_and_are_pushed_along_its_normal(dome, pre
     1e-6 of the largest): frictionless."""
     rec = pressed["sphere"].of("press")[-1]
     load = Load(plate=rec.plate, indenter=SPHERE, pressure=rec.pressure)
-    dofs = dome.contact_dofs
+    dofs = dome.surface.dofs
     on = dofs[np.abs(heights(dome, rec.x, dofs, SPHERE) - rec.plate) < 1e-9]
     assert on.size >= 5
     r = dome.evaluate(rec.x, load).r
@@ -252,8 +252,8 @@ def test_nodes_on_the_sphere_lie_on_it_and_are_pushed_along_its_normal(dome, pre
     free = ~dome.fixed[lat[0]]
     assert_allclose(lateral[free], (dS[0] * lam)[free], atol=1e-6 * lam.max())
     # the node's position: on the sphere of radius R about (0, plate + R)
-    pos_r = dome.contact_height[lat[0]] + rec.x[lat[0]]
-    pos_z = dome.contact_height[on] + rec.x[on]
+    pos_r = dome.surface.height[lat[0]] + rec.x[lat[0]]
+    pos_z = dome.surface.height[on] + rec.x[on]
     assert_allclose(np.hypot(pos_r, pos_z - rec.plate - 10.0), 10.0, atol=1e-9)
 
 

@@ -29,7 +29,7 @@ def curved(indenter) -> bool:
 
 def lateral_of(model, dofs) -> np.ndarray:
     """The lateral unknowns (k, len(dofs)) of the contact unknowns ``dofs``."""
-    return model.contact_lateral[:, np.searchsorted(model.contact_dofs, dofs)]
+    return model.surface.lateral_of(dofs)
 
 
 def surface(model, x, dofs, indenter):
@@ -37,7 +37,7 @@ def surface(model, x, dofs, indenter):
     unknowns ``dofs`` (:meth:`~spsc.core.indenter.Indenter.surface`), and their lateral
     unknowns."""
     lat = lateral_of(model, dofs)
-    S, dS, d2S = indenter.surface(model.contact_height[lat] + x[lat], model.contact_gap[dofs])
+    S, dS, d2S = indenter.surface(model.surface.height[lat] + x[lat], model.surface.gap[dofs])
     return S, dS, d2S, lat
 
 
@@ -45,7 +45,8 @@ def heights(model, x, dofs, indenter=None) -> np.ndarray:
     """Where the indenter's tip meets the contact unknowns ``dofs`` at the state x (mm):
     reference height plus displacement plus gap, less the curved body's rise S over the
     node (−inf where the body has no lower surface)."""
-    h = model.contact_height[dofs] + x[dofs] + model.contact_gap[dofs]
+    on = model.surface
+    h = on.height[dofs] + x[dofs] + on.gap[dofs]
     if not curved(indenter):
         return h
     return h - surface(model, x, dofs, indenter)[0]
@@ -53,7 +54,7 @@ def heights(model, x, dofs, indenter=None) -> np.ndarray:
 
 def first_contact(model, x, indenter=None) -> float:
     """The tip's height at first contact (mm): the highest contact point (on the plate)."""
-    return float(np.max(heights(model, x, model.contact_dofs, indenter)))
+    return float(np.max(heights(model, x, model.surface.dofs, indenter)))
 
 
 def jumps(model, x, plate, active, indenter=None) -> np.ndarray:
@@ -62,7 +63,7 @@ def jumps(model, x, plate, active, indenter=None) -> np.ndarray:
         return np.zeros(0)
     if curved(indenter):
         return plate - heights(model, x, active, indenter)
-    return plate - model.contact_gap[active] - model.contact_height[active] - x[active]
+    return plate - model.surface.gap[active] - model.surface.height[active] - x[active]
 
 
 def start(model, x, plate, active, settings, indenter=None) -> np.ndarray:
@@ -73,9 +74,9 @@ def start(model, x, plate, active, settings, indenter=None) -> np.ndarray:
     active = np.asarray(active)
     if plate is None or not settings.semismooth:
         return active
-    passed = heights(model, x, model.contact_dofs, indenter) > \
+    passed = heights(model, x, model.surface.dofs, indenter) > \
         plate + settings.contact_tolerance
-    return np.union1d(active.astype(int), model.contact_dofs[passed])
+    return np.union1d(active.astype(int), model.surface.dofs[passed])
 
 
 def update(model, x, reaction, plate, active, force_tol, gap_tol, indenter=None):
@@ -83,7 +84,7 @@ def update(model, x, reaction, plate, active, force_tol, gap_tol, indenter=None)
     unknowns whose ``reaction`` (N, pushing > 0) does not pull below −``force_tol``, and the
     inactive ones past the plate by more than ``gap_tol`` (mm)."""
     keep = reaction >= -force_tol
-    inactive = np.setdiff1d(model.contact_dofs, active, assume_unique=True)
+    inactive = np.setdiff1d(model.surface.dofs, active, assume_unique=True)
     new = inactive[heights(model, x, inactive, indenter) > plate + gap_tol]
     if new.size == 0 and np.all(keep):
         return None

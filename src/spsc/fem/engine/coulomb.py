@@ -30,6 +30,8 @@ one increment of 0.05 mm. The loop costs: 5 s against 0.4 s frictionless for a d
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
@@ -37,12 +39,31 @@ from .friction import Grip, lateral
 from .newton import newton
 from .result import NewtonFailure
 
-__all__ = ["Sliding", "coulomb", "TOLERANCE", "MAX_ROUNDS"]
+__all__ = ["Coulomb", "Sliding", "coulomb", "TOLERANCE", "MAX_ROUNDS"]
 
 #: the friction forces' largest change, relative to the largest force, that ends the loop
 TOLERANCE = 1e-7
 #: rounds of the return mapping before the increment fails (and is cut)
 MAX_ROUNDS = 60
+
+
+@dataclass(frozen=True)
+class Coulomb:
+    """The increment solver (:class:`~.steps.IncrementSolver`) of a press with Coulomb
+    friction ``mu``: each increment the return mapping :func:`coulomb`."""
+
+    mu: float
+    follows_snaps: ClassVar[bool] = False
+
+    def solve(self, walk, path, trial, t, history):
+        return coulomb(walk.model, walk.x, trial, walk.s, walk.active, walk.engaged,
+                       walk.gripped(trial), self.mu), trial
+
+    def accept(self) -> None:
+        """Nothing to carry: the anchors are the walk's."""
+
+    def annotate(self, record):
+        return record
 
 
 class Sliding:

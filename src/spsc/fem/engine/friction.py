@@ -16,8 +16,8 @@ anchor, and from the next increment on it does not move along the plate. This is
 path, its error is of first order in the increment (``bench/bench_friction.py``), and the plate
 does no tangential work: a node slides only while its tangential reaction is zero.
 
-A discretisation names each contact unknown's lateral unknowns in ``contact_lateral``: an
-integer array (k, len(contact_dofs)), k = 1 (the dome's radial displacement) or 2 (x and y),
+A discretisation names each contact unknown's lateral unknowns in its surface's ``lateral``
+(:class:`~.surface.ContactSurface`): an integer array (k, len(dofs)), k = 1 (the dome's radial displacement) or 2 (x and y),
 −1 where a node has none; supported unknowns are never anchored.
 """
 
@@ -52,8 +52,7 @@ def lateral(model, dofs) -> np.ndarray:
     """The lateral unknowns (k, len(dofs)) of the contact unknowns ``dofs`` (−1: none or
     supported)."""
     dofs = np.asarray(dofs, int)
-    where = np.searchsorted(model.contact_dofs, dofs)
-    lat = np.asarray(model.contact_lateral, int)[:, where]
+    lat = np.asarray(model.surface.lateral_of(dofs), int)
     ok = lat >= 0
     ok[ok] = ~np.asarray(model.fixed)[lat[ok]]
     return np.where(ok, lat, -1)

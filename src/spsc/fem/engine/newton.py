@@ -29,7 +29,7 @@ from .lowrank import updated
 from .result import NewtonFailure
 from .search import line_search
 from .settings import Settings
-from .steps import Load
+from .load import Load
 
 __all__ = ["Converged", "Warm", "newton"]
 

@@ -10,9 +10,9 @@ displacements for the wall model, whose element pressures are condensed out and 
 
 g = ∂V/∂u the cavity volume's gradient (mm²) and H its Hessian (the follower pressure's
 stiffness, paper eq. 37's V on the discrete cavity); the gas's rank-one term is returned apart,
-c = −dp/dV · symmetry ≥ 0 with g, so the engine solves it by Sherman–Morrison. The plate meets
-the ``contact_dofs`` (vertical displacement unknowns of the outer surface) where their nodes'
-reference heights plus displacement plus gap reach it.
+c = −dp/dV · symmetry ≥ 0 with g, so the engine solves it by Sherman–Morrison. A rigid body
+meets its :class:`~.surface.ContactSurface` (the vertical displacement unknowns of the outer
+surface) where their nodes' reference heights plus displacement plus gap reach it.
 """
 
 from __future__ import annotations
@@ -23,7 +23,8 @@ import numpy as np
 
 from .linsolve import Factor
 from .settings import Settings
-from .steps import Load
+from .load import Load
+from .surface import ContactSurface
 
 __all__ = ["Evaluation", "Tie", "Discretisation"]
 
@@ -63,12 +64,8 @@ class Discretisation(Protocol):
     n_u: int  #: displacement unknowns (the first n_u of x and of the Newton system)
     symmetry: int  #: copies of the modelled part in the whole (forces and areas × symmetry)
     fixed: np.ndarray  #: bool over the Newton system's m unknowns: supported
-    contact_dofs: np.ndarray  #: sorted unknowns the plate may prescribe (vertical, outer)
-    #: (k, len(contact_dofs)): each contact unknown's lateral unknowns (k = 1 on an
-    #: axisymmetric section, 2 in 3D), held by a sticking plate (:mod:`.friction`)
-    contact_lateral: np.ndarray
-    contact_height: np.ndarray  #: per system unknown: its node's reference height z (mm)
-    contact_gap: np.ndarray  #: per system unknown: how far above the node the plate meets it
+    #: the outer surface a rigid body meets (its unknowns, where they sit, what it measures)
+    surface: ContactSurface
     tie: Tie | None  #: a rigid body inside the model, or None
     force_floor: float  #: smallest force scale of the convergence test (N)
     #: exceptions that fail a load (the increment is cut); ``inadmissible``: that reject a
@@ -115,10 +112,3 @@ class Discretisation(Protocol):
         """Negative eigenvalues of the displacement problem from the inertia of ``factor``
         (the restricted tangent without the gas) with the gas's c and restricted g (None:
         unknown)."""
-
-    def contact_area(self, x, plate: float) -> float:
-        """Outer surface on the plate at height ``plate`` (mm², whole part)."""
-
-    def group_forces(self, r, active) -> dict:
-        """Force (N, whole part) through each named contact surface, from the residual's
-        reactions of the ``active`` unknowns."""

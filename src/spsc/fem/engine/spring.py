@@ -20,12 +20,14 @@ trial's state.
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass
+from typing import ClassVar
 
 from .active_set import plate_force
 from .newton import newton
 from .result import NewtonFailure
 
-__all__ = ["balance", "solver"]
+__all__ = ["Spring", "balance", "solver"]
 
 #: trials of one balance before the increment fails (and is cut)
 MAX_TRIALS = 30
@@ -79,3 +81,37 @@ def solver(model, settings, load_at_travel, x, active, engaged, grip):
             else 0.0
 
     return solve_at
+
+
+@dataclass(eq=False)
+class Spring:
+    """The increment solver (:class:`~.steps.IncrementSolver`) of a press on an object of
+    stiffness ``k`` (N/mm): each increment's far-end travel balanced by :func:`balance`, its
+    secant from the last two balanced (indenter travel mm, force N) of this press."""
+
+    k: float
+    follows_snaps: ClassVar[bool] = False
+
+    def __post_init__(self):
+        self.points = [(0.0, 0.0)]  # the last two accepted balances
+        self.trial = None  # the balance of the solution the walk has not taken yet
+
+    def solve(self, walk, path, trial, t, history):
+        """(solution, its load) with the indenter where the spring balances the chamber at
+        the far-end travel of ``t``."""
+        (y0, f0), (y1, f1) = self.points[-2:] if len(self.points) > 1 else self.points * 2
+        slope = (f1 - f0) / (y1 - y0) if y1 > y0 else 0.0
+        solve_at = solver(walk.model, walk.s, path.at_travel, walk.x, walk.active,
+                          walk.engaged, walk.gripped(path.at_travel(y1)))
+        tol = walk.s.rtol * 10 * max(f1, self.k * path.travel_at(t), walk.model.force_floor)
+        sol, y_p, force = balance(solve_at, path.travel_at(t), self.k, y1, f1, slope, tol)
+        self.trial = (y_p, force)
+        return sol, path.at_travel(y_p)
+
+    def accept(self) -> None:
+        if self.trial is not None:  # a balance is accepted as found
+            self.points, self.trial = self.points[-1:] + [self.trial], None
+
+    def annotate(self, record):
+        """The record with the indenter's own travel (mm from first contact)."""
+        return dataclasses.replace(record, indenter=self.points[-1][0])

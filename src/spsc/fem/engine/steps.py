@@ -14,7 +14,7 @@ for a step that records nothing): the walk asks nothing else of it.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Callable, Protocol
 
 import numpy as np
 
@@ -22,8 +22,12 @@ from spsc.core.constants import P_AMB, to_MPa
 from spsc.core.errors import ParameterError
 from spsc.core.gaslaw import GasLaw
 
+from .coulomb import Coulomb
+from .load import Load
+from .spring import Spring
+
 __all__ = ["Inflate", "CloseValve", "SwitchValve", "Press", "Cycle", "Load", "Path",
-           "load_steps"]
+           "IncrementSolver", "load_steps"]
 
 
 @dataclass(frozen=True)
@@ -33,8 +37,9 @@ class Path:
     ``load_at(t)``: the load at the step's parameter t; ``targets``: the recorded t;
     ``kind``: ``"inflate"`` or ``"press"`` (the records' kind); ``travel_at(t)``: the plate's
     travel (mm from first contact; None for an inflation); ``at_travel(y)``: the load with the
-    indenter at travel y (a spring balances it there); ``spring`` (N/mm) and ``mu``: the
-    press's compliant object and Coulomb coefficient (None: a rigid object, no slip);
+    indenter at travel y; ``solver``: how an increment is solved when one Newton solve is not
+    enough (:class:`IncrementSolver`: the compliant object's balance, :class:`~.spring.Spring`;
+    the Coulomb return mapping, :class:`~.coulomb.Coulomb`; None: one Newton solve);
     ``span``: the largest increment of t (None: the targets' own spacing)."""
 
     load_at: Callable
@@ -42,15 +47,35 @@ class Path:
     targets: list
     travel_at: Callable | None = None
     at_travel: Callable | None = None
-    spring: float | None = None
-    mu: float | None = None
+    solver: "IncrementSolver | None" = None
     span: float | None = None
 
     @property
     def follows_snaps(self) -> bool:
-        """A press on a rigid object without slip follows its snap-throughs (the spring's
-        balance and the Coulomb loop do not)."""
-        return self.kind == "press" and self.spring is None and self.mu is None
+        """A press followed through its snap-throughs: one whose increments are Newton solves
+        or whose solver follows them (the spring's balance and the Coulomb loop do not)."""
+        return self.kind == "press" and (self.solver is None or self.solver.follows_snaps)
+
+
+class IncrementSolver(Protocol):
+    """How one increment of a :class:`Path` is solved where one Newton solve is not enough:
+    an outer loop around :func:`~.newton.newton` (the compliant object's balance, the Coulomb
+    return mapping). The walk asks nothing else of it, so a new loop is one class."""
+
+    #: the walk follows a snap-through of this path (:meth:`~.walk._Walk.snap`)
+    follows_snaps: bool
+
+    def solve(self, walk, path: "Path", trial: Load, t: float, history: list):
+        """(converged solution, its load) of the ``trial`` load at the path's parameter
+        ``t``, from ``walk``'s state (its ``model``, settings ``s``, state ``x``, sets
+        ``active`` and ``engaged``, and ``gripped(load)``, a sticking load's anchors);
+        ``history``: the (t, x) solved since the last jump."""
+
+    def accept(self) -> None:
+        """The walk took the last solution: the solver's own state moves on."""
+
+    def annotate(self, record):
+        """A recorded point with what the solver adds to it (:class:`~.result.Record`)."""
 
 
 class _Ramp:
@@ -195,8 +220,10 @@ class Press(_Ramp):
             return Load(load.pressure, load.gas, z0 - y, stick=self.stick,
                         indenter=self.indenter)
 
+        solver = Spring(self.spring) if self.spring else \
+            Coulomb(self.mu) if self.mu is not None else None
         return Path(lambda t: at_travel(self.travel_at(t)), "press", self.targets(),
-                    self.travel_at, at_travel, self.spring, self.mu,
+                    self.travel_at, at_travel, solver,
                     self.parameter_span(settings.stick_increment) if self.stick else None)
 
 
@@ -247,31 +274,8 @@ class Cycle(_Ramp):
             span = settings.stick_increment / speed if speed > 0 else None
         return Path(lambda t: Load(load.pressure, load.gas, z0 - self.travel_at(t),
                                    self.start_s + t, self.stick), "press", self.targets(),
-                    self.travel_at, mu=self.mu, span=span)
-
-
-@dataclass(frozen=True)
-class Load:
-    """Cavity gauge pressure ``pressure`` (MPa) unless ``gas`` is given; rigid plate at height
-    ``plate`` (mm, None: no plate); ``time`` (s) of a :class:`Cycle`'s load, None for a load
-    at rest (a rate-dependent material is then relaxed); ``stick``: the plate holds what it
-    touches from sliding (else it is frictionless); ``indenter``: a curved body whose tip is
-    at ``plate`` (:class:`~spsc.core.indenter.Indenter`; None: the plate)."""
-
-    pressure: float = 0.0
-    gas: GasLaw | None = None
-    plate: float | None = None
-    time: float | None = None
-    stick: bool = False
-    indenter: object | None = None
-
-    def cavity_pressure(self, volume: float) -> tuple[float, float]:
-        """(gauge pressure p, MPa; its slope dp/dV, MPa/mm³) on the cavity at the gas volume
-        ``volume`` (mm³): the prescribed pressure with slope 0, or the closed gas's P·Vⁿ law
-        (paper eqs. 6–7). The one place every discretisation reads the gas from."""
-        if self.gas is None:
-            return float(self.pressure), 0.0
-        return float(self.gas.pressure(volume)), float(self.gas.dpressure(volume))
+                    self.travel_at, solver=None if self.mu is None else Coulomb(self.mu),
+                    span=span)
 
 
 def load_steps(load, inflate_increments: int = 4, *, stick: bool = False,

@@ -5,7 +5,9 @@ Steps (:mod:`.steps`): :class:`Inflate` (prescribed cavity pressure ramp), :clas
 :class:`Press` (a rigid frictionless plate, displacement controlled, from first contact down by
 the stroke). Each step carries its own path (``begin`` changes the load between steps, ``path``
 says how the load moves with the step's parameter, :class:`~.steps.Path`): the walk knows no
-step by its class, so a new kind of step is one class. Each increment is solved by Newton's method (:func:`.newton.newton`); a failed
+step by its class, so a new kind of step is one class. Each increment is solved by Newton's
+method (:func:`.newton.newton`) or by the path's own increment solver around it (a compliant
+object's balance, Coulomb's return mapping: :class:`~.steps.IncrementSolver`); a failed
 increment is cut in half until ``min_fraction`` of the nominal one, and a recorded equilibrium
 whose tangent has a negative eigenvalue stops the walk (it is unstable: no point past it is a
 result). With ``settings.snap_through`` a press follows the jump instead: from an unstable state
@@ -17,7 +19,6 @@ reason.
 
 from __future__ import annotations
 
-import dataclasses
 import logging
 import math
 import time
@@ -25,13 +26,11 @@ import time
 import numpy as np
 
 from .active_set import first_contact, plate_force
-from .coulomb import coulomb
 from .friction import Grip, tractions
-from .spring import balance, solver as spring_solver
 from .newton import Converged, newton
 from .result import NewtonFailure, Record, Result, Stop
 from .snap import PUSH_MM, Jump, relax, unstable_mode
-from .steps import Load
+from .load import Load
 
 __all__ = ["solve", "record"]
 
@@ -47,12 +46,12 @@ def record(model, step, kind, load, sol) -> Record:
     the tie's force, a sticking plate's tangential reactions."""
     ev, active, x = sol.evaluation, sol.active, sol.x
     force, area = 0.0, 0.0
-    groups = model.group_forces(ev.r, active[:0])
+    on = model.surface
+    groups = on.groups(ev.r, active[:0])
     if load.plate is not None and active.size:
         force = plate_force(model, ev.r, active)
-        area = model.contact_area(x, load.plate) if load.indenter is None \
-            else model.contact_area(x, load.plate, load.indenter)
-        groups = model.group_forces(ev.r, active)
+        area = on.area(x, load.plate, load.indenter)
+        groups = on.groups(ev.r, active)
     held = model.tie.force(ev.r, sol.engaged) * model.symmetry if model.tie is not None \
         else None
     shear = float(tractions(model, ev.r, active).sum()) * model.symmetry \
@@ -75,8 +74,6 @@ class _Walk:
         self.active, self.engaged = np.zeros(0, int), np.zeros(0, int)
         self.grip = None  # a sticking plate's anchors (:mod:`.friction`)
         self.warm = None  # the last load's factorisation (:class:`~.newton.Warm`)
-        #: a spring-borne indenter's last two (travel mm, force N), and the trial's
-        self.indenter, self.balanced = [(0.0, 0.0)], None
         self.total = sum(s.increments for s in steps)
         self.done, self.last_force, self.instability, self.iterations = 0, 0.0, "", 0
         self.jumps: list[Jump] = []
@@ -119,29 +116,11 @@ class _Walk:
 
     def solve(self, path, trial, t_new, history):
         """(solution, its load) of the trial load ``trial`` at ``t_new`` of a step's
-        ``path``: the indenter's spring balanced (:mod:`.spring`), the Coulomb friction
-        mapped (:mod:`.coulomb`) or one Newton solve."""
-        if path.spring:
-            return self.solve_spring(path, t_new)
-        if path.mu is not None:
-            return coulomb(self.model, self.x, trial, self.s, self.active, self.engaged,
-                           self.gripped(trial), path.mu), trial
+        ``path``: one Newton solve, or the path's own increment solver's
+        (:class:`~.steps.IncrementSolver`)."""
+        if path.solver is not None:
+            return path.solver.solve(self, path, trial, t_new, history)
         return self.solve_one(trial, t_new, history), trial
-
-    def solve_spring(self, path, t_new):
-        """(solution, its load) of the spring-borne indenter at the far-end travel of
-        ``t_new`` (:mod:`.spring`); its (travel, force) kept in ``balanced``."""
-        (y0, f0), (y1, f1) = self.indenter[-2:] if len(self.indenter) > 1 \
-            else self.indenter * 2
-        slope = (f1 - f0) / (y1 - y0) if y1 > y0 else 0.0
-        solve_at = spring_solver(self.model, self.s, path.at_travel, self.x, self.active,
-                                 self.engaged, self.gripped(path.at_travel(y1)))
-        tol = self.s.rtol * 10 * max(f1, path.spring * path.travel_at(t_new),
-                                     self.model.force_floor)
-        sol, y_p, force = balance(solve_at, path.travel_at(t_new), path.spring, y1, f1, slope,
-                                  tol)
-        self.balanced = (y_p, force)
-        return sol, path.at_travel(y_p)
 
     def gripped(self, trial):
         """The anchors a sticking ``trial`` load starts from (None for a frictionless
@@ -183,8 +162,8 @@ class _Walk:
             self.x, self.active, self.engaged, t, self.load = (sol.x, sol.active, sol.engaged,
                                                                t_new, trial)
             self.grip, self.warm = sol.grip, getattr(sol, "warm", None)
-            if self.balanced is not None:  # a spring's balance is accepted as found
-                self.indenter, self.balanced = self.indenter[-1:] + [self.balanced], None
+            if path.solver is not None:
+                path.solver.accept()
             self.model.commit(sol.x, trial)
             self.iterations += sol.iterations
             history.append((t, sol.x))
@@ -193,8 +172,8 @@ class _Walk:
                 dt = min(nominal, 2 * dt)
             if math.isclose(t, targets[ti], rel_tol=1e-12, abs_tol=1e-14):
                 rec = record(self.model, k, kind, self.load, sol)
-                if path.spring:
-                    rec = dataclasses.replace(rec, indenter=self.indenter[-1][0])
+                if path.solver is not None:
+                    rec = path.solver.annotate(rec)
                 if rec.unstable_modes:
                     return Stop(k, kind, t, step, trial, "", rec)
                 self.keep(rec, path, t)

@@ -143,8 +143,8 @@ class PartRun(WithLoadCase):
             return None
         if self.plate_at is not None:
             return body.placed((np.asarray(R) @ np.asarray(self.plate_at))[:2])
-        dofs = model.contact_dofs
-        top = dofs[np.argmax(model.contact_height[dofs] + model.contact_gap[dofs])] // 3
+        on = model.surface
+        top = on.dofs[np.argmax(on.height[on.dofs] + on.gap[on.dofs])] // 3
         return body.placed(model.disc.X[top, :2])
 
     def steps(self, body=None) -> list:

@@ -207,7 +207,7 @@ def contact_forces(model: FEMModel, rec, indenter=None) -> np.ndarray:
     from ..engine import Load
     from ..engine.active_set import heights
 
-    dofs = model.contact_dofs
+    dofs = model.surface.dofs
     on = dofs[heights(model, rec.x, dofs, indenter) >= rec.plate - 1e-9]
     if on.size:
         r = model.evaluate(rec.x, Load(pressure=rec.pressure), tangent=False).r

@@ -25,6 +25,7 @@ from spsc.materials import Material
 from ..engine.result import NewtonFailure
 from ..engine.settings import Settings
 from ..engine.steps import Load
+from ..engine.surface import ContactSurface
 from ..material import NearlyIncompressible
 from .assembly import (Discretisation, InvertedElement, assemble, deformation_gradient,
                        discretise)
@@ -131,28 +132,17 @@ class FEMModel:
         return 1e-6 * self.law.mu
 
     @cached_property
-    def contact_dofs(self) -> np.ndarray:
-        """The vertical displacement unknowns of the contact nodes."""
-        return 3 * np.asarray(self.contact_nodes) + 2
-
-    @cached_property
-    def contact_lateral(self) -> np.ndarray:
-        """The horizontal (x, y) displacement unknowns of the contact nodes (2, n)."""
-        return np.stack([self.contact_dofs - 2, self.contact_dofs - 1])
-
-    @cached_property
-    def contact_height(self) -> np.ndarray:
-        """Each displacement unknown's reference coordinate (mm; its node's z on a vertical
-        one, x or y on a lateral one: where a curved indenter is met), 0 beyond."""
-        h = np.zeros(self.disc.n)
-        h[:self.disc.n_u] = self.disc.X.ravel()
-        return h
-
-    @cached_property
-    def contact_gap(self) -> np.ndarray:
-        g = np.zeros(self.disc.n)
-        g[2:self.disc.n_u:3] = self.gap
-        return g
+    def surface(self) -> ContactSurface:
+        """The outer surface's nodes a body may press: their vertical unknowns, their (x, y)
+        unknowns, each unknown's reference coordinate (its node's z on a vertical one, x or y
+        on a lateral one: where a curved indenter is met) and the rigid inserts' gaps."""
+        dofs = 3 * np.asarray(self.contact_nodes) + 2
+        height = np.zeros(self.disc.n)
+        height[:self.disc.n_u] = self.disc.X.ravel()
+        gap = np.zeros(self.disc.n)
+        gap[2:self.disc.n_u:3] = self.gap
+        return ContactSurface(dofs, np.stack([dofs - 2, dofs - 1]), height, gap,
+                              self.contact_area, self.group_forces)
 
     @cached_property
     def tie(self) -> InsertTie | None:

@@ -23,6 +23,7 @@ from spsc.materials import Material
 from ..engine.linsolve import available_solvers
 from ..engine.settings import SEMISMOOTH_CONTACT, Settings
 from ..engine.steps import Load
+from ..engine.surface import ContactSurface
 from ..material import NearlyIncompressible
 from ..material_kernel import determinant
 from ..mullins import MullinsLaw
@@ -174,14 +175,13 @@ class WallModel:
         self.fixed = np.asarray(self.part.fixed, bool).copy()
         self.reference = np.asarray(self.part.reference, float)
         zdofs = np.unique(self.part.zdofs)
-        self.contact_dofs = zdofs[~self.fixed[zdofs]]
+        dofs = zdofs[~self.fixed[zdofs]]
         #: each contact unknown's lateral ones: the radial displacement on the dome's section
         #: (2 unknowns a node), x and y on the swept wall (3 a node)
         per_node = 3 if stadium else 2
-        self.contact_lateral = np.stack([self.contact_dofs - per_node + 1 + k
-                                         for k in range(per_node - 1)])
-        self.contact_height = self.reference
-        self.contact_gap = np.zeros(self.n_u)
+        self.surface = ContactSurface(
+            dofs, np.stack([dofs - per_node + 1 + k for k in range(per_node - 1)]),
+            self.reference, np.zeros(self.n_u), self.contact_area)
         self.mu = law.mu
         #: smallest force scale of the convergence test (N): 1e-9 μ0 t0²
         self.force_floor = 1e-9 * self.mu * self.geometry.t0 ** 2
@@ -222,7 +222,8 @@ class WallModel:
 
     def top(self, x) -> float:
         """Highest point of the outer surface (mm): where the plate first touches."""
-        return float(np.max(self.reference[self.contact_dofs] + x[self.contact_dofs]))
+        dofs = self.surface.dofs
+        return float(np.max(self.reference[dofs] + x[dofs]))
 
     def evaluate(self, x, load, *, tangent: bool = True) -> "_Evaluation":
         """Residuals under ``load`` (a :class:`~spsc.fem.engine.steps.Load`, or a gauge
@@ -303,10 +304,6 @@ class WallModel:
         if negative is not None and c > 0.0:
             negative -= int(1.0 + c * float(gc @ factor(gc)) < 0.0)
         return negative
-
-    def group_forces(self, r, active) -> dict:
-        """No named contact surfaces on the wall."""
-        return {}
 
 
 @dataclass(frozen=True, eq=False)
