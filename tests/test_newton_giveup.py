@@ -13,15 +13,24 @@ import sys
 N = sys.modules["spsc.fem.engine.newton"]
 
 
+class _Plate:
+    """A body whose set is set by the test (:class:`spsc.fem.engine.bodies.Body`'s key)."""
+
+    active = np.zeros(0, int)
+
+    def key(self):
+        return self.active.tobytes()
+
+
 def _newton(changes=N._MULTIPLIER_CHANGES + 1):
     nw = N._Newton.__new__(N._Newton)
     nw.visits, nw.returns, nw.trail, nw.changes = {}, 0, [], changes
-    nw.engaged = np.zeros(0, int)
+    nw.bodies = [_Plate()]
     return nw
 
 
 def _enter(nw, active, res):
-    nw.active, nw.res = np.asarray(active), res
+    nw.bodies[0].active, nw.res = np.asarray(active), res
     return nw.cycles()
 
 
@@ -50,7 +59,7 @@ def test_while_the_multipliers_drive_the_set_no_cycle_is_declared():
 
 
 def _iterate(nw, active, res):
-    nw.active, nw.res = np.asarray(active), res
+    nw.bodies[0].active, nw.res = np.asarray(active), res
     return nw.stuck()
 
 

@@ -51,6 +51,33 @@ class Constraints:
     slope: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
     curv: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 0)))
 
+    @classmethod
+    def join(cls, n: int, parts) -> "Constraints":
+        """The constraints of several bodies at once (:mod:`.bodies`), each part over the
+        same ``n`` unknowns: their prescribed, aliased and leaning unknowns side by side, in
+        the parts' order. At most one part aliases (one master)."""
+        parts = list(parts)
+        if len(parts) == 1:
+            return parts[0]
+        if not parts:
+            return cls(n, np.zeros(0, int), np.zeros(0), np.zeros(0, int), np.zeros(0), -1)
+        masters = {p.master for p in parts if p.slaves.size}
+        if len(masters) > 1:
+            raise ValueError("Constraints.join: two bodies alias onto different masters")
+        leaning = [p for p in parts if p.lean.size]
+
+        def cat(name, axis=0):
+            return np.concatenate([getattr(p, name) for p in leaning], axis=axis)
+
+        lean = {} if not leaning else dict(
+            lean=cat("lean"), ljump=cat("ljump"), lat=cat("lat", 1), slope=cat("slope", 1),
+            curv=cat("curv", 2))
+        return cls(n, np.concatenate([p.presc for p in parts]),
+                   np.concatenate([p.jump for p in parts]),
+                   np.concatenate([p.slaves for p in parts]),
+                   np.concatenate([p.sjump for p in parts]),
+                   masters.pop() if masters else -1, **lean)
+
     def shift(self) -> np.ndarray:
         """The part of the step the constraints fix (full vector)."""
         s = np.zeros(self.n)

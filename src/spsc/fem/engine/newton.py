@@ -18,11 +18,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .active_set import curved, jumps, start as start_active, surface, \
-    update as update_active
+from .active_set import curved
+from .bodies import bodies
 from .constraints import Constraints, Masked, constraint_key
 from .restrict import restriction
-from .friction import Grip, hold, release, stuck
+from .friction import Grip
 from .linear import gas_vector, inertia, linear_step
 from .linsolve import FULL_INPUT
 from .lowrank import updated
@@ -100,21 +100,18 @@ class _Newton:
         warm = warm if settings.warm_start and load.plate is not None and not load.stick \
             and not curved(load.indenter) and warm is not None \
             and warm.fits(active, engaged) else None
-        self.active = start_active(model, self.x, load.plate, active, settings, load.indenter) \
-            if warm is None else warm.active
-        #: the sticking plate's anchors (None: frictionless)
-        self.grip = None if not (load.stick and load.plate is not None) else \
-            grip if grip is not None else Grip.empty(model)
-        tie = model.tie
-        self.engaged = np.zeros(0, int) if engaged is None or tie is None \
-            else np.asarray(engaged)
+        #: the bodies that constrain this solve (:mod:`.bodies`), each with its own set
+        self.plate, self.tied = bodies(model, load, self.x, active, engaged, grip, settings,
+                                       None if warm is None else warm.active)
+        self.bodies = [b for b in (self.plate, self.tied) if b is not None]
         self.scale, self.res, self.changes = 0.0, np.inf, 0
         #: the sets entered after the multipliers' changes, with the least residual there,
         #: and the returns to one of them without progress (:meth:`cycles`)
         self.visits, self.returns = {}, 0
         #: (sets, residual) of each iteration (:meth:`stuck`)
         self.trail = []
-        self.lam = self.carried = self.restriction = self.factored = self.modes = None
+        self.lam = self.lam_dofs = self.carried = self.restriction = self.factored = \
+            self.modes = None
         #: modified Newton: the last factorisation, the evaluation it was made from, and
         #: whether the next iteration reuses it (``settings.modified_newton``)
         self.factor = self.tangent_ev = None
@@ -126,6 +123,21 @@ class _Newton:
         #: the last tangent factorised had negative eigenvalues: the next one skips
         #: ``pardiso-spd``'s Cholesky attempt, which would fail (10 of 14 ms, stop 44)
         self.indefinite = False
+
+    @property
+    def active(self) -> np.ndarray:
+        """The plate's active contact unknowns (none without a plate)."""
+        return self.plate.active if self.plate is not None else np.zeros(0, int)
+
+    @property
+    def engaged(self) -> np.ndarray:
+        """The tie's engaged nodes (none without a tie)."""
+        return self.tied.engaged if self.tied is not None else np.zeros(0, int)
+
+    @property
+    def grip(self) -> Grip | None:
+        """The sticking plate's anchors (None: frictionless or no plate)."""
+        return self.plate.grip if self.plate is not None else None
 
     def linear(self) -> Settings:
         """The settings of the next factorisation: LDLᵀ at once after an indefinite one."""
@@ -150,8 +162,7 @@ class _Newton:
         follows), or, where at most ``settings.low_rank`` unknowns changed, ev alone with the
         last factorisation updated for them (:mod:`.lowrank`; a modified Newton step)."""
         if self.s.low_rank and self.factor is not None and self.tangent_ev is not None \
-                and self.model.tie is None and not curved(self.load.indenter) \
-                and isinstance(self.restriction, Masked):
+                and all(b.plain for b in self.bodies) and isinstance(self.restriction, Masked):
             con, free = self.constrain()
             old = self.restriction
             if np.setxor1d(np.flatnonzero(old.index)[old.held], con.presc).size \
@@ -171,46 +182,17 @@ class _Newton:
         return self.full(ev)
 
     def constrain(self):
-        """(Constraints, free mask) of the current sets at x."""
-        m, x = self.model, self.x
-        presc = np.asarray(self.active, int)
-        if curved(self.load.indenter) and presc.size:
-            return self.lean(presc)
-        jump = jumps(m, x, self.load.plate, presc)
-        if self.grip is not None:  # the anchored nodes still on the plate do not slide
-            self.grip = release(m, self.grip, presc)
-            held, moved = stuck(self.grip, x)
-            presc, jump = np.concatenate([presc, held]), np.concatenate([jump, moved])
-        con = Constraints(len(m.fixed), presc, jump, *self.tied())
-        return con, con.free(m.fixed)
-
-    def tied(self):
-        """(slaves, their jumps, master) of the tie at x; empty without one."""
-        tie = self.model.tie
-        if tie is None:
-            return np.zeros(0, int), np.zeros(0), -1
-        slaves, sjump = tie.constraints(self.x, self.engaged)
-        return slaves, sjump, tie.master
-
-    def lean(self, active):
-        """(Constraints, free mask) under a curved indenter: the active heights lean on
-        their lateral unknowns (:mod:`.leaning`)."""
-        m, x = self.model, self.x
-        S, dS, d2S, lat = surface(m, x, active, self.load.indenter)
-        if not np.all(np.isfinite(S)):
-            raise NewtonFailure("a node on the indenter passed beyond its equator (the body "
-                                "has no lower surface there)")
-        ljump = jumps(m, x, self.load.plate, active, self.load.indenter)
-        con = Constraints(len(m.fixed), np.zeros(0, int), np.zeros(0), *self.tied(), active,
-                          ljump, lat, dS, d2S)
-        return con, con.free(m.fixed)
+        """(Constraints, free mask) of the bodies' sets at x."""
+        n = len(self.model.fixed)
+        con = Constraints.join(n, [b.constraints(self.x) for b in self.bodies])
+        return con, con.free(self.model.fixed)
 
     def measure(self, ev, rt, free) -> None:
         """The force scale (``settings.scale``) and the free displacements' residual (N)."""
         m, n_u = self.model, self.model.n_u
         self.res = float(np.linalg.norm(rt[:n_u][free[:n_u]]))
         loads = (np.linalg.norm(ev.pressure * ev.g), np.linalg.norm(ev.r[:n_u][m.fixed[:n_u]]),
-                 np.linalg.norm(ev.r[self.active]), m.force_floor)
+                 np.linalg.norm(ev.r[self.pushing()]), m.force_floor)
         if self.s.scale == "running":
             self.scale = max(self.scale, *loads)
         elif self.scale <= m.force_floor:
@@ -219,30 +201,29 @@ class _Newton:
             # state moves, and a scale left at the floor asked for a residual of 1e-14 N
             self.scale = max(*loads, self.res)
 
+    def pushing(self) -> np.ndarray:
+        """The unknowns whose reactions count in the force scale: the bodies'."""
+        parts = [b.pushing() for b in self.bodies]
+        return parts[0] if len(parts) == 1 else np.concatenate(parts) if parts \
+            else np.zeros(0, int)
+
     def near(self, it, con, converged) -> bool:
         """Whether the active sets are updated in this iteration."""
         if not (con.nearly_settled(self.s.contact_tolerance) and it > 1):
             return False
         if self.s.semismooth:
-            return (self.load.plate is not None or self.model.tie is not None) and (
+            return bool(self.bodies) and (
                 self.lam is not None or self.res <= self.s.active_set_update * self.scale)
         return converged or self.res <= self.s.active_set_update * self.scale
 
     def update(self, ev) -> bool:
-        """Update the plate's active set and the tie's engaged set; whether either changed."""
-        s, m, changed = self.s, self.model, False
+        """Update each body's set (the plate's active set, the tie's engaged set); whether
+        any changed."""
+        s, changed = self.s, False
         tol = s.rtol * self.scale
-        if self.load.plate is not None:
-            reaction = self.lam[:self.active.size] if s.semismooth and self.lam is not None \
-                else -ev.r[self.active]
-            new = update_active(m, self.x, reaction, self.load.plate, self.active, tol,
-                                s.contact_tolerance, self.load.indenter)
-            if new is not None:
-                self.active, changed = new, True
-        if m.tie is not None:
-            new = m.tie.update(self.x, ev.r, self.engaged, tol, s.contact_tolerance)
-            if new is not None:
-                self.engaged, changed = new, True
+        reaction = self.reaction(ev)
+        for body in self.bodies:
+            changed = body.update(self.x, ev.r, reaction, tol, s.contact_tolerance) or changed
         if changed:
             self.changes += 1
             if self.changes > s.max_active_changes:
@@ -253,9 +234,18 @@ class _Newton:
                                     f"{tol:.3g} N)")
         return changed
 
+    def reaction(self, ev):
+        """``reaction(dofs)``: the constrained unknowns' reactions (N, pushing > 0): the last
+        step's linearised ones under the semi-smooth strategy, else the residual's."""
+        if self.s.semismooth and self.lam is not None:
+            at = np.zeros(len(self.model.fixed))
+            at[self.lam_dofs] = self.lam
+            return lambda dofs: at[dofs]
+        return lambda dofs: -ev.r[dofs]
+
     def sets(self) -> tuple:
-        """The plate's active set and the tie's engaged set, hashable."""
-        return self.active.tobytes(), self.engaged.tobytes()
+        """The bodies' sets, hashable."""
+        return tuple(b.key() for b in self.bodies)
 
     def cycles(self) -> bool:
         """Whether the sets just entered close a cycle that makes no progress: once the
@@ -297,7 +287,7 @@ class _Newton:
             st = linear_step(self.model, self.model.reuse(ev, self.tangent_ev),
                              self.restriction, free, con, self.s, multipliers=wanted,
                              factor=self.factor)
-            self.lam = st.multipliers
+            self.lam, self.lam_dofs = st.multipliers, con.reacting
         else:
             if self.restriction is None or self.restriction.key != key:
                 self.restriction = restriction(ev.K, free, con, self.s.solver in FULL_INPUT,
@@ -308,6 +298,7 @@ class _Newton:
                              multipliers=wanted)
             self.indefinite = bool(st.factor.negative)
             self.factored, self.modes, self.lam = st.key, st.unstable_modes, st.multipliers
+            self.lam_dofs = con.reacting
             self.factor, self.tangent_ev = st.factor, ev
             # a curved indenter's slopes change every iteration: no stale factorisation
             self.cheap = con.settled and self.res <= self.s.modified_newton * self.scale \
@@ -331,8 +322,9 @@ class _Newton:
             gc = red.take(con.condense(gas_vector(self.model, ev, con.n)))
             modes, factor = inertia(self.model, red, ev, gc, self.linear())
             warm = Warm(factor, ev, red, self.active, self.engaged)
-        grip = None if self.grip is None else hold(self.model, self.grip, self.x, self.active)
-        return Converged(self.x, self.active, self.engaged, it, ev, modes, grip,
+        for body in self.bodies:
+            body.close(self.x)
+        return Converged(self.x, self.active, self.engaged, it, ev, modes, self.grip,
                          warm if not con.lean.size else None)
 
 
