@@ -23,7 +23,6 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import CubicSpline, PchipInterpolator
 
-from spsc.core.constants import to_MPa
 from spsc.core.errors import ParameterError
 
 __all__ = ["ChamberMap", "Slice", "build_map", "pressure_levels"]
@@ -136,7 +135,7 @@ def _tops(model, levels_kPa, settings) -> dict:
     for p in levels_kPa:
         if p <= 0 or p in out:
             continue
-        res = solve(model, [Inflate(to_MPa(p), settings.inflate_increments)],
+        res = solve(model, [Inflate.kPa(p, settings.inflate_increments)],
                     settings=settings.newton_settings())
         if not res.converged:
             raise ParameterError("chamber map", f"{p:g} kPa",
@@ -151,7 +150,7 @@ def _level(model, p_kPa, travels, settings):
     increasing, > 0) of the chamber held at ``p_kPa``."""
     from spsc.fem.engine import Inflate, Press, solve
 
-    steps = [Inflate(to_MPa(p_kPa), settings.inflate_increments)] if p_kPa > 0 else []
+    steps = [Inflate.kPa(p_kPa, settings.inflate_increments)] if p_kPa > 0 else []
     res = solve(model, steps + [Press.through(travels)], settings=settings.newton_settings())
     pressed = [r for r in res.records if r.kind == "press"]
     n = len(pressed)

@@ -24,7 +24,7 @@ import time
 import numpy as np
 import pandas as pd
 
-from spsc.core.constants import P_AMB_KPA, to_kPa, to_MPa
+from spsc.core.constants import P_AMB_KPA, to_MPa
 from spsc.core.errors import ParameterError, require
 
 __all__ = ["stepped", "check_stepped", "plate_friction", "vented_circuit", "instants",
@@ -130,7 +130,7 @@ def _wall(scenario, valve_open: bool):
 
     n = 1.0 if sc.gas.isothermal else sc.gas.n
     steps = [] if sc.vented else [
-        Inflate(to_MPa(sc.setup_kPa), WallSettings().inflate_increments),
+        Inflate.kPa(sc.setup_kPa, WallSettings().inflate_increments),
         CloseValve(sc.reservoir_mm3 if valve_open else 0.0, n)]
     return fresh, steps, prony
 
@@ -181,7 +181,7 @@ def run_stepped(scenario, progress=None) -> tuple[dict, bool, str, float]:
     pressed = [r for r in res.records if r.kind == "press"]
     k = len(pressed) + 1
     f = np.array([0.0] + [r.force for r in pressed])
-    p = np.array([to_kPa(rest.pressure)] + [to_kPa(r.pressure) for r in pressed])
+    p = np.array([rest.pressure_kPa] + [r.pressure_kPa for r in pressed])
     v = np.array([rest.volume] + [r.volume for r in pressed])
     a = np.array([0.0] + [r.contact_area for r in pressed])
     t_out = np.arange(0.0, times[k - 1] + 0.5 * sc.dt, sc.dt)
@@ -211,7 +211,7 @@ def _segments(sc, times, travels, events) -> list:
     from spsc.fem.engine import Cycle, SwitchValve
 
     friction, n = sc.chamber.friction, 1.0 if sc.gas.isothermal else sc.gas.n
-    state = {"pressure": sc.setup_kPa * 1e-3}  # the reservoir's gauge pressure (MPa)
+    state = {"pressure": to_MPa(sc.setup_kPa)}  # the reservoir's gauge pressure (MPa)
     at = {int(np.argmin(np.abs(times - t))): opened for t, opened in events}
     # a cut 1 ms after each event too: the walk's increments start at a Cycle's first spacing,
     # so the millisecond the pool settles in is a Cycle of its own
@@ -315,10 +315,10 @@ def bode_stepped(scenario, freqs_Hz, progress=None) -> tuple[pd.DataFrame, dict]
             raise ParameterError("bode", f"{f:.3g} Hz", f"a wall that converges there "
                                  f"({res.message})")
         held, moving = rec[down.size - 1], rec[down.size:]
-        point = {"force_N": float(held.force), "pressure_kPa": float(to_kPa(held.pressure))}
+        point = {"force_N": float(held.force), "pressure_kPa": float(held.pressure_kPa)}
         rows.append((float(f), *_harmonic(np.array([r.force for r in moving])[last[1:]],
                                           phase[last]),
-                     *_harmonic(np.array([to_kPa(r.pressure) for r in moving])[last[1:]],
+                     *_harmonic(np.array([r.pressure_kPa for r in moving])[last[1:]],
                                 phase[last])))
         if progress is not None:
             progress(i + 1, len(freqs_Hz))

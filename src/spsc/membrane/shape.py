@@ -6,6 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from spsc.core.constants import to_kPa
+
 from .bvp import BoxScheme
 from .tension import relaxed_tensions, tensions
 
@@ -66,5 +68,5 @@ def make_shape(bs: BoxScheme, v, p_mpa: float, sg: float = 0.0, s0: float = 0.0)
     T1, T2 = relaxed_tensions(bs.mat, bs.t0, l1, l2)  # free membrane: tension field
     k = bs.nc + 1 if bs.contact else 0
     T1[:k], T2[:k] = tensions(bs.mat, bs.t0, l1[:k], l2[:k])  # on the plate: taut law
-    return Shape(s, x, bs.mer.y(s), rho, eta, phi, l1, l2, T1, T2, 1e3 * p_mpa, sg, bs.nc,
+    return Shape(s, x, bs.mer.y(s), rho, eta, phi, l1, l2, T1, T2, to_kPa(p_mpa), sg, bs.nc,
                  bs.volume(Z), s0)

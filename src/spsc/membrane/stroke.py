@@ -97,12 +97,12 @@ class StrokeContinuation:
         k = int(np.argmax(T >= 0.0)) if np.any(T >= 0.0) else nc // 2
         s0 = float(min(sh.s[max(k, 1)], 0.9 * sh.s_gamma))
         bs = self.schemes[True]
-        return self._on_grid(bs, sh, sh.s_gamma, s0, self.apex - y, 1e-3 * sh.pressure_kPa)
+        return self._on_grid(bs, sh, sh.s_gamma, s0, self.apex - y, to_MPa(sh.pressure_kPa))
 
     def _to_taut(self, sh: Shape, y: float):
         """Taut-mode guess from a slack-mode shape whose core is closing (s_0 → 0)."""
         bs = self.schemes[False]
-        v = self._on_grid(bs, sh, sh.s_gamma, 0.0, self.apex - y, 1e-3 * sh.pressure_kPa)
+        v = self._on_grid(bs, sh, sh.s_gamma, 0.0, self.apex - y, to_MPa(sh.pressure_kPa))
         s = bs.nodes(sh.s_gamma)
         Z = v[:-2].reshape(-1, 4)
         core = s < sh.s_slack

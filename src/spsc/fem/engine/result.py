@@ -42,6 +42,12 @@ class Record:
     #: press's travel is then the spring's far end); None otherwise
     indenter: float | None = None
 
+    @property
+    def pressure_kPa(self) -> float:
+        """The cavity gauge pressure in the units of a :class:`~spsc.core.curve.Curve`
+        (kPa)."""
+        return to_kPa(self.pressure)
+
 
 @dataclass(frozen=True, eq=False)
 class Stop:

@@ -92,6 +92,11 @@ class Inflate(_Ramp):
     pressure: float
     increments: int = 4
 
+    @classmethod
+    def kPa(cls, pressure_kPa: float, increments: int = 4) -> "Inflate":
+        """Inflate to a load case's gauge pressure ``pressure_kPa`` (kPa)."""
+        return cls(to_MPa(pressure_kPa), increments)
+
     def targets(self) -> list:
         """The recorded load parameters t ∈ (0, 1] (fractions of the ramp)."""
         nominal = 1.0 / self.increments
@@ -288,7 +293,7 @@ def load_steps(load, inflate_increments: int = 4, *, stick: bool = False,
     (p = 0) is pressed alone."""
     out = []
     if load.pressure_kPa > 0:
-        out += [Inflate(to_MPa(load.pressure_kPa), inflate_increments),
+        out += [Inflate.kPa(load.pressure_kPa, inflate_increments),
                 CloseValve(load.reservoir_mm3, load.polytropic_n)]
     return out + [Press(load.stroke_mm, int(load.points) - 1, stick=stick, spring=spring,
                         mu=mu, indenter=indenter)]

@@ -22,7 +22,6 @@ from spsc.core.errors import ParameterError
 from spsc.core.loadcase import LoadCase, WithLoadCase, check_load
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.curve import Curve, SolveInfo
-from spsc.core.constants import to_kPa
 from spsc.materials import Material
 
 from ..engine import Result, Settings, load_steps, solve
@@ -140,9 +139,9 @@ def curve_points(run, result: Result) -> dict:
     conv = np.zeros(n, bool)
     msg = [""] * n
     if run.pressure_kPa == 0 or len(result.of("inflate")) == run.inflate_increments:
-        F[0], P[0], A[0], dV[0], conv[0] = 0.0, to_kPa(inflated.pressure), 0.0, 0.0, True
+        F[0], P[0], A[0], dV[0], conv[0] = 0.0, inflated.pressure_kPa, 0.0, 0.0, True
     for k, rec in enumerate(presses, start=1):
-        F[k], P[k], A[k] = rec.force, to_kPa(rec.pressure), rec.contact_area
+        F[k], P[k], A[k] = rec.force, rec.pressure_kPa, rec.contact_area
         dV[k] = inflated.volume - rec.volume
         conv[k] = True
     for k in range(len(presses) + 1, n):
@@ -244,7 +243,7 @@ def write_vtu(model: FEMModel, result: Result, directory, indenter=None) -> list
         pressure, shear = contact_tractions(model, rec.x, forces, indenter)
         grid.point_data["contact_pressure_MPa"] = pressure
         grid.point_data["contact_shear_MPa"] = shear
-        grid.field_data["cavity_pressure_kPa"] = np.array([to_kPa(rec.pressure)])
+        grid.field_data["cavity_pressure_kPa"] = np.array([rec.pressure_kPa])
         grid.field_data["plate_force_N"] = np.array([rec.force])
         path = directory / f"step-{i:03d}-{rec.kind}.vtu"
         grid.save(path)

@@ -48,7 +48,6 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from spsc.cad.geometry import SPSCGeometry
-from spsc.core.constants import to_kPa, to_MPa
 from spsc.core.curve import Curve, SolveInfo
 from spsc.core.gaslaw import GasLaw
 from spsc.core.contact import check_body, with_indenter
@@ -121,7 +120,7 @@ def newton(model: WallModel, x0, *, pressure=0.0, gas: GasLaw | None = None, pla
 def inflate(model: WallModel, pressure_kPa: float, increments: int = 4) -> Record:
     """Inflate ``model`` to gauge ``pressure_kPa`` (kPa) in ``increments``; the last state.
     Raises :class:`WallFailure` with the reason if it does not converge."""
-    result = solve(model, [Inflate(to_MPa(pressure_kPa), increments)],
+    result = solve(model, [Inflate.kPa(pressure_kPa, increments)],
                    settings=model.settings.newton_settings())
     if result.stop is not None:
         raise WallFailure(_walked(result, pressure_kPa).message)
@@ -244,7 +243,7 @@ def _to_curve(model, path, inflated, pressed, y, v_nominal, pressure_kPa, reserv
     if ok_start:
         F[0], P[0], A[0], dV[0], conv[0] = 0.0, pressure_kPa, 0.0, 0.0, True
     for k, st in enumerate(pressed, start=1):
-        F[k], P[k], A[k] = st.force, to_kPa(st.pressure), st.contact_area
+        F[k], P[k], A[k] = st.force, st.pressure_kPa, st.contact_area
         # an unstable equilibrium is kept but not converged: the wall leaves it (docs/design.md)
         dV[k], conv[k] = v_inf - st.volume, not st.unstable_modes
         if st.unstable_modes:

@@ -16,7 +16,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from spsc.core.constants import to_kPa, to_MPa
 from spsc.core.errors import require
 
 from ..engine import CloseValve, Cycle, Inflate, solve
@@ -99,7 +98,7 @@ def _cycle(geometry, material, prony, stroke_mm, speed_mm_s, points, pressure_kP
     times = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(travels)))]) / speed_mm_s
     steps = []
     if pressure_kPa > 0:
-        steps = [Inflate(to_MPa(pressure_kPa), model.settings.inflate_increments),
+        steps = [Inflate.kPa(pressure_kPa, model.settings.inflate_increments),
                  CloseValve(reservoir_mm3)]
     mu = None if friction in (None, "stick") else float(friction)
     cycle = Cycle(tuple(times), tuple(travels), stick=friction is not None, mu=mu)
@@ -111,7 +110,7 @@ def _cycle(geometry, material, prony, stroke_mm, speed_mm_s, points, pressure_kP
     P = np.full(2 * n - 1, np.nan)
     F[0], P[0] = 0.0, pressure_kPa
     for k, r in enumerate(pressed, start=1):
-        F[k], P[k] = r.force, to_kPa(r.pressure)
+        F[k], P[k] = r.force, r.pressure_kPa
     load, unload = F[:n], F[n - 1:][::-1]
     p_load, p_unload = P[:n], P[n - 1:][::-1]
     gap = load - unload

@@ -18,7 +18,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from spsc.cad.geometry import SPSCGeometry
-from spsc.core.constants import to_kPa
 from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import check_load
 from spsc.materials import Material
@@ -108,7 +107,7 @@ def squeeze_cycle(geometry: SPSCGeometry, material: Material, *,
     section = {"nodes": np.asarray(sec.nodes), "elements": np.asarray(sec.elements),
                "node_of": np.asarray(node_of), "cavity": np.asarray(sec.cavity),
                "outer": np.asarray(sec.outer)}
-    return SqueezeCycle(setup, fields, float(last.force), float(to_kPa(last.pressure)),
+    return SqueezeCycle(setup, fields, float(last.force), float(last.pressure_kPa),
                         reached, res.converged, res.message, time.perf_counter() - t0, section)
 
 
