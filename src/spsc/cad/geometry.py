@@ -21,11 +21,15 @@ __all__ = [
     "TABLE1_VOLUME_CM3",
     "preset",
     "PARAMS",
+    "LENGTHS",
+    "FORM",
 ]
 
 #: The seven parameters of a chamber (mm: w, h, l, t0; dimensionless: n1, n2, c_y), under
 #: the names the command line and the tables use.
 PARAMS = ("w", "h", "l", "t0", "n1", "n2", "cy")
+#: Those that are lengths (mm) and those that are form factors (dimensionless, Table 1).
+LENGTHS, FORM = PARAMS[:4], PARAMS[4:]
 
 #: Form factors (n1, n2, c_y) of the four notable types, Table 1.
 TYPES: dict[str, tuple[float, float, float]] = {

@@ -4,6 +4,7 @@ and axes from the setup."""
 
 from __future__ import annotations
 
+from spsc.cad.geometry import FORM, LENGTHS
 
 __all__ = ["plot", "title", "contact_words", "travel_label"]
 
@@ -90,8 +91,8 @@ def title(curve) -> str:
     pressed it when it is not the paper's frictionless rigid plate."""
     g, s = curve.geometry, curve.setup
     part = s.get("part")
-    lengths = ", ".join(f"{k}={g[k]:g}" for k in ("w", "h", "l", "t0") if _is_number(g.get(k)))
-    shape = ", ".join(f"{k}={g[k]:g}" for k in ("n1", "n2", "cy") if _is_number(g.get(k)))
+    lengths = ", ".join(f"{k}={g[k]:g}" for k in LENGTHS if _is_number(g.get(k)))
+    shape = ", ".join(f"{k}={g[k]:g}" for k in FORM if _is_number(g.get(k)))
     dims = "; ".join(x for x in ((f"{lengths} mm" if lengths else ""), shape) if x)
     what = (f"{part['file']} (fix {part['fix']})" if isinstance(part, dict) else
             dims if dims else "no geometry")

@@ -17,7 +17,7 @@ import sys
 from pathlib import Path
 
 from spsc.core.errors import ParameterError
-from spsc.cad.geometry import PARAMS, SIZES, SPSCGeometry, preset
+from spsc.cad.geometry import LENGTHS, PARAMS, SIZES, SPSCGeometry, preset
 
 __all__ = ["PARAMS", "add_geometry_options", "add_setup_options", "add_gas_options",
            "add_output_options", "add_quiet_option", "check_output_file", "check_output_dir",
@@ -153,8 +153,8 @@ def add_geometry_options(parser: argparse.ArgumentParser) -> None:
                    "GS1 (w=h=l=10, t0=1 mm)")
     g.add_argument("--size", action=_RenamedSize, help=argparse.SUPPRESS)
     for name in PARAMS:
-        g.add_argument(f"--{name}", type=str, default=None, metavar="MM" if name in
-                       ("w", "h", "l", "t0") else "X", help=_HELP[name])
+        g.add_argument(f"--{name}", type=str, default=None, metavar="MM" if name in LENGTHS
+                       else "X", help=_HELP[name])
 
 
 def geometry_given(args: argparse.Namespace) -> bool:

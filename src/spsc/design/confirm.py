@@ -15,6 +15,7 @@ import math
 import time
 
 from spsc.design.goal import METRIC_NAMES
+from spsc.cad.geometry import PARAMS
 
 __all__ = ["CONFIRM", "CONFIRMED_BY", "SCREEN_TOL", "confirm"]
 
@@ -26,7 +27,7 @@ CONFIRMED_BY = {"surrogate": "wall"}
 #: half, so that the surrogate's own error (0.3 % of the force at the 95th percentile, more on
 #: the sensitivity) leaves the confirmed design within the tolerance
 SCREEN_TOL = 0.5
-_DESIGN = ("type", "w", "h", "l", "t0", "n1", "n2", "cy", "material", "pressure", "reservoir")
+_DESIGN = ("type",) + PARAMS + ("material", "pressure", "reservoir")
 
 
 def confirm(client, problem, rows: list[dict], best: dict | None, *, k: int = CONFIRM):

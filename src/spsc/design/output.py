@@ -37,7 +37,7 @@ SCHEMA, SCHEMA_VERSION = "spsc.design", 1
 TABLE_COLUMNS = ("trial", "state") + INPUTS + METRIC_NAMES + (
     "miss", "feasible", "printable", "printability", "status", "reason", "seconds", "proposer",
     "life_cycles", "peak_stretch", "energy_amplitude_MPa")
-_NUMERIC = ("w", "h", "l", "t0", "n1", "n2", "cy", "pressure", "reservoir") + METRIC_NAMES + (
+_NUMERIC = PARAMS + ("pressure", "reservoir") + METRIC_NAMES + (
     "miss", "seconds", "life_cycles", "peak_stretch", "energy_amplitude_MPa")
 
 

@@ -20,13 +20,14 @@ from typing import Mapping
 
 from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import PRESSURE_MAX_KPA
+from spsc.cad.geometry import FORM, PARAMS
 
 __all__ = ["INPUTS", "NUMERIC", "QUANTUM", "DEFAULTS", "Dimension", "Space", "parse_space",
            "fmt"]
 
 #: The inputs of a design (sweep_eval's INPUTS: the CLI's names).
-INPUTS = ("type", "w", "h", "l", "t0", "n1", "n2", "cy", "material", "pressure", "reservoir")
-NUMERIC = ("w", "h", "l", "t0", "n1", "n2", "cy", "pressure", "reservoir")
+INPUTS = ("type",) + PARAMS + ("material", "pressure", "reservoir")
+NUMERIC = PARAMS + ("pressure", "reservoir")
 #: Resolution of an interval's search (mm for lengths, kPa, mm³).
 QUANTUM = {"w": "0.001", "h": "0.001", "l": "0.001", "t0": "0.001", "n1": "0.001",
            "n2": "0.001", "cy": "0.001", "pressure": "0.1", "reservoir": "1"}
@@ -140,7 +141,7 @@ def parse_space(specs: Mapping[str, str | None], process: str = "fdm") -> Space:
     specs = {k: (None if specs.get(k) is None else str(specs[k])) for k in INPUTS}
     min_wall = get_process(process).min_wall_mm
     dims = []
-    auto_type = specs["type"] is None and all(specs[k] is not None for k in ("n1", "n2", "cy"))
+    auto_type = specs["type"] is None and all(specs[k] is not None for k in FORM)
     for name in INPUTS:
         text = specs[name]
         if text is None:

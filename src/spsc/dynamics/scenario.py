@@ -58,6 +58,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from spsc.cad.geometry import PARAMS
 from spsc.core.errors import ParameterError, require, require_integer
 
 from .gas import Gas
@@ -71,8 +72,8 @@ from .wall_time import check_stepped, plate_friction, stepped, vented_circuit
 __all__ = ["Scenario", "ChamberSpec", "read_scenario", "parse_scenario"]
 
 _TABLES = {"chamber", "circuit", "press", "events", "output", "bode", "stiffness"}
-_CHAMBER = {"type", "footprint", "material", "model", "mesh_size", "layers",
-            "w", "h", "l", "t0", "n1", "n2", "cy", "viscous", "friction", "mullins"}
+_CHAMBER = {"type", "footprint", "material", "model", "mesh_size", "layers", *PARAMS,
+            "viscous", "friction", "mullins"}
 _CIRCUIT = {"setup_kPa", "reservoir_mm3", "valve", "gas", "sensor", "leak", "vented"}
 _VALVE = {"C", "b", "m", "area_mm2", "state"}
 _GAS = {"n", "thermal_time_s", "ambient_K"}

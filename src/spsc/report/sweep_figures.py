@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.study.parallel import CATEGORICAL, parallel_coordinates
+from spsc.cad.geometry import LENGTHS
 
 __all__ = ["LABEL", "Front", "pareto_mask", "modes_figure", "front_figure", "effects_figure",
            "parallel_figure"]
@@ -201,8 +202,8 @@ def parallel_figure(path, rows: list[dict], inputs: list[str], front: Front) -> 
 
 
 def _input_label(name: str) -> str:
-    unit = {"pressure": "kPa", "reservoir": "mm³"}.get(name, "mm" if name in
-                                                         ("w", "h", "l", "t0") else "")
+    unit = {"pressure": "kPa", "reservoir": "mm³"}.get(name, "mm" if name in LENGTHS
+                                                         else "")
     return f"{name} ({unit})" if unit else name
 
 

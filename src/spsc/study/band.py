@@ -22,6 +22,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from spsc.cad.geometry import LENGTHS
 from spsc.core.errors import ParameterError
 
 __all__ = ["COLUMNS", "QUANTILES", "sample_setups", "band", "curve_of", "DEFAULT_SAMPLES"]
@@ -53,8 +54,7 @@ def sample_setups(setup, tolerance, n: int, seed: int):
     for row in X:
         draw = dict(zip(tolerance.names, row.tolist()))
         try:
-            geometry = setup.body.replace(**{k: draw[k] for k in ("t0", "w", "h", "l")
-                                             if k in draw})
+            geometry = setup.body.replace(**{k: draw[k] for k in LENGTHS if k in draw})
             scale = draw.get("material", 1.0)
             if not scale > 0:
                 raise ParameterError("material scale", f"{scale:.3g}", "> 0")

@@ -32,6 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
+from spsc.cad.geometry import LENGTHS
 from spsc.core.errors import ParameterError
 
 __all__ = ["DECLARED", "DECLARED_SOURCES", "NODES", "CHECKS", "METRICS", "declared_tolerance",
@@ -57,7 +58,6 @@ CHECKS = 3
 SAMPLES = 4096
 METRICS = ("stiffness", "sensitivity")
 QUANTILES = (5, 50, 95)
-_LENGTHS = ("t0", "w", "h", "l")
 
 
 def declared_tolerance():
@@ -126,7 +126,7 @@ def band_setups(study, draw: dict) -> dict:
     out = {}
     for t in study.types:
         g = preset(t)
-        g = g.replace(**{k: getattr(g, k) + draw[k] - ref[k] for k in _LENGTHS if k in draw})
+        g = g.replace(**{k: getattr(g, k) + draw[k] - ref[k] for k in LENGTHS if k in draw})
         for mode in study.mode_names:
             for p in study.pressures_kPa:
                 load = LoadCase(p + float(draw.get("pressure", 0.0)), study.reservoir(mode),

@@ -26,7 +26,7 @@ import numpy as np
 from spsc.core.errors import ParameterError, require
 from spsc.core.loadcase import PRESSURE_MAX_KPA
 
-from spsc.cad.geometry import PARAMS
+from spsc.cad.geometry import FORM, LENGTHS, PARAMS
 from spsc.sweep.evaluate import INPUTS
 
 __all__ = ["Axis", "SweepSpace", "parse_axis", "build_space", "MAX_DESIGNS",
@@ -213,8 +213,7 @@ class SweepSpace:
         t = d.get("type")
         if t is not None:
             size = next(v for k, v in SIZES.items() if k.lower() == self.footprint.lower())
-            preset = dict(zip(("w", "h", "l", "t0"), size)) | dict(zip(("n1", "n2", "cy"),
-                                                                      TYPES[t]))
+            preset = dict(zip(LENGTHS, size)) | dict(zip(FORM, TYPES[t]))
             for k in PARAMS:
                 d.setdefault(k, preset[k])
         return {k: d.get(k) for k in INPUTS}
