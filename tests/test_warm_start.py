@@ -10,6 +10,7 @@ import pytest
 import scipy.sparse as sp
 from numpy.testing import assert_allclose
 
+from spsc.fem.engine.bodies import Sets
 from spsc.fem.engine.linsolve import available_solvers, factorize
 from spsc.fem.engine.newton import Warm
 from spsc.fem.engine.settings import SEMISMOOTH_CONTACT, Settings
@@ -28,8 +29,10 @@ def test_warm_start_gives_the_same_curve_with_fewer_factorisations(counted_chamb
 @pytest.mark.skipif("pardiso" not in available_solvers(), reason="pypardiso not installed")
 def test_a_replaced_factorisation_is_no_warm_start():
     A = sp.csr_matrix(np.diag([2.0, 3.0, 4.0]))
-    warm = Warm(factorize(A, "pardiso"), None, None, np.array([1, 2]), np.zeros(0, int))
-    assert warm.fits([1, 2], None)
-    assert not warm.fits([1], None)  # another contact set
+    warm = Warm(factorize(A, "pardiso"), None, None,
+                Sets({"active": np.array([1, 2]), "engaged": np.zeros(0, int)}))
+    assert warm.fits(Sets({"active": np.array([1, 2])}))  # no tie: no engaged nodes
+    assert not warm.fits(Sets({"active": np.array([1])}))  # another contact set
+    assert not warm.fits(Sets({"active": np.array([1, 2]), "engaged": np.array([4])}))
     factorize(2 * A, "pardiso")
-    assert not warm.fits([1, 2], None)
+    assert not warm.fits(Sets({"active": np.array([1, 2])}))

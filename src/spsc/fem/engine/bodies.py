@@ -5,17 +5,26 @@ unknowns, the tie's engaged nodes), gives the constraints that set puts on the s
 (:class:`~.constraints.Constraints`: prescribed, aliased or leaning unknowns), updates its set
 from the residual's reactions (a primal–dual active set) and closes it at convergence. Newton
 (:mod:`.newton`) asks nothing else of a body: it joins their constraints, solves, and updates
-each set until none changes, so a new body (a second plate, a floor under the cavity) is one
-class here and one line in :func:`bodies`.
+each set until none changes. What each body keeps from one load to the next travels in one
+value, :class:`Sets`, so a new body (a second plate, a floor under the cavity) is one class
+and one line in :data:`BODIES`.
 
 - :class:`Plate`: the rigid plate or a curved indenter (:mod:`.active_set`, :mod:`.leaning`)
   and, on a sticking plate, its anchors (:mod:`.friction`);
 - :class:`Tied`: a rigid body inside the model (the 3D solid's insert, the discretisation's
-  :class:`~.protocol.Tie`).
+  :class:`~.protocol.Tie`);
+- :class:`Floor`: the base under the cavity, which the cavity's wall comes down onto when it
+  is pressed through its height (the membrane pinched between a probe and the base: the
+  paper's puncture test, sec. 3.2), where the discretisation names that surface (its
+  ``floor``).
+
+A body class also says what it adds to a recorded point (:meth:`Body.report`: forces by name,
+N of the whole part).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from typing import Callable, Protocol
 
 import numpy as np
@@ -26,13 +35,43 @@ from .friction import Grip, hold, release, stuck
 from .load import Load
 from .result import NewtonFailure
 
-__all__ = ["Body", "Plate", "Tied", "bodies"]
+__all__ = ["BODIES", "Body", "Floor", "Plate", "Sets", "Tied", "bodies", "reported"]
 
 _NONE = np.zeros(0, int)
 
 
+@dataclass(frozen=True, eq=False)
+class Sets:
+    """What the bodies keep from one converged load to the next, by name: the plate's
+    ``active`` contact unknowns and its ``grip`` anchors, the tie's ``engaged`` nodes, a new
+    body's own entries. A name not there: nothing yet (the body starts afresh)."""
+
+    states: dict = field(default_factory=dict)
+
+    def get(self, name: str, default=None):
+        return self.states.get(name, default)
+
+    def replace(self, **states) -> "Sets":
+        """These sets with ``states`` in place of their entries."""
+        return Sets({**self.states, **states})
+
+    def same(self, other: "Sets") -> bool:
+        """Whether every set of ``self`` and ``other`` is the same (arrays element by element;
+        an absent array is an empty one)."""
+        for name in self.states.keys() | other.states.keys():
+            a, b = self.states.get(name), other.states.get(name)
+            if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+                if not np.array_equal(_NONE if a is None else a, _NONE if b is None else b):
+                    return False
+            elif a is not b:
+                return False
+        return True
+
+
 class Body(Protocol):
-    """One body's part in a Newton solve; its set is its own state."""
+    """One body's part in a Newton solve; its set is its own state. A body class is built by
+    ``of(model, load, x, sets, settings, warm)`` (None where the load or the model has no such
+    body; ``warm``: the sets of a factorisation the solve starts from, or None)."""
 
     #: its constraints only prescribe unknowns (no aliasing, no leaning): a changed set can
     #: update the last factorisation by a low-rank correction (:mod:`.lowrank`)
@@ -56,6 +95,14 @@ class Body(Protocol):
     def close(self, x) -> None:
         """The solve converged at x: keep what the next load starts from."""
 
+    def state(self) -> dict:
+        """Its entries of :class:`Sets`."""
+
+    @classmethod
+    def report(cls, model, sets: Sets, r) -> dict:
+        """What a recorded point shows of this body from the sets and the residual ``r``:
+        forces by name (N, whole part); the plate's and the tie's are the record's own."""
+
 
 class Plate:
     """The rigid plate at ``load.plate`` (a curved ``load.indenter`` whose tip is there) on the
@@ -74,6 +121,20 @@ class Plate:
             else Grip.empty(model)
         self.plain = not self.curved
         self.warm = not (load.stick or self.curved)
+
+    @classmethod
+    def of(cls, model, load: Load, x, sets: Sets, settings, warm: Sets | None):
+        if load.plate is None:
+            return None
+        return cls(model, load, x, sets.get("active"), sets.get("grip"), settings,
+                   None if warm is None else warm.get("active"))
+
+    def state(self) -> dict:
+        return {"active": self.active, "grip": self.grip}
+
+    @classmethod
+    def report(cls, model, sets: Sets, r) -> dict:
+        return {}  # the record's force, area and shear
 
     def constraints(self, x) -> Constraints:
         m, n = self.model, len(self.model.fixed)
@@ -130,6 +191,19 @@ class Tied:
         self.tie, self.n = tie, n
         self.engaged = _NONE if engaged is None else np.asarray(engaged)
 
+    @classmethod
+    def of(cls, model, load: Load, x, sets: Sets, settings, warm: Sets | None):
+        if model.tie is None:
+            return None
+        return cls(model.tie, sets.get("engaged"), len(model.fixed))
+
+    def state(self) -> dict:
+        return {"engaged": self.engaged}
+
+    @classmethod
+    def report(cls, model, sets: Sets, r) -> dict:
+        return {}  # the record's insert force
+
     def constraints(self, x) -> Constraints:
         slaves, sjump = self.tie.constraints(x, self.engaged)
         return Constraints(self.n, _NONE, np.zeros(0), slaves, sjump,
@@ -152,9 +226,86 @@ class Tied:
         """The engaged set is all the next load starts from."""
 
 
-def bodies(model, load: Load, x, active, engaged, grip, settings, warm_active=None):
-    """(the plate or None, the tie or None) of one solve of ``load`` from the sets given."""
-    plate = Plate(model, load, x, active, grip, settings, warm_active) \
-        if load.plate is not None else None
-    tied = Tied(model.tie, engaged, len(model.fixed)) if model.tie is not None else None
-    return plate, tied
+class Floor:
+    """The rigid base under the cavity, frictionless: the discretisation's ``floor`` surface
+    (a :class:`~.surface.ContactSurface` of the cavity wall's vertical unknowns, its
+    ``height`` measured from the base) stays at or above it. Exact like the plate: an active
+    unknown's height is prescribed at the base, its reaction r_a ≥ 0 pushes up, and it is
+    released when that pulls; an inactive one below the base by more than the contact
+    tolerance is taken in."""
+
+    plain = True
+    warm = True
+
+    def __init__(self, model, x, active, settings, warm_active=None):
+        self.model, self.on = model, model.floor
+        if warm_active is not None:
+            self.active = warm_active
+        else:
+            active = _NONE if active is None else np.asarray(active, int)
+            if settings.semismooth:
+                d = self.on.dofs
+                active = np.union1d(active, d[self.heights(x, d) < -settings.contact_tolerance])
+            self.active = active
+
+    @classmethod
+    def of(cls, model, load: Load, x, sets: Sets, settings, warm: Sets | None):
+        if model.floor is None:
+            return None
+        return cls(model, x, sets.get("floor"), settings,
+                   None if warm is None else warm.get("floor"))
+
+    def heights(self, x, dofs) -> np.ndarray:
+        """Each unknown's height above the base at the state x (mm)."""
+        return self.on.height[dofs] + x[dofs]
+
+    def constraints(self, x) -> Constraints:
+        return Constraints(len(self.model.fixed), self.active, -self.heights(x, self.active),
+                           _NONE, np.zeros(0), -1)
+
+    def pushing(self) -> np.ndarray:
+        return self.active
+
+    def update(self, x, r, reaction, force_tol, gap_tol) -> bool:
+        keep = -reaction(self.active) >= -force_tol  # ``reaction`` is the plate's: down > 0
+        inactive = np.setdiff1d(self.on.dofs, self.active, assume_unique=True)
+        new = inactive[self.heights(x, inactive) < -gap_tol]
+        if new.size == 0 and np.all(keep):
+            return False
+        self.active = np.union1d(self.active[keep], new)
+        return True
+
+    def key(self) -> bytes:
+        return self.active.tobytes()
+
+    def close(self, x) -> None:
+        """The active set is all the next load starts from."""
+
+    def state(self) -> dict:
+        return {"floor": self.active}
+
+    @classmethod
+    def report(cls, model, sets: Sets, r) -> dict:
+        """The base's force on the cavity wall (N, whole part; 0 where nothing touches)."""
+        if model.floor is None:
+            return {}
+        active = sets.get("floor", _NONE)
+        return {"floor": float(np.asarray(r)[active].sum()) * model.symmetry}
+
+
+#: the bodies a Newton solve may hold, in the order their constraints are joined
+BODIES = (Plate, Tied, Floor)
+
+
+def reported(model, sets: Sets, r) -> dict:
+    """What the bodies add to a recorded point (:meth:`Body.report`)."""
+    out = {}
+    for kind in BODIES:
+        out.update(kind.report(model, sets, r))
+    return out
+
+
+def bodies(model, load: Load, x, sets: Sets, settings, warm: Sets | None = None) -> list:
+    """The bodies of one solve of ``load`` from the state x and the ``sets`` given."""
+    out = (kind.of(model, load, x, sets, settings, warm) for kind in BODIES)
+    return [b for b in out if b is not None]

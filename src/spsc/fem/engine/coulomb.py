@@ -56,8 +56,7 @@ class Coulomb:
     follows_snaps: ClassVar[bool] = False
 
     def solve(self, walk, path, trial, t, history):
-        return coulomb(walk.model, walk.x, trial, walk.s, walk.active, walk.engaged,
-                       walk.gripped(trial), self.mu), trial
+        return coulomb(walk.model, walk.x, trial, walk.s, walk.sets, self.mu), trial
 
     def accept(self) -> None:
         """Nothing to carry: the anchors are the walk's."""
@@ -86,25 +85,27 @@ class Sliding:
         return self.model.reuse(ev, tangent_ev)
 
 
-def coulomb(model, x0, load, settings, active, engaged, grip: Grip, mu: float):
+def coulomb(model, x0, load, settings, sets, mu: float):
     """The converged state of one sticking ``load`` with Coulomb friction μ from the walk's
-    ``x0``, active set, engaged set and anchors ``grip`` (nodes on the plate before the
-    increment). Its evaluation is the model's own (the plate's forces as reactions r: normal
+    ``x0`` and its bodies' ``sets`` (:class:`~.bodies.Sets`; their anchors: the nodes on the
+    plate before the increment). Its evaluation is the model's own (the plate's forces as reactions r: normal
     −r_z, tangential r_t at every node, sticking or slipping); its grip anchors every node
     where it ended. Raises :class:`NewtonFailure` if the return mapping does not settle."""
+    grip = sets.get("grip")
+    grip = Grip.empty(model) if grip is None else grip
     slip = {}  # lateral dof -> friction force (N)
-    x, act, eng = x0, active, engaged
+    x, now = x0, sets
     iterations, change = 0, np.inf
     for _ in range(MAX_ROUNDS):
         free = grip.anchor.copy()
         dofs = np.fromiter(slip, int, len(slip))
         free[dofs] = np.nan
         solved = newton(Sliding(model, dofs, [slip[d] for d in dofs]) if slip else model,
-                        x, load, settings, act, eng, Grip(free))
+                        x, load, settings, now.replace(grip=Grip(free)))
         iterations += solved.iterations
-        x, act, eng = solved.x, solved.active, solved.engaged
+        x, now = solved.x, solved.sets
         ev = model.evaluate(x, load, tangent=False)  # the plate's forces as reactions
-        new, change = _map(model, ev.r, x, act, grip, slip, mu)
+        new, change = _map(model, ev.r, x, solved.active, grip, slip, mu)
         if new.keys() == slip.keys() and change <= TOLERANCE:
             return dataclasses.replace(solved, evaluation=ev, iterations=iterations)
         slip = new

@@ -18,8 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .active_set import curved
-from .bodies import bodies
+from .bodies import Sets, bodies
 from .constraints import Constraints, Masked, constraint_key
 from .restrict import restriction
 from .friction import Grip
@@ -32,6 +31,8 @@ from .settings import Settings
 from .load import Load
 
 __all__ = ["Converged", "Warm", "newton"]
+
+_NONE = np.zeros(0, int)
 
 #: the semi-smooth strategy takes the linearised reactions until the set changed this often
 _MULTIPLIER_CHANGES = 10
@@ -49,19 +50,33 @@ _STUCK = 10
 
 @dataclass(frozen=True, eq=False)
 class Converged:
-    """A converged load: the state x, the plate's active contact unknowns, the tie's engaged
-    nodes, Newton iterations, the evaluation at x (with tangent), the negative eigenvalues
-    of the displacement problem there (None: unknown) and, on a sticking plate, the anchors
-    of its stuck lateral unknowns (:class:`~.friction.Grip`, else None)."""
+    """A converged load: the state x, where its bodies stand (:class:`~.bodies.Sets`: the
+    plate's active contact unknowns and, on a sticking plate, the anchors of its stuck
+    lateral unknowns; the tie's engaged nodes), Newton iterations, the evaluation at x (with
+    tangent), the negative eigenvalues of the displacement problem there (None: unknown) and
+    the factorisation the next load may start from."""
 
     x: np.ndarray
-    active: np.ndarray
-    engaged: np.ndarray
+    sets: Sets
     iterations: int
     evaluation: object
     unstable_modes: int | None
-    grip: Grip | None = None
     warm: "Warm | None" = None
+
+    @property
+    def active(self) -> np.ndarray:
+        """The plate's active contact unknowns (none without a plate)."""
+        return self.sets.get("active", _NONE)
+
+    @property
+    def engaged(self) -> np.ndarray:
+        """The tie's engaged nodes (none without a tie)."""
+        return self.sets.get("engaged", _NONE)
+
+    @property
+    def grip(self) -> Grip | None:
+        """A sticking plate's anchors (None: frictionless)."""
+        return self.sets.get("grip")
 
     def with_tangent(self, model, load: Load) -> "Converged":
         """This state with an evaluation that carries its tangent (a modified Newton
@@ -75,35 +90,32 @@ class Converged:
 class Warm:
     """The last factorisation of a converged load, on its constraint set: the next load's
     first step (``settings.warm_start``). ``evaluation`` carries the tangent it factorised,
-    ``restriction`` that set's restriction of it, ``active`` and ``engaged`` the set."""
+    ``restriction`` that set's restriction of it, ``sets`` the bodies' sets."""
 
     factor: object
     evaluation: object
     restriction: object
-    active: np.ndarray
-    engaged: np.ndarray
+    sets: Sets
 
-    def fits(self, active, engaged) -> bool:
-        """Whether a load starting from these sets can take it (and it can still solve)."""
-        return self.factor.current() \
-            and np.array_equal(self.active, np.asarray(active, int)) \
-            and np.array_equal(self.engaged, np.zeros(0, int) if engaged is None else engaged)
+    def fits(self, sets: Sets) -> bool:
+        """Whether a load starting from ``sets`` can take it (and it can still solve)."""
+        return self.factor.current() and self.sets.same(sets)
 
 
 class _Newton:
     """The state of one Newton solve between iterations."""
 
-    def __init__(self, model, load: Load, settings: Settings, x0, active, engaged, grip=None,
+    def __init__(self, model, load: Load, settings: Settings, x0, sets: Sets | None = None,
                  warm: Warm | None = None):
         self.model, self.load, self.s = model, load, settings
         self.x = x0.copy()
-        warm = warm if settings.warm_start and load.plate is not None and not load.stick \
-            and not curved(load.indenter) and warm is not None \
-            and warm.fits(active, engaged) else None
+        sets = sets or Sets()
         #: the bodies that constrain this solve (:mod:`.bodies`), each with its own set
-        self.plate, self.tied = bodies(model, load, self.x, active, engaged, grip, settings,
-                                       None if warm is None else warm.active)
-        self.bodies = [b for b in (self.plate, self.tied) if b is not None]
+        self.bodies = bodies(model, load, self.x, sets, settings)
+        warm = warm if settings.warm_start and load.plate is not None and warm is not None \
+            and all(b.warm for b in self.bodies) and warm.fits(sets) else None
+        if warm is not None:  # the bodies start on the factorised set
+            self.bodies = bodies(model, load, self.x, sets, settings, warm.sets)
         self.scale, self.res, self.changes = 0.0, np.inf, 0
         #: the sets entered after the multipliers' changes, with the least residual there,
         #: and the returns to one of them without progress (:meth:`cycles`)
@@ -124,20 +136,12 @@ class _Newton:
         #: ``pardiso-spd``'s Cholesky attempt, which would fail (10 of 14 ms, stop 44)
         self.indefinite = False
 
-    @property
-    def active(self) -> np.ndarray:
-        """The plate's active contact unknowns (none without a plate)."""
-        return self.plate.active if self.plate is not None else np.zeros(0, int)
-
-    @property
-    def engaged(self) -> np.ndarray:
-        """The tie's engaged nodes (none without a tie)."""
-        return self.tied.engaged if self.tied is not None else np.zeros(0, int)
-
-    @property
-    def grip(self) -> Grip | None:
-        """The sticking plate's anchors (None: frictionless or no plate)."""
-        return self.plate.grip if self.plate is not None else None
+    def sets(self) -> Sets:
+        """Where the bodies stand now."""
+        out = {}
+        for body in self.bodies:
+            out.update(body.state())
+        return Sets(out)
 
     def linear(self) -> Settings:
         """The settings of the next factorisation: LDLᵀ at once after an indefinite one."""
@@ -243,7 +247,7 @@ class _Newton:
             return lambda dofs: at[dofs]
         return lambda dofs: -ev.r[dofs]
 
-    def sets(self) -> tuple:
+    def keys(self) -> tuple:
         """The bodies' sets, hashable."""
         return tuple(b.key() for b in self.bodies)
 
@@ -257,7 +261,7 @@ class _Newton:
         …; 20 of the 29 failed loads of the Table 1 Type C wall curve at 30 kPa with the
         reservoir), or a ring released and taken back (69, 94, 88, 81, 76, 73, 69, … nodes;
         Type B at 10 kPa with the reservoir), 25 iterations each."""
-        key = self.sets()
+        key = self.keys()
         if self.changes > _MULTIPLIER_CHANGES:
             before = self.visits.get(key)
             if before is not None and self.res > 0.5 * before:
@@ -271,7 +275,7 @@ class _Newton:
         admissible line search takes ever shorter steps; where the wall turns unstable a load
         spent 25 iterations there at 1-10 times the force scale, and none that converged
         did)."""
-        key = self.sets()
+        key = self.keys()
         self.trail = (self.trail + [(key, self.res)])[-(_STUCK + 1):]
         if len(self.trail) <= _STUCK:
             return False
@@ -311,32 +315,32 @@ class _Newton:
         """The converged state with the inertia of its tangent on its own constraint set."""
         key = constraint_key(free, con.slaves, con.lean)
         modes = self.modes if self.factored == key else None
+        for body in self.bodies:
+            body.close(self.x)
+        sets = self.sets()
         warm = None
         if self.factored == key and self.factor is not None:
-            warm = Warm(self.factor, self.tangent_ev, self.restriction, self.active,
-                        self.engaged)
+            warm = Warm(self.factor, self.tangent_ev, self.restriction, sets)
         elif self.s.fresh_inertia:
             ev = self.full(ev)
             red = restriction(ev.K, free, con, self.s.solver in FULL_INPUT,
                               self.model.system_residual(ev))
             gc = red.take(con.condense(gas_vector(self.model, ev, con.n)))
             modes, factor = inertia(self.model, red, ev, gc, self.linear())
-            warm = Warm(factor, ev, red, self.active, self.engaged)
-        for body in self.bodies:
-            body.close(self.x)
-        return Converged(self.x, self.active, self.engaged, it, ev, modes, self.grip,
-                         warm if not con.lean.size else None)
+            warm = Warm(factor, ev, red, sets)
+        return Converged(self.x, sets, it, ev, modes, warm if not con.lean.size else None)
 
 
-def newton(model, x0, load: Load, settings: Settings, active=None, engaged=None,
-           grip: Grip | None = None, warm: Warm | None = None) -> Converged:
-    """Solve r(x) = 0 from ``x0`` for one ``load``, starting from the plate's ``active``
-    contact unknowns, the tie's ``engaged`` nodes and, on a sticking plate (``load.stick``),
-    the anchors ``grip`` (None: none yet); the converged state's grip also holds the nodes
-    that touched in this load (:mod:`.friction`). ``warm``: the last load's factorisation
-    (:class:`Warm`), its first step under ``settings.warm_start``. Raises
-    :class:`NewtonFailure` with the reason when it does not converge."""
-    nw = _Newton(model, load, settings, x0, active, engaged, grip, warm)
+def newton(model, x0, load: Load, settings: Settings, sets: Sets | None = None,
+           warm: Warm | None = None) -> Converged:
+    """Solve r(x) = 0 from ``x0`` for one ``load``, its bodies starting from ``sets``
+    (:class:`~.bodies.Sets`: the plate's active contact unknowns, the tie's engaged nodes, on a
+    sticking plate (``load.stick``) the anchors of what touched; None: none yet); the
+    converged state's sets also anchor the nodes that touched in this load
+    (:mod:`.friction`). ``warm``: the last load's factorisation (:class:`Warm`), its first
+    step under ``settings.warm_start``. Raises :class:`NewtonFailure` with the reason when it
+    does not converge."""
+    nw = _Newton(model, load, settings, x0, sets, warm)
     for it in range(1, settings.max_iterations + 1):
         con, free = nw.constrain()
         ev = nw.evaluate()

@@ -66,6 +66,9 @@ class Discretisation(Protocol):
     fixed: np.ndarray  #: bool over the Newton system's m unknowns: supported
     #: the outer surface a rigid body meets (its unknowns, where they sit, what it measures)
     surface: ContactSurface
+    #: the cavity wall's surface that may come down onto the base (:class:`~.bodies.Floor`;
+    #: heights measured from the base), or None: the base is not modelled
+    floor: ContactSurface | None
     tie: Tie | None  #: a rigid body inside the model, or None
     force_floor: float  #: smallest force scale of the convergence test (N)
     #: exceptions that fail a load (the increment is cut); ``inadmissible``: that reject a

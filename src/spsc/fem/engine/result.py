@@ -41,6 +41,9 @@ class Record:
     #: the indenter's own travel (mm from first contact) when it rides on a spring (the
     #: press's travel is then the spring's far end); None otherwise
     indenter: float | None = None
+    #: what the other bodies carry (:meth:`~.bodies.Body.report`): force by name (N, whole
+    #: part), e.g. ``floor``, the base's push on the cavity wall
+    bodies: dict = field(default_factory=dict)
 
     @property
     def pressure_kPa(self) -> float:

@@ -138,7 +138,7 @@ def unstable_mode(model, sol, load, settings, iterations: int = 8) -> np.ndarray
     """The eigenvector of the converged ``sol``'s constrained tangent (gas included) whose
     eigenvalue is nearest zero, by inverse iteration on its factorisation, scaled to a largest
     nodal displacement of 1 (full numbering, zero on constrained unknowns)."""
-    nw = _Newton(model, load, settings, sol.x, sol.active, sol.engaged, sol.grip)
+    nw = _Newton(model, load, settings, sol.x, sol.sets)
     con, free = nw.constrain()
     ev = sol.with_tangent(model, load).evaluation
     red = restriction(ev.K, free, con, settings.solver in FULL_INPUT,
@@ -154,9 +154,9 @@ def unstable_mode(model, sol, load, settings, iterations: int = 8) -> np.ndarray
     return mode / np.max(np.abs(mode[: model.n_u]))
 
 
-def relax(model, x_u, load, active, engaged, settings, push: np.ndarray, metric, grip=None):
+def relax(model, x_u, load, sets, settings, push: np.ndarray, metric):
     """Descend Π from ``x_u + push`` at the fixed ``load`` (``model`` has ``potential``;
-    ``grip``: a sticking plate's anchors):
+    ``sets``: where its bodies stand, :class:`~.bodies.Sets`):
     (stable converged state, Π(x_u) − Π(it) in mJ, flow steps, Newton iterations). Raises
     NewtonFailure if no stable state is reached."""
     x = _settled(model, x_u + push, load)
@@ -164,8 +164,7 @@ def relax(model, x_u, load, active, engaged, settings, push: np.ndarray, metric,
     n = model.n_u
     for k in range(1, MAX_FLOW_STEPS + 1):
         try:
-            sol = newton(Damped(model, metric, x, mu), x, load, settings, active, engaged,
-                         grip)
+            sol = newton(Damped(model, metric, x, mu), x, load, settings, sets)
         except model.recoverable as exc:
             _log.debug("flow %d mu=%.3g failed: %s", k, mu, exc)
             sol = None
@@ -177,7 +176,7 @@ def relax(model, x_u, load, active, engaged, settings, push: np.ndarray, metric,
             continue
         iterations += sol.iterations
         dx = sol.x - x
-        x, active, engaged, grip = sol.x, sol.active, sol.engaged, sol.grip
+        x, sets = sol.x, sol.sets
         moved = np.max(np.abs(x[:n] - x_u[:n]))
         _log.debug("flow %d mu=%.3g its=%d |dx|=%.3g moved=%.3g", k, mu, sol.iterations,
                    np.max(np.abs(dx[:n])), moved)
@@ -192,7 +191,7 @@ def relax(model, x_u, load, active, engaged, settings, push: np.ndarray, metric,
         if moved < 5 * PUSH_MM and not stalled:
             continue
         try:
-            end = newton(model, x, load, settings, active, engaged, grip)
+            end = newton(model, x, load, settings, sets)
         except model.recoverable as exc:
             _log.debug("undamped from flow %d: %s", k, exc)
             continue

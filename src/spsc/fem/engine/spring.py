@@ -64,18 +64,17 @@ def balance(solve_at, y: float, k: float, y_prev: float, f_prev: float, slope: f
                         f"{hi if hi is not None else y:.6g} mm)")
 
 
-def solver(model, settings, load_at_travel, x, active, engaged, grip):
-    """``solve_at(y_p)`` for :func:`balance`: Newton from the last trial's state (the walk's
-    first), always from the walk's anchors ``grip`` (a sticking plate's nodes touch at the
-    indenter's final position only)."""
-    state = {"x": x, "active": active, "engaged": engaged, "iterations": 0}
+def solver(model, settings, load_at_travel, x, sets):
+    """``solve_at(y_p)`` for :func:`balance`: Newton from the last trial's state and sets (the
+    walk's ``x`` and ``sets`` first), always with the walk's anchors (a sticking plate's
+    nodes touch at the indenter's final position only)."""
+    state = {"x": x, "sets": sets, "iterations": 0}
+    grip = sets.get("grip")
 
     def solve_at(y_p):
         load = load_at_travel(y_p)
-        sol = newton(model, state["x"], load, settings, state["active"], state["engaged"],
-                     grip)
-        state.update(x=sol.x, active=sol.active, engaged=sol.engaged,
-                     iterations=state["iterations"] + sol.iterations)
+        sol = newton(model, state["x"], load, settings, state["sets"].replace(grip=grip))
+        state.update(x=sol.x, sets=sol.sets, iterations=state["iterations"] + sol.iterations)
         sol = dataclasses.replace(sol, iterations=state["iterations"])  # every trial's
         return sol, plate_force(model, sol.evaluation.r, sol.active) if sol.active.size \
             else 0.0
@@ -101,8 +100,7 @@ class Spring:
         the far-end travel of ``t``."""
         (y0, f0), (y1, f1) = self.points[-2:] if len(self.points) > 1 else self.points * 2
         slope = (f1 - f0) / (y1 - y0) if y1 > y0 else 0.0
-        solve_at = solver(walk.model, walk.s, path.at_travel, walk.x, walk.active,
-                          walk.engaged, walk.gripped(path.at_travel(y1)))
+        solve_at = solver(walk.model, walk.s, path.at_travel, walk.x, walk.sets)
         tol = walk.s.rtol * 10 * max(f1, self.k * path.travel_at(t), walk.model.force_floor)
         sol, y_p, force = balance(solve_at, path.travel_at(t), self.k, y1, f1, slope, tol)
         self.trial = (y_p, force)

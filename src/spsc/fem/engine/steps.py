@@ -67,9 +67,9 @@ class IncrementSolver(Protocol):
 
     def solve(self, walk, path: "Path", trial: Load, t: float, history: list):
         """(converged solution, its load) of the ``trial`` load at the path's parameter
-        ``t``, from ``walk``'s state (its ``model``, settings ``s``, state ``x``, sets
-        ``active`` and ``engaged``, and ``gripped(load)``, a sticking load's anchors);
-        ``history``: the (t, x) solved since the last jump."""
+        ``t``, from ``walk``'s state (its ``model``, settings ``s``, state ``x`` and the
+        bodies' ``sets``, :class:`~.bodies.Sets`); ``history``: the (t, x) solved since the
+        last jump."""
 
     def accept(self) -> None:
         """The walk took the last solution: the solver's own state moves on."""

@@ -31,14 +31,14 @@ class ContactSurface:
     coordinate (mm; z on a vertical unknown, x or y on a lateral one); ``gap``: per unknown
     how far above its node the body meets it (mm, a rigid insert's thickness);
     ``area(x, plate, indenter)``: the outer surface on the body whose tip is at ``plate``
-    (mm², whole part); ``groups(r, active)``: the force (N, whole part) through each named
+    (mm², whole part; None: not measured); ``groups(r, active)``: the force (N, whole part) through each named
     part of the surface from the residual's reactions of the ``active`` unknowns."""
 
     dofs: np.ndarray
     lateral: np.ndarray
     height: np.ndarray
     gap: np.ndarray
-    area: Callable
+    area: Callable | None = None
     groups: Callable = _no_groups
 
     def lateral_of(self, dofs) -> np.ndarray:

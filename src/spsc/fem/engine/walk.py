@@ -26,7 +26,8 @@ import time
 import numpy as np
 
 from .active_set import first_contact, plate_force
-from .friction import Grip, tractions
+from .bodies import Sets, reported
+from .friction import tractions
 from .newton import Converged, newton
 from .result import NewtonFailure, Record, Result, Stop
 from .snap import PUSH_MM, Jump, relax, unstable_mode
@@ -55,9 +56,10 @@ def record(model, step, kind, load, sol) -> Record:
     held = model.tie.force(ev.r, sol.engaged) * model.symmetry if model.tie is not None \
         else None
     shear = float(tractions(model, ev.r, active).sum()) * model.symmetry \
-        if getattr(sol, "grip", None) is not None and active.size else 0.0
+        if sol.grip is not None and active.size else 0.0
     return Record(step, kind, x.copy(), ev.pressure, ev.volume, load.plate, force, area,
-                  sol.iterations, sol.unstable_modes, groups, held, shear)
+                  sol.iterations, sol.unstable_modes, groups, held, shear,
+                  bodies=reported(model, sol.sets, ev.r))
 
 
 class _Walk:
@@ -71,8 +73,9 @@ class _Walk:
         self.records = [Record(-1, "start", self.x.copy(), 0.0, ev.volume, None, 0.0, 0.0, 0,
                                insert_force=0.0 if model.tie is not None else None)]
         self.load = Load()
-        self.active, self.engaged = np.zeros(0, int), np.zeros(0, int)
-        self.grip = None  # a sticking plate's anchors (:mod:`.friction`)
+        #: where the bodies stand (:class:`~.bodies.Sets`: the plate's active set and
+        #: anchors, the tie's engaged nodes)
+        self.sets = Sets()
         self.warm = None  # the last load's factorisation (:class:`~.newton.Warm`)
         self.total = sum(s.increments for s in steps)
         self.done, self.last_force, self.instability, self.iterations = 0, 0.0, "", 0
@@ -105,14 +108,12 @@ class _Walk:
         if self.s.predictor and len(history) >= 2:
             (t0, x0), (t1, x1) = history[-2], history[-1]
             guess = x1 + (x1 - x0) * (t_new - t1) / (t1 - t0)
-        grip = self.gripped(trial)
         try:
-            return newton(model, guess, trial, self.s, self.active, self.engaged, grip,
-                          self.warm)
+            return newton(model, guess, trial, self.s, self.sets, self.warm)
         except model.recoverable:
             if guess is x:
                 raise
-            return newton(model, x, trial, self.s, self.active, self.engaged, grip)
+            return newton(model, x, trial, self.s, self.sets)
 
     def solve(self, path, trial, t_new, history):
         """(solution, its load) of the trial load ``trial`` at ``t_new`` of a step's
@@ -121,13 +122,6 @@ class _Walk:
         if path.solver is not None:
             return path.solver.solve(self, path, trial, t_new, history)
         return self.solve_one(trial, t_new, history), trial
-
-    def gripped(self, trial):
-        """The anchors a sticking ``trial`` load starts from (None for a frictionless
-        load)."""
-        if not trial.stick:
-            return None
-        return Grip.empty(self.model) if self.grip is None else self.grip
 
     def ramp(self, k, step) -> Stop | None:
         """Walk one Inflate or Press step through its targets with step halving; the
@@ -159,9 +153,8 @@ class _Walk:
                 if jumped is not None:
                     t_new, sol = jumped
                     trial, history = load_at(t_new), []  # no secant across the jump
-            self.x, self.active, self.engaged, t, self.load = (sol.x, sol.active, sol.engaged,
-                                                               t_new, trial)
-            self.grip, self.warm = sol.grip, getattr(sol, "warm", None)
+            self.x, self.sets, t, self.load = sol.x, sol.sets, t_new, trial
+            self.warm = sol.warm
             if path.solver is not None:
                 path.solver.accept()
             self.model.commit(sol.x, trial)
@@ -186,18 +179,17 @@ class _Walk:
         descent to the stable state at the same plate (:mod:`.snap`). (t, stable solution)
         at the jump, or None if no stable state was found (the walk then stops there)."""
         m, s, load_at = self.model, self.s, path.load_at
-        x0, a0, e0 = self.x, self.active, self.engaged
-        g0 = self.gripped(load_at(t1))
+        x0, sets0 = self.x, self.sets
         for _ in range(s.snap_bisections):
             tm = 0.5 * (t0 + t1)
             try:
-                solm = newton(m, x0, load_at(tm), s, a0, e0, g0)
+                solm = newton(m, x0, load_at(tm), s, sets0)
             except m.recoverable:
                 break
             if solm.unstable_modes:
                 t1, sol1 = tm, solm
             else:
-                t0, x0, a0, e0, g0 = tm, solm.x, solm.active, solm.engaged, solm.grip
+                t0, x0, sets0 = tm, solm.x, solm.sets
         load = load_at(t1)
         sol1 = sol1.with_tangent(m, load)
         mode = unstable_mode(m, sol1, load, s)
@@ -208,15 +200,15 @@ class _Walk:
             push = np.zeros_like(sol1.x)
             push[: mode.size] = sign * PUSH_MM * mode
             try:
-                end, released, steps, its = relax(m, sol1.x, load, sol1.active, sol1.engaged,
-                                                  s, push, metric, sol1.grip)
+                end, released, steps, its = relax(m, sol1.x, load, sol1.sets, s, push,
+                                                  metric)
             except NewtonFailure as exc:
                 _log.debug("snap descent %+g failed: %s", sign, exc)
                 continue
             if best is None or released > best[1]:
                 best = (end, released, steps, its)
         if best is None:  # from the stable side of a narrowed bracket
-            t0, state, t1 = self.narrow(load_at, t0, t1, (x0, a0, e0, g0))
+            t0, state, t1 = self.narrow(load_at, t0, t1, (x0, sets0))
             end = self.cross(path, t0, t1, state)
             return None if end is None else (t1, end)
         end, released, steps, its = best
@@ -233,20 +225,20 @@ class _Walk:
 
     def narrow(self, load_at, t0, t1, state):
         """(t0, its stable state, t1) with [t0, t1] halved ``snap_bisections`` times: at t1
-        Newton from the state at t0 fails or lands on an unstable state. ``state``: (x,
-        active, engaged, grip) at t0."""
+        Newton from the state at t0 fails or lands on an unstable state. ``state``: (x, the
+        bodies' sets) at t0."""
         m, s = self.model, self.s
         for _ in range(s.snap_bisections):
             tm = 0.5 * (t0 + t1)
             try:
-                solm = newton(m, state[0], load_at(tm), s, *state[1:])
+                solm = newton(m, state[0], load_at(tm), s, state[1])
             except m.recoverable:
                 t1 = tm
                 continue
             if solm.unstable_modes:
                 t1 = tm
             else:
-                t0, state = tm, (solm.x, solm.active, solm.engaged, solm.grip)
+                t0, state = tm, (solm.x, solm.sets)
         return t0, state, t1
 
     def cross(self, path, t0, t1, state=None):
@@ -254,23 +246,21 @@ class _Walk:
         however short the increment: the branch ends there (a fold: no equilibrium near it
         past t0), or Newton cycles between contact sets; or where the descent from an
         unstable state at t1 found none. Π is descended from the state at t0 (``state``:
-        (x, active, engaged, grip), the walk's by default) with the plate at t1
+        (x, the bodies' sets), the walk's by default) with the plate at t1
         (:func:`.snap.relax`, no push) and the jump recorded like a snap-through's; None if
         this descent finds no stable state either."""
         m, s, load_at = self.model, self.s, path.load_at
-        x, active, engaged, grip = state or (self.x, self.active, self.engaged, self.grip)
+        x, sets = state or (self.x, self.sets)
         load = load_at(t1)
-        anchors = (Grip.empty(m) if grip is None else grip) if load.stick else None
         try:
             ev = m.evaluate(x, load_at(t0))
             diag = np.abs(ev.K.diagonal()[: m.n_u])
-            end, released, steps, its = relax(
-                m, x, load, active, engaged, s, np.zeros_like(x),
-                np.maximum(diag, 1e-6 * diag.max()), anchors)
+            end, released, steps, its = relax(m, x, load, sets, s, np.zeros_like(x),
+                                              np.maximum(diag, 1e-6 * diag.max()))
         except m.recoverable as exc:  # NewtonFailure among them
             _log.debug("crossing at t=%.4g failed: %s", t1, exc)
             return None
-        start = Converged(x, active, engaged, 0, ev, 0, grip)
+        start = Converged(x, sets, 0, ev, 0)
         before, after = record(m, -1, "press", load_at(t0), start), \
             record(m, -1, "press", load, end)
         # Π holds no plate: the plate's work over the last short travel, F Δy, is added

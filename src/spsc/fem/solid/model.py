@@ -117,6 +117,7 @@ class FEMModel:
     recoverable = (NewtonFailure, np.linalg.LinAlgError, ValueError)
     inadmissible = (InvertedElement,)
     viscous = None  # an elastic solid: no history between loads
+    floor = None  # the base under the cavity is not modelled in 3D
 
     @property
     def n(self) -> int:

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from spsc.cad.geometry import SPSCGeometry
-from spsc.core.errors import require
+from spsc.core.errors import ParameterError, require
 from spsc.materials import Material
 
 from ..engine.linsolve import available_solvers
@@ -150,7 +150,7 @@ class WallModel:
 
     def __init__(self, geometry: SPSCGeometry, material: Material,
                  settings: WallSettings | None = None, *, base: str = "clamped",
-                 stadium: bool | None = None, prony=None, mullins=None):
+                 stadium: bool | None = None, prony=None, mullins=None, floor: bool = False):
         self.geometry, self.material = geometry, material
         self.settings = settings = settings or WallSettings()
         law = NearlyIncompressible(material, settings.bulk_ratio)
@@ -182,12 +182,24 @@ class WallModel:
         self.surface = ContactSurface(
             dofs, np.stack([dofs - per_node + 1 + k for k in range(per_node - 1)]),
             self.reference, np.zeros(self.n_u), self.contact_area)
+        #: the cavity wall that may come down onto the base z = 0 (``floor``: the dome's
+        #: cavity nodes, :class:`~spsc.fem.engine.bodies.Floor`), else None
+        self.floor = self._floor(per_node) if floor else None
         self.mu = law.mu
         #: smallest force scale of the convergence test (N): 1e-9 μ0 t0²
         self.force_floor = 1e-9 * self.mu * self.geometry.t0 ** 2
         _, _, cavity = self.part.volume_gradient(np.zeros(self.n_u))
         self._pattern = Pattern(self.n_u, self.solid.element_dofs, cavity,
                                 per_node=per_node)
+
+    def _floor(self, per_node: int) -> ContactSurface:
+        """The cavity boundary's vertical unknowns over the base (the dome's section)."""
+        if self.stadium:
+            raise ParameterError("floor", "on a stadium", "the dome's (l = 0) only: the swept "
+                                 "wall's base contact is not built")
+        z = per_node * np.asarray(self.part.section.cavity) + 1
+        dofs = np.unique(z[~self.fixed[z]])
+        return ContactSurface(dofs, (dofs - 1)[None, :], self.reference, np.zeros(self.n_u))
 
     @property
     def kind(self) -> str:
