@@ -86,8 +86,9 @@ class Body(Protocol):
         """The unknowns whose reactions count in the convergence test's force scale."""
 
     def update(self, x, r, reaction: Callable, force_tol: float, gap_tol: float) -> bool:
-        """Update its set from the residual ``r`` (or ``reaction(dofs)``, the linearised
-        reactions where the solve has them); whether it changed."""
+        """Update its set from the residual ``r``, or from ``reaction(dofs)``: −r at those
+        unknowns, or its linearisation where the solve has one (so a push down, the plate's,
+        is > 0; a push up, the floor's, < 0); whether it changed."""
 
     def key(self) -> bytes:
         """Its set, hashable (the solve's cycle and stall checks)."""
