@@ -24,6 +24,7 @@ import numpy as np
 
 from spsc.cad.geometry import LENGTHS
 from spsc.core.errors import ParameterError
+from spsc.study.tolerance import salib_seed
 
 __all__ = ["COLUMNS", "QUANTILES", "sample_setups", "band", "curve_of", "DEFAULT_SAMPLES"]
 
@@ -174,7 +175,8 @@ def _sobol(problem, metrics: dict, seed: int) -> dict:
         if np.ptp(values) <= 1e-12 * max(np.abs(values).max(), 1e-300):
             out[name] = {"not_computed": f"the {name} does not vary over the samples"}
             continue
-        si = sobol.analyze(problem, values, calc_second_order=False, seed=seed)
+        si = sobol.analyze(problem, values, calc_second_order=False,
+                             seed=salib_seed(seed))
         out[name] = {k: dict(zip(problem["names"], np.asarray(si[k], float).tolist()))
                      for k in ("S1", "S1_conf", "ST", "ST_conf")}
     return out

@@ -34,9 +34,11 @@ import numpy as np
 
 from spsc.cad.geometry import LENGTHS
 from spsc.core.errors import ParameterError
+from spsc.study.tolerance import salib_seed
 
 __all__ = ["DECLARED", "DECLARED_SOURCES", "NODES", "CHECKS", "METRICS", "declared_tolerance",
-           "check_band_tolerance", "band_setups", "headline_band", "run_headline_band"]
+           "check_band_tolerance", "band_setups", "headline_band", "run_headline_band",
+           "repropagated"]
 
 #: the report's declared tolerance set (a tolerance file, :mod:`spsc.study.tolerance`)
 DECLARED = Path(__file__).resolve().parents[1] / "report" / "data" / "tolerance-report.toml"
@@ -267,9 +269,26 @@ def _propagate(tolerance, nominal, nodes: dict, grid_values: list, checks: list,
         y = interp[k](Xc)
         out["quantiles"][k] = dict(zip((f"p{q}" for q in QUANTILES),
                                        np.percentile(y, QUANTILES).tolist()))
-        si = sobol_analyze.analyze(problem, y, calc_second_order=False, seed=seed)
+        si = sobol_analyze.analyze(problem, y, calc_second_order=False,
+                                   seed=salib_seed(seed))
         out["sobol"][k] = {s: dict(zip(problem["names"], np.asarray(si[s], float).tolist()))
                            for s in ("S1", "S1_conf", "ST", "ST_conf")}
+    return out
+
+
+def repropagated(record: dict, study, tolerance) -> dict:
+    """``record`` with its interpolation, quantiles and Sobol indices computed again from its
+    own grid and check values (seconds, no wall curve): a change of the propagation reaches a
+    cached band."""
+    keys = [k for k in record["grid"][0] if k not in record["nodes"]]
+    grid_values = [{k: g[k] for k in keys} for g in record["grid"]]
+    checks = [c["draw"] for c in record.get("checks", [])]
+    check_values = [{k: c[k]["wall"] for k in keys} for c in record.get("checks", [])]
+    out = dict(record)
+    for stale in ("not_computed", "check_error_max"):
+        out.pop(stale, None)
+    out.update(_propagate(tolerance, _nominal(study), record["nodes"], grid_values, checks,
+                          check_values, record["seed"]))
     return out
 
 
@@ -300,7 +319,7 @@ def run_headline_band(study, cache_root, tolerance=None, *, workers=None, schedu
     if path.exists():
         record = json.loads(path.read_text(encoding="utf-8"))
         record["tolerance"]["source"] = tolerance.source  # the same inputs, maybe another file
-        return record
+        return repropagated(record, study, tolerance)
     bar = progress_bar(desc="spsc report: headline band", unit="curve", disable=not progress,
                        file=sys.stderr)
     try:

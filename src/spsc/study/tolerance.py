@@ -46,7 +46,7 @@ from pathlib import Path
 from spsc.core.errors import ParameterError, require
 
 __all__ = ["INPUTS", "DISTS", "Spread", "Tolerance", "read_tolerance", "parse_tolerance",
-           "friction_of", "STICK"]
+           "friction_of", "STICK", "salib_seed"]
 
 #: the inputs a tolerance may name (the CLI's names) and their units
 INPUTS = {"t0": "mm", "w": "mm", "h": "mm", "l": "mm", "pressure": "kPa gauge",
@@ -54,6 +54,13 @@ INPUTS = {"t0": "mm", "w": "mm", "h": "mm", "l": "mm", "pressure": "kPa gauge",
 #: a stickiness μ/(1 + μ) at or above this is the sticking plate (μ ≥ 1e6)
 STICK = 1.0 - 1e-6
 DISTS = ("normal", "uniform", "lognormal")
+
+
+def salib_seed(seed: int) -> int:
+    """The seed to give SALib's Sobol analysis for ``seed``: SALib seeds its bootstrap only for
+    a truthy seed (``if seed:``), so 0, the studies' default, left the confidence intervals
+    different at every run (the report's ± changed between two builds of the same curves)."""
+    return int(seed) + 1
 _KEYS = {"normal": ("sd",), "uniform": ("low", "high"), "lognormal": ("sd",)}
 
 
