@@ -32,6 +32,7 @@ def test_life_settings_are_checked(args, name):
         check_life(*args)
 
 
+@pytest.mark.slow  # 7-10 s: make test-slow (make test stays under 3 min)
 def test_a_design_that_must_last(tmp_path, capsys):
     out = tmp_path / "d"
     code = main(["design", "--target", "stiffness_high=5", "--type", "B", "--l", "0",
@@ -54,6 +55,7 @@ def test_a_design_that_must_last(tmp_path, capsys):
         assert "its life:" in capsys.readouterr().out
 
 
+@pytest.mark.slow  # 7-10 s: make test-slow (make test stays under 3 min)
 def test_a_sweep_with_lives_keys_them_apart(tmp_path):
     out = tmp_path / "s.parquet"
     argv = ["sweep", "--type", "B,C", "--l", "0", "--w", "10,12", "--model", "simplified",

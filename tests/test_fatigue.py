@@ -78,6 +78,7 @@ def _material_file(path, fatigue):
     return str(path)
 
 
+@pytest.mark.slow  # 7-10 s: make test-slow (make test stays under 3 min)
 def test_a_material_file_carries_its_own_fatigue_law(tmp_path):
     """A file's ``fatigue`` entry: its own law (no calibration), or its own Type B test
     (calibrated as Table 2 calibrates the catalogue's: with the catalogue's TPU 60A constants

@@ -22,6 +22,7 @@ def _cycle(**kw):
     return wall_cycle(DOME_B, MAT, None, stroke_mm=3.0, points=7, **kw)
 
 
+@pytest.mark.slow  # 7-10 s: make test-slow (make test stays under 3 min)
 def test_coulomb_friction_dissipates_and_its_limits_do_not():
     plain, slip = _cycle(), _cycle(friction=0.3)
     stuck, grip = _cycle(friction="stick"), _cycle(friction=1e4)
