@@ -38,6 +38,8 @@ from pathlib import Path
 import numpy as np
 
 from spsc.core.errors import ParameterError
+from spsc.core.setup import Contact
+from spsc.models.part import refuse_contact
 
 from spsc.cli.curve import add_curve_parser, exit_status, plot, run as run_curve, summary
 from spsc.cli.options import (PARAMS, PLOT_SUFFIXES, Once, check_output_dir, check_output_file,
@@ -127,18 +129,12 @@ def _sites(design: dict | None) -> dict:
 
 
 def _refuse_friction(args) -> None:
-    """Friction and a compliant object are not built for parts: refused in one line."""
-    from spsc.core.contact import check_friction
-
-    for dest, rest in (("friction", ("0", None)), ("object_stiffness", (None,))):
-        value = getattr(args, dest, None)
-        if dest == "friction" and value is not None:
-            value = check_friction(value)
-        if value not in rest:
-            raise ParameterError("--" + dest.replace("_", "-"), getattr(args, dest),
-                                 "not with --part (a part is pressed by a rigid "
-                                 "frictionless body, --indenter, placed by --plate-at / "
-                                 "--plate-normal)")
+    """Friction and a compliant object are not built for parts: refused in one line by the
+    part model's own rule (:func:`spsc.models.part.refuse_contact`), before the part's files
+    are read."""
+    friction = getattr(args, "friction", None)
+    refuse_contact(Contact.of(friction="0" if friction is None else friction,
+                              object_stiffness=getattr(args, "object_stiffness", None)))
 
 
 def _check_outputs(args) -> None:

@@ -22,6 +22,18 @@ from .meshed import force_option, mesh_size_option, solver_option, vtu_option
 __all__ = ["PartCurveModel", "PartOptions", "estimate_counts", "part_surface_of"]
 
 
+
+def refuse_contact(contact) -> None:
+    """Friction and a compliant object are not built for parts: the contact's (a
+    :class:`~spsc.core.setup.Contact`) refused in one line naming the first."""
+    for flag, value, ok in (("--friction", contact.friction, contact.friction == "0"),
+                            ("--object-stiffness", contact.object_stiffness,
+                             contact.object_stiffness is None)):
+        if not ok:
+            raise ParameterError(flag, value, "not with --part (a part is pressed by a rigid "
+                                 "frictionless body, --indenter, placed by --plate-at / "
+                                 "--plate-normal)")
+
 @dataclass(frozen=True)
 class PartOptions:
     """``mesh_size`` (mm; fTetWild's edge length), ``force`` (beyond the size limits),
@@ -102,13 +114,7 @@ class PartCurveModel(ModelBase):
         from .resources import FEM_MAX_UNKNOWNS, check_size, fem_memory_gib
 
         c = setup.contact
-        for flag, value, ok in (("--friction", c.friction, c.friction == "0"),
-                                ("--object-stiffness", c.object_stiffness,
-                                 c.object_stiffness is None)):
-            if not ok:
-                raise ParameterError(flag, value, "not with --part (a part is pressed by a "
-                                     "rigid frictionless body, --indenter, placed by "
-                                     "--plate-at / --plate-normal)")
+        refuse_contact(c)
         run = self.run_of(setup, options)
         surface = part_surface_of(run)
         check_part_run(run, surface)
