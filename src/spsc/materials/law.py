@@ -25,7 +25,7 @@ from .kinematics import invariants, log_strain_derivatives, stretches
 
 __all__ = ["Material", "PROVENANCES", "neo_hookean", "mooney_rivlin", "yeoh",
            "polynomial_energy", "polynomial_dW", "polynomial_d2W", "nominal_stress",
-           "stretch_energy", "log_hessian"]
+           "stretch_energy", "log_hessian", "uniaxial_isochoric_stress"]
 
 #: Where a material's constants come from, from most to least trusted for a printed part:
 #: ``user-fit`` (fitted to the user's own tests), ``literature`` (a published fit of the
@@ -69,6 +69,22 @@ def nominal_stress(coefficients, test: str, lam):
     l1, l2, l3 = stretches(test, lam)
     W1, W2 = polynomial_dW(coefficients, *invariants(l1, l2, l3))
     return 2.0 * (l1 - l3**2 / l1) * (W1 + l2**2 * W2)
+
+
+def uniaxial_isochoric_stress(material, lam) -> np.ndarray:
+    """(S_iso,11, S_iso,22) (n, 2), MPa: the isochoric second Piola–Kirchhoff stress of
+    ``material`` (its ``dW``) in incompressible uniaxial tension at the stretches ``lam``, the
+    deviatoric part the wall's rate and softening laws act on (:mod:`spsc.fem.viscous`,
+    :mod:`spsc.fem.mullins`)."""
+    lam = np.asarray(lam, float)
+    c1, c2 = lam * lam, 1.0 / lam
+    i1 = c1 + 2.0 * c2
+    i2 = 2.0 * lam + c2 * c2  # C₂₂C₃₃ + 2 C₁₁C₂₂ = 1/λ² + 2λ
+    w1, w2 = (np.asarray(v, float) for v in material.dW(i1, i2))
+    k = 2.0 / 3.0 * (i1 * w1 + 2.0 * i2 * w2)
+    s11 = 2.0 * (w1 + i1 * w2) - 2.0 * w2 * c1 - k / c1
+    s22 = 2.0 * (w1 + i1 * w2) - 2.0 * w2 * c2 - k / c2
+    return np.column_stack([s11, s22])
 
 
 def stretch_energy(coefficients, l1, l2, l3):

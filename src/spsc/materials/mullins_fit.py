@@ -24,7 +24,7 @@ import numpy as np
 from spsc.core.errors import ParameterError
 
 from .mullins import MullinsParams
-from .prony_cyclic import _iso_components
+from .law import uniaxial_isochoric_stress
 
 __all__ = ["MullinsFit", "mullins_stress", "fit_mullins", "read_mullins", "mullins_record"]
 
@@ -33,7 +33,7 @@ def _energy_and_virgin(material, lam: np.ndarray):
     c2 = 1.0 / lam
     i1, i2 = lam * lam + 2.0 * c2, 2.0 * lam + c2 * c2
     w = np.asarray(material.energy(i1, i2), float)
-    s = _iso_components(material, lam)
+    s = uniaxial_isochoric_stress(material, lam)
     return w, lam * (s[:, 0] - s[:, 1] / lam ** 3)
 
 

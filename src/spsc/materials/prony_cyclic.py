@@ -29,23 +29,12 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 
+from .law import uniaxial_isochoric_stress
 from .prony import Prony
 
 __all__ = ["CyclicFit", "cyclic_stress", "fit_cyclic", "read_cyclic", "cyclic_record"]
 
 _MAX_POINTS = 1500
-
-
-def _iso_components(material, lam: np.ndarray) -> np.ndarray:
-    """(S_iso,11, S_iso,22) (n, 2) of the relaxed law in uniaxial tension at stretches λ."""
-    c1, c2 = lam * lam, 1.0 / lam
-    i1 = c1 + 2.0 * c2
-    i2 = 2.0 * lam + c2 * c2  # C₂₂C₃₃ + 2 C₁₁C₂₂ = 1/λ² + 2λ
-    w1, w2 = (np.asarray(v, float) for v in material.dW(i1, i2))
-    k = 2.0 / 3.0 * (i1 * w1 + 2.0 * i2 * w2)
-    s11 = 2.0 * (w1 + i1 * w2) - 2.0 * w2 * c1 - k / c1
-    s22 = 2.0 * (w1 + i1 * w2) - 2.0 * w2 * c2 - k / c2
-    return np.column_stack([s11, s22])
 
 
 def _histories(t: np.ndarray, s_iso: np.ndarray, taus) -> np.ndarray:
@@ -71,7 +60,7 @@ def cyclic_stress(material, prony: Prony | None, t_s, stretch) -> np.ndarray:
     """The nominal stress (MPa) of the law ``material`` with ``prony`` (None: relaxed) driven
     through the stretches ``stretch`` at the times ``t_s`` (eq. C1, from rest)."""
     t, lam = np.asarray(t_s, float), np.asarray(stretch, float)
-    s_iso = _iso_components(material, lam)
+    s_iso = uniaxial_isochoric_stress(material, lam)
     total = s_iso.copy()
     if prony is not None:
         beta = np.array([b for b, _ in prony.terms])
@@ -111,7 +100,7 @@ def fit_cyclic(material, t_s, stretch, stress, *, per_decade: int = 2) -> Cyclic
     step = float(np.min(np.diff(t)))
     lo, hi = math.floor(math.log10(step)), math.ceil(math.log10(span))
     taus = 10.0 ** np.arange(lo, hi + 1e-9, 1.0 / per_decade)
-    s_iso = _iso_components(material, lam)
+    s_iso = uniaxial_isochoric_stress(material, lam)
     relaxed = _nominal(lam, s_iso)
     basis = _nominal(lam, _histories(t - t[0], s_iso, taus))  # (n, k)
     scale = float(np.abs(y).max())
