@@ -13,8 +13,10 @@ from spsc.cli.main import main
 from spsc.core.errors import ParameterError
 from spsc.report.band import band_section
 from spsc.report.paper import paper_bench
-from spsc.study.headline_band import (DECLARED_SOURCES, _nodes, check_band_tolerance,
-                                      declared_tolerance, headline_band, repropagated)
+from spsc.report.band import _stopped_short_words
+from spsc.study.headline_band import (DECLARED_SOURCES, _nodes, _stopped_short,
+                                      check_band_tolerance, declared_tolerance, headline_band,
+                                      repropagated)
 from spsc.study.runs import Study
 from spsc.study.tolerance import parse_tolerance
 
@@ -107,6 +109,7 @@ def test_the_band_on_the_wall_model(tmp_path):
     # off the grid, the (linear, 3-node) interpolant is within 1 % of the wall model: the
     # headline is smooth in t0 and the stiffness scale (measured 0.2 %)
     assert 0 < r["check_error_max"] < 0.01
+    assert r["stopped_short"] == []  # Type B at 40 kPa reaches the stroke in every draw
     # a stiffer material and a thicker wall stiffen the chamber, in both modes
     for mode in ("high", "low"):
         k = np.array([g[f"stiffness_{mode}"] for g in r["grid"]]).reshape(3, 4)
@@ -146,3 +149,28 @@ def test_a_cached_band_is_propagated_again_and_reproducibly():
     assert a["check_error_max"] < 1e-3
     q = a["quantiles"]["stiffness_high"]
     assert 4.0 * 0.958 * 0.9 ** 1.5 <= q["p5"] < q["p50"] < q["p95"] <= 4.0 * 1.691 * 1.1 ** 1.5
+
+
+def _curve(reached: float | None):
+    """A curve's outline: every point converged, or stopped after ``reached`` mm."""
+    from types import SimpleNamespace
+
+    y = np.linspace(0.0, 6.0, 25)
+    ok = y <= (6.0 if reached is None else reached)
+    return SimpleNamespace(y_mm=y, converged=ok, all_converged=bool(ok.all()),
+                           solver=SimpleNamespace(converged=bool(ok.all())))
+
+
+def test_the_band_names_the_curves_that_stopped_short():
+    """Type C at 30 kPa stopping at its snap in two draws is counted by setup, with the
+    shortest stroke reached, and said in the section; a curve that failed is not counted
+    here (it is a failure of the record) and one that reached the stroke neither."""
+    per_draw = [{("C", 30.0, "low"): _curve(3.0), ("B", 40.0, "low"): _curve(None)},
+                {("C", 30.0, "low"): _curve(2.5), ("B", 40.0, "low"): None}]
+    rows = _stopped_short(per_draw)
+    assert rows == [{"type": "C", "pressure_kPa": 30.0, "mode": "low", "draws": [0, 1],
+                     "reached_mm": 2.5}]
+    words = _stopped_short_words({"stopped_short": rows, "curves": 4})
+    assert words.startswith("2 of the 4 wall curves stopped short") and "from 2.5 mm" in words
+    assert "All 4" in _stopped_short_words({"stopped_short": [], "curves": 4})
+    assert "predates" in _stopped_short_words({"curves": 4})

@@ -56,7 +56,23 @@ def band_section(record: dict, paper, sources: dict | None = None, name: str = "
             "samples": record["samples"], "clipped_share": record["clipped_share"],
             "curves": record["curves"], "compute_seconds": record["compute_seconds"],
             "check_error_max": record["check_error_max"], "checks": len(record["checks"]),
-            "sentence": band_sentence(rows)}
+            "stopped_short": _stopped_short_words(record), "sentence": band_sentence(rows)}
+
+
+def _stopped_short_words(record: dict) -> str:
+    """Which of the band's wall curves stopped short of the stroke, in words ("" when none;
+    a record cached before the count says so)."""
+    rows = record.get("stopped_short")
+    if rows is None:
+        return "This band's record predates the count of the curves that stopped short."
+    if not rows:
+        return f"All {record['curves']} wall curves reached the stroke."
+    n = sum(len(r["draws"]) for r in rows)
+    each = "; ".join(f"Type {r['type']} at {r['pressure_kPa']:g} kPa, {r['mode']} mode, in "
+                     f"{len(r['draws'])} draw{'s' if len(r['draws']) > 1 else ''} (from "
+                     f"{r['reached_mm']:.2g} mm)" for r in rows)
+    return (f"{n} of the {record['curves']} wall curves stopped short of the stroke: {each}; "
+            "their means are over the stroke they reached.")
 
 
 def band_sentence(rows: list[dict]) -> str:

@@ -197,10 +197,29 @@ def headline_band(study, tolerance, *, workers=None, scheduler=None, progress=No
               "nodes": {k: v.tolist() for k, v in _nodes(tolerance, nominal, n_nodes).items()},
               "grid": [{**d, **v} for d, v in zip(grid, values[:len(grid)])],
               "curves": len(jobs), "failed": len(failed), "first_failure": next(iter(failed), ""),
+              "stopped_short": _stopped_short(per_draw),
               "compute_seconds": round(time.perf_counter() - t0, 1)}
     record.update(_propagate(tolerance, nominal, record["nodes"], values[:len(grid)],
                              checks, values[len(grid):], seed))
     return record
+
+
+def _stopped_short(per_draw: list[dict]) -> list[dict]:
+    """The curves that did not reach the stroke, by setup: type, pressure (kPa), mode, the
+    draws they stopped in and the shortest stroke reached (mm). Their means are over the
+    stroke reached, as the headline's are, so the band names them."""
+    out: dict = {}
+    for k, curves in enumerate(per_draw):
+        for (t, p, mode), c in curves.items():
+            if c is None or (c.solver.converged and c.all_converged):
+                continue
+            reached = float(np.max(c.y_mm[np.asarray(c.converged, bool)], initial=0.0))
+            row = out.setdefault((t, p, mode), {"type": t, "pressure_kPa": float(p),
+                                                "mode": mode, "draws": [],
+                                                "reached_mm": reached})
+            row["draws"].append(k)
+            row["reached_mm"] = min(row["reached_mm"], reached)
+    return list(out.values())
 
 
 def _compute(setups, study, workers, scheduler, progress) -> list:
