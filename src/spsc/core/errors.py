@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["ParameterError", "require", "require_integer"]
+__all__ = ["ParameterError", "require", "require_integer", "table_of", "known_keys"]
 
 
 class ParameterError(ValueError):
@@ -75,3 +75,24 @@ def require_integer(name: str, value, *, ge: int | None = None, le: int | None =
         raise ParameterError(name, value, "a whole number" + (f" {bounds}" if bounds else "")
                              + (f" ({unit})" if unit else ""))
     return int(v)
+
+
+def table_of(doc: dict, name: str, *, required: bool = False, of: str = "the file") -> dict:
+    """The TOML table ``[name]`` of ``doc`` ({} when absent and not ``required``), or a
+    one-line :class:`ParameterError` naming ``[name]``: missing (``of``: whose table it is)
+    or not a table."""
+    t = doc.get(name, None if required else {})
+    if t is None:
+        raise ParameterError(f"[{name}]", "missing", f"a table of {of}")
+    if not isinstance(t, dict):
+        raise ParameterError(f"[{name}]", t, "a table")
+    return t
+
+
+def known_keys(where: str, table: dict, allowed) -> None:
+    """A one-line :class:`ParameterError` naming ``where.key`` for the first key of ``table``
+    outside ``allowed`` (a misspelt key is refused, never ignored)."""
+    extra = sorted(set(table) - set(allowed))
+    if extra:
+        raise ParameterError(f"{where}.{extra[0]}", table[extra[0]],
+                             "one of the keys " + ", ".join(sorted(allowed)))

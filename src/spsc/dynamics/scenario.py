@@ -59,7 +59,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from spsc.cad.geometry import PARAMS
-from spsc.core.errors import ParameterError, require, require_integer
+from spsc.core.errors import (ParameterError, known_keys, require, require_integer,
+                              table_of)
 
 from .gas import Gas
 from .leak import LeakSpec
@@ -130,27 +131,15 @@ class Scenario:
     vented: bool = False  # the chamber open to the air (gauge 0): the wall stepped in time
 
 
-def _unknown(where: str, table: dict, allowed: set) -> None:
-    extra = sorted(set(table) - allowed)
-    if extra:
-        raise ParameterError(f"{where}.{extra[0]}", table[extra[0]],
-                             "one of the keys " + ", ".join(sorted(allowed)))
-
-
 def _table(doc: dict, name: str, required: bool = True) -> dict:
-    t = doc.get(name, {} if not required else None)
-    if t is None:
-        raise ParameterError(f"[{name}]", "missing", "a table of the scenario")
-    if not isinstance(t, dict):
-        raise ParameterError(f"[{name}]", t, "a table")
-    return t
+    return table_of(doc, name, required=required, of="the scenario")
 
 
 def _valve(c: dict) -> tuple[Valve, bool]:
     v = c.get("valve", {})
     if not isinstance(v, dict):
         raise ParameterError("circuit.valve", v, "an inline table {C = ..., state = ...}")
-    _unknown("circuit.valve", v, _VALVE)
+    known_keys("circuit.valve", v, _VALVE)
     if "C" in v and "area_mm2" in v:
         raise ParameterError("circuit.valve", "C and area_mm2", "one of them")
     C = v["C"] if "C" in v else sonic_conductance(v.get("area_mm2", 0.3))
@@ -166,7 +155,7 @@ def _sensor(c: dict) -> Sensor | None:
         return None
     if not isinstance(s, dict):
         raise ParameterError("circuit.sensor", s, "an inline table {rate_Hz = ..., ...}")
-    _unknown("circuit.sensor", s, _SENSOR)
+    known_keys("circuit.sensor", s, _SENSOR)
     rest = {k: v for k, v in s.items() if k != "preset"}
     return Sensor.preset(s["preset"], **rest) if "preset" in s else Sensor(**rest)
 
@@ -183,7 +172,7 @@ def _events(doc: dict, duration: float) -> tuple[tuple, tuple]:
         if not isinstance(e, dict):
             raise ParameterError(f"events[{i}]", e, "a table [[events]] with t (or a pressure "
                                  "threshold) and valve")
-        _unknown(f"events[{i}]", e, {"t", "valve", "pressure_above_kPa", "pressure_below_kPa",
+        known_keys(f"events[{i}]", e, {"t", "valve", "pressure_above_kPa", "pressure_below_kPa",
                                      "after_s"})
         if e.get("valve") not in ("open", "close"):
             raise ParameterError(f"events[{i}].valve", e.get("valve"), "\"open\" or \"close\"")
@@ -215,7 +204,7 @@ def _events(doc: dict, duration: float) -> tuple[tuple, tuple]:
 
 def _bode(doc: dict, profile: PressProfile, opened: bool) -> dict:
     b = _table(doc, "bode", required=False)
-    _unknown("bode", b, _BODE)
+    known_keys("bode", b, _BODE)
     lo, hi = profile.extent
     y = require("bode.y_mm", b.get("y_mm", hi), ge=min(lo, 0.0), le=max(hi, 0.0),
                 unit="mm, within the press profile's travels")
@@ -293,14 +282,14 @@ def _no_quoted_numbers(value, where: str) -> None:
 
 def parse_scenario(doc: dict) -> Scenario:
     """The :class:`Scenario` of a parsed TOML document."""
-    _unknown("scenario", doc, _TABLES)
+    known_keys("scenario", doc, _TABLES)
     _no_quoted_numbers(doc, "")
     ch, c, press = _table(doc, "chamber"), _table(doc, "circuit"), _table(doc, "press")
     out = _table(doc, "output", required=False)
-    _unknown("chamber", ch, _CHAMBER)
-    _unknown("circuit", c, _CIRCUIT)
-    _unknown("press", press, {"profile", "force", "max_travel_mm", "object_N_per_mm"})
-    _unknown("output", out, {"dt"})
+    known_keys("chamber", ch, _CHAMBER)
+    known_keys("circuit", c, _CIRCUIT)
+    known_keys("press", press, {"profile", "force", "max_travel_mm", "object_N_per_mm"})
+    known_keys("output", out, {"dt"})
     model = ch.get("model", "wall")
     if model not in _MODELS:
         raise ParameterError("chamber.model", model, "wall or surrogate (the static model "
@@ -318,7 +307,7 @@ def parse_scenario(doc: dict) -> Scenario:
     g = c.get("gas", {})
     if not isinstance(g, dict):
         raise ParameterError("circuit.gas", g, "an inline table {n = ..., thermal_time_s = ...}")
-    _unknown("circuit.gas", g, _GAS)
+    known_keys("circuit.gas", g, _GAS)
     valve, opened = _valve(c)
     profile = _press(press)
     _check_reach(spec, profile)

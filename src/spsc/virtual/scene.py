@@ -38,7 +38,7 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
-from spsc.core.errors import ParameterError, require
+from spsc.core.errors import ParameterError, known_keys, require, table_of
 from spsc.dynamics.profile import ForceProfile, PressProfile
 from spsc.dynamics.scenario import Scenario, parse_scenario
 
@@ -75,13 +75,8 @@ class Scene:
 
 
 def _table(doc, name, keys) -> dict:
-    t = doc.get(name, {})
-    if not isinstance(t, dict):
-        raise ParameterError(f"[{name}]", t, "a table")
-    extra = sorted(set(t) - keys)
-    if extra:
-        raise ParameterError(f"{name}.{extra[0]}", t[extra[0]], "one of " + ", ".join(
-            sorted(keys)))
+    t = table_of(doc, name, of="the scene")
+    known_keys(name, t, keys)
     return t
 
 
