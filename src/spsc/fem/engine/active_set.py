@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["heights", "first_contact", "jumps", "start", "update", "plate_force", "surface",
-           "lateral_of", "curved"]
+__all__ = ["heights", "first_contact", "jumps", "start", "update", "started", "stepped",
+           "plate_force", "surface", "lateral_of", "curved"]
 
 
 def curved(indenter) -> bool:
@@ -66,29 +66,42 @@ def jumps(model, x, plate, active, indenter=None) -> np.ndarray:
     return plate - model.surface.gap[active] - model.surface.height[active] - x[active]
 
 
-def start(model, x, plate, active, settings, indenter=None) -> np.ndarray:
-    """The active set a Newton solve starts from: the given one (none without a plate); with
-    the semi-smooth strategy also every contact unknown past the plate."""
-    if plate is None or active is None:
-        active = np.zeros(0, int)
-    active = np.asarray(active)
-    if plate is None or not settings.semismooth:
+def started(dofs, active, passed, settings) -> np.ndarray:
+    """The set a unilateral body's Newton solve starts from: ``active`` (none if None); with
+    the semi-smooth strategy also the unknowns of ``dofs`` that ``passed(dofs)`` finds past
+    the body by more than the contact tolerance."""
+    active = np.zeros(0, int) if active is None else np.asarray(active)
+    if not settings.semismooth:
         return active
-    passed = heights(model, x, model.surface.dofs, indenter) > \
-        plate + settings.contact_tolerance
-    return np.union1d(active.astype(int), model.surface.dofs[passed])
+    return np.union1d(active.astype(int), dofs[passed(dofs)])
 
 
-def update(model, x, reaction, plate, active, force_tol, gap_tol, indenter=None):
-    """The new active set, or None if it is unchanged (the PDAS fixed point): the active
-    unknowns whose ``reaction`` (N, pushing > 0) does not pull below −``force_tol``, and the
-    inactive ones past the plate by more than ``gap_tol`` (mm)."""
+def stepped(dofs, active, reaction, passed, force_tol):
+    """One step of the primal–dual active set of a unilateral body over the unknowns
+    ``dofs``: the new set, or None if it is unchanged (the fixed point). Kept: the active
+    unknowns whose ``reaction`` (N, pushing > 0) does not pull below −``force_tol``; taken
+    in: the inactive ones that ``passed(inactive)`` finds past the body."""
     keep = reaction >= -force_tol
-    inactive = np.setdiff1d(model.surface.dofs, active, assume_unique=True)
-    new = inactive[heights(model, x, inactive, indenter) > plate + gap_tol]
+    inactive = np.setdiff1d(dofs, active, assume_unique=True)
+    new = inactive[passed(inactive)]
     if new.size == 0 and np.all(keep):
         return None
     return np.union1d(np.asarray(active)[keep], new)
+
+
+def start(model, x, plate, active, settings, indenter=None) -> np.ndarray:
+    """The plate's set a Newton solve starts from (:func:`started`; none without a plate)."""
+    if plate is None:
+        return np.zeros(0, int)
+    return started(model.surface.dofs, active, lambda d: heights(model, x, d, indenter) >
+                   plate + settings.contact_tolerance, settings)
+
+
+def update(model, x, reaction, plate, active, force_tol, gap_tol, indenter=None):
+    """The plate's new active set, or None if it is unchanged (:func:`stepped`): the inactive
+    unknowns past the plate by more than ``gap_tol`` (mm) are taken in."""
+    return stepped(model.surface.dofs, active, reaction,
+                   lambda d: heights(model, x, d, indenter) > plate + gap_tol, force_tol)
 
 
 def plate_force(model, r, active) -> float:

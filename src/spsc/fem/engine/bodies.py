@@ -29,7 +29,7 @@ from typing import Callable, Protocol
 
 import numpy as np
 
-from .active_set import curved, jumps, start, surface, update
+from .active_set import curved, jumps, start, started, stepped, surface, update
 from .constraints import Constraints
 from .friction import Grip, hold, release, stuck
 from .load import Load
@@ -240,14 +240,9 @@ class Floor:
 
     def __init__(self, model, x, active, settings, warm_active=None):
         self.model, self.on = model, model.floor
-        if warm_active is not None:
-            self.active = warm_active
-        else:
-            active = _NONE if active is None else np.asarray(active, int)
-            if settings.semismooth:
-                d = self.on.dofs
-                active = np.union1d(active, d[self.heights(x, d) < -settings.contact_tolerance])
-            self.active = active
+        self.active = warm_active if warm_active is not None else started(
+            self.on.dofs, active, lambda d: self.heights(x, d) < -settings.contact_tolerance,
+            settings)
 
     @classmethod
     def of(cls, model, load: Load, x, sets: Sets, settings, warm: Sets | None):
@@ -268,12 +263,12 @@ class Floor:
         return self.active
 
     def update(self, x, r, reaction, force_tol, gap_tol) -> bool:
-        keep = -reaction(self.active) >= -force_tol  # ``reaction`` is the plate's: down > 0
-        inactive = np.setdiff1d(self.on.dofs, self.active, assume_unique=True)
-        new = inactive[self.heights(x, inactive) < -gap_tol]
-        if new.size == 0 and np.all(keep):
+        # ``reaction`` is the plate's, down > 0: the base pushes up
+        new = stepped(self.on.dofs, self.active, -reaction(self.active),
+                      lambda d: self.heights(x, d) < -gap_tol, force_tol)
+        if new is None:
             return False
-        self.active = np.union1d(self.active[keep], new)
+        self.active = new
         return True
 
     def key(self) -> bytes:

@@ -110,12 +110,15 @@ class _Newton:
         self.model, self.load, self.s = model, load, settings
         self.x = x0.copy()
         sets = sets or Sets()
-        #: the bodies that constrain this solve (:mod:`.bodies`), each with its own set
-        self.bodies = bodies(model, load, self.x, sets, settings)
         warm = warm if settings.warm_start and load.plate is not None and warm is not None \
-            and all(b.warm for b in self.bodies) and warm.fits(sets) else None
-        if warm is not None:  # the bodies start on the factorised set
-            self.bodies = bodies(model, load, self.x, sets, settings, warm.sets)
+            and warm.fits(sets) else None
+        #: the bodies that constrain this solve (:mod:`.bodies`), each with its own set; on
+        #: a warm start they start on the factorised set
+        self.bodies = bodies(model, load, self.x, sets, settings,
+                             None if warm is None else warm.sets)
+        if warm is not None and not all(b.warm for b in self.bodies):
+            warm = None  # a sticking plate or a curved body: afresh
+            self.bodies = bodies(model, load, self.x, sets, settings)
         self.scale, self.res, self.changes = 0.0, np.inf, 0
         #: the sets entered after the multipliers' changes, with the least residual there,
         #: and the returns to one of them without progress (:meth:`cycles`)
