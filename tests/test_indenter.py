@@ -277,16 +277,16 @@ def test_the_wall_curve_records_its_indenter_and_refuses_what_it_cannot_press():
     c = wall_curve(DOME, material("tpu60a"), pressure_kPa=40, stroke_mm=1, points=3,
                    indenter="sphere:R=10")
     assert c.setup["indenter"] == "sphere:R=10" and bool(np.all(c.converged))
-    for kw in ({"indenter": "cylinder:R=5"}, {"indenter": "sphere:R=5", "friction": "stick"},
-               {"indenter": "sphere:R=5", "friction": "0.3"}):
+    for kw in ({"indenter": "cylinder:R=5"}, {"indenter": "sphere:R=5", "friction": "0.3"}):
         with pytest.raises(ParameterError) as err:
             wall_curve(DOME, material("tpu60a"), pressure_kPa=40, stroke_mm=1, points=3, **kw)
         assert "\n" not in str(err.value)
 
 
-def test_a_curved_press_refuses_friction_in_the_engine():
+def test_a_curved_press_refuses_coulomb_friction_in_the_engine():
     with pytest.raises(ParameterError):
-        Press.through([0.5], stick=True, indenter=SPHERE)
+        Press.through([0.5], stick=True, mu=0.3, indenter=SPHERE)
+    assert Press.through([0.5], stick=True, indenter=SPHERE).stick  # it may stick
     assert Press.through([0.5], indenter=Plate()).indenter is None  # the plate
 
 

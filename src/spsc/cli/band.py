@@ -54,7 +54,7 @@ def check_tolerance(args, setup) -> None:
                                  "(the models that press with friction)")
         from spsc.core.setup import Contact
 
-        c = setup.contact  # friction on this contact at all (a curved body takes none)
+        c = setup.contact  # both frictions on this contact (a curved body takes no Coulomb)
         Contact.of(c.indenter, "stick", c.object_stiffness)
         Contact.of(c.indenter, "0.3", c.object_stiffness)
     b = setup.body

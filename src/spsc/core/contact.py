@@ -61,12 +61,12 @@ def check_combination(mu: float | None, spring: float | None) -> None:
 
 
 def check_friction_on(indenter, friction) -> None:
-    """Friction is built on the plate only: a curved ``indenter``
-    (:class:`~spsc.core.indenter.Indenter`) is frictionless."""
-    if indenter.curved and check_friction(friction) != "0":
-        raise ParameterError("friction", friction, f"0 with the indenter {indenter.spec} "
-                             "(friction on a curved body is not built yet; the plate takes "
-                             "0, MU or stick)")
+    """Coulomb friction is built on the plate only: a curved ``indenter``
+    (:class:`~spsc.core.indenter.Indenter`) is frictionless or sticks."""
+    if indenter.curved and check_friction(friction) not in ("0", "stick"):
+        raise ParameterError("friction", friction, f"0 or stick with the indenter "
+                             f"{indenter.spec} (Coulomb friction on a curved body is not "
+                             "built yet; the plate takes 0, MU or stick)")
 
 
 def check_body(indenter, friction, *, axisymmetric: bool = False, quarter: bool = False):

@@ -52,7 +52,7 @@ class Contact:
            object_stiffness: float | None = None) -> "Contact":
         """The checked contact of the spellings the command line takes (``--indenter``,
         ``--friction``, ``--object-stiffness``); one-line ParameterError naming the first
-        value refused: friction on a curved body, Coulomb friction with a spring-borne
+        value refused: Coulomb friction on a curved body or with a spring-borne
         object (not built yet)."""
         text = check_friction(friction)
         spring = check_object_stiffness(object_stiffness)

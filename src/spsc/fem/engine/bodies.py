@@ -31,7 +31,7 @@ import numpy as np
 
 from .active_set import curved, jumps, start, started, stepped, surface, update
 from .constraints import Constraints
-from .friction import Grip, hold, release, stuck
+from .friction import Grip, hold, lateral, release, stuck
 from .load import Load
 from .result import NewtonFailure
 
@@ -142,6 +142,8 @@ class Plate:
         presc = np.asarray(self.active, int)
         if self.curved and presc.size:
             return self.lean(x, presc)
+        if self.curved and self.grip is not None:
+            self.grip = release(m, self.grip, presc)
         jump = jumps(m, x, self.load.plate, presc)
         if self.grip is not None:  # the anchored nodes still on the plate do not slide
             self.grip = release(m, self.grip, presc)
@@ -151,15 +153,39 @@ class Plate:
 
     def lean(self, x, active) -> Constraints:
         """Under a curved indenter the active heights lean on their lateral unknowns
-        (:mod:`.leaning`)."""
-        m = self.model
-        S, dS, d2S, lat = surface(m, x, active, self.load.indenter)
-        if not np.all(np.isfinite(S)):
-            raise NewtonFailure("a node on the indenter passed beyond its equator (the body "
-                                "has no lower surface there)")
-        ljump = jumps(m, x, self.load.plate, active, self.load.indenter)
-        return Constraints(len(m.fixed), _NONE, np.zeros(0), _NONE, np.zeros(0), -1, active,
-                           ljump, lat, dS, d2S)
+        (:mod:`.leaning`); on a sticking one (``load.stick``) a node anchored at an earlier
+        load is carried with the body instead: its lateral unknowns held at their anchors
+        and its height prescribed onto the body's surface over them (the body only
+        translates, so a stuck point keeps its place on it)."""
+        m, n = self.model, len(self.model.fixed)
+        held, moved, carried = _NONE, np.zeros(0), np.zeros(len(active), bool)
+        if self.grip is not None:
+            self.grip = release(m, self.grip, active)
+            held, moved = stuck(self.grip, x)
+            lat = lateral(m, active)
+            anchored = np.where(lat >= 0, ~np.isnan(self.grip.anchor[np.maximum(lat, 0)]),
+                                True)
+            carried = np.all(anchored, axis=0) & np.any(lat >= 0, axis=0)
+        parts = []
+        if np.any(carried):
+            at = x.copy()
+            at[held] = self.grip.anchor[held]
+            on = active[carried]
+            if not np.all(np.isfinite(surface(m, at, on, self.load.indenter)[0])):
+                raise NewtonFailure("a stuck node lies beyond the indenter's equator")
+            parts.append(Constraints(n, np.concatenate([on, held]), np.concatenate(
+                [jumps(m, at, self.load.plate, on, self.load.indenter), moved]),
+                _NONE, np.zeros(0), -1))
+        free = active[~carried]
+        if free.size:
+            S, dS, d2S, lat = surface(m, x, free, self.load.indenter)
+            if not np.all(np.isfinite(S)):
+                raise NewtonFailure("a node on the indenter passed beyond its equator (the "
+                                    "body has no lower surface there)")
+            ljump = jumps(m, x, self.load.plate, free, self.load.indenter)
+            parts.append(Constraints(n, _NONE, np.zeros(0), _NONE, np.zeros(0), -1, free,
+                                     ljump, lat, dS, d2S))
+        return Constraints.join(n, parts)
 
     def pushing(self) -> np.ndarray:
         return self.active

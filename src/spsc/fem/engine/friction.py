@@ -87,10 +87,21 @@ def stuck(grip: Grip | None, x) -> tuple[np.ndarray, np.ndarray]:
     return held, grip.anchor[held] - x[held]
 
 
-def tractions(model, r, active) -> np.ndarray:
+def tractions(model, r, active, x=None, indenter=None) -> np.ndarray:
     """The tangential reaction (N, of the modelled part) on each of the ``active`` contact
-    unknowns' nodes: the norm of their lateral unknowns' reactions −r (0 on a node that
-    slides)."""
+    unknowns' nodes (0 on a node that slides): on the plate the norm of their lateral
+    unknowns' reactions −r; on a curved ``indenter`` (at the state ``x``) what is left of
+    the node's reaction (−r over its lateral and vertical unknowns) after its part along the
+    body's normal there."""
     lat = lateral(model, active)
     t = np.where(lat >= 0, -np.asarray(r)[np.maximum(lat, 0)], 0.0)
-    return np.sqrt((t ** 2).sum(axis=0))
+    if indenter is None or not indenter.curved or not len(active):
+        return np.sqrt((t ** 2).sum(axis=0))
+    from .active_set import surface
+
+    _, dS, _, _ = surface(model, x, np.asarray(active, int), indenter)
+    f = np.vstack([t, -np.asarray(r)[np.asarray(active, int)]])  # (k + 1, n)
+    normal = np.vstack([-dS, np.ones(dS.shape[1])])
+    normal /= np.linalg.norm(normal, axis=0)
+    f = f - normal * (f * normal).sum(axis=0)
+    return np.sqrt((f ** 2).sum(axis=0))

@@ -176,17 +176,17 @@ class Press(_Ramp):
     spring: float | None = None
     #: a sticking plate's Coulomb coefficient (:mod:`.coulomb`); None: no slip
     mu: float | None = None
-    #: the curved body that presses (:class:`~spsc.core.indenter.Indenter`, frictionless);
-    #: None: the plate
+    #: the curved body that presses (:class:`~spsc.core.indenter.Indenter`; frictionless or
+    #: sticking); None: the plate
     indenter: object | None = None
 
     def __post_init__(self):
         if self.indenter is not None and not self.indenter.curved:
             object.__setattr__(self, "indenter", None)
-        if self.indenter is not None and (self.stick or self.mu is not None):
-            raise ParameterError("friction", "stick" if self.mu is None else self.mu,
-                                 f"0 with the indenter {self.indenter.spec} (friction on a "
-                                 "curved body is not built yet)")
+        if self.indenter is not None and self.mu is not None:
+            raise ParameterError("friction", self.mu,
+                                 f"0 or stick with the indenter {self.indenter.spec} (Coulomb "
+                                 "friction on a curved body is not built yet)")
 
     @classmethod
     def through(cls, travel, *, stick: bool = False, spring: float | None = None,

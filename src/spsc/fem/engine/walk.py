@@ -55,7 +55,7 @@ def record(model, step, kind, load, sol) -> Record:
         groups = on.groups(ev.r, active)
     held = model.tie.force(ev.r, sol.engaged) * model.symmetry if model.tie is not None \
         else None
-    shear = float(tractions(model, ev.r, active).sum()) * model.symmetry \
+    shear = float(tractions(model, ev.r, active, x, load.indenter).sum()) * model.symmetry \
         if sol.grip is not None and active.size else 0.0
     return Record(step, kind, x.copy(), ev.pressure, ev.volume, load.plate, force, area,
                   sol.iterations, sol.unstable_modes, groups, held, shear,

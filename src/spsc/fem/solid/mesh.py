@@ -37,7 +37,8 @@ from spsc.cad.geometry import SPSCGeometry
 from .element import TET_EDGES, TET_FACES
 
 __all__ = ["TetMesh", "check_mesh_size", "wall_mesh_counts", "spsc_wall", "wall_section",
-           "sphere_shell", "block", "boundary_facets", "orient_tets", "cached_mesh", "CACHE_DIR"]
+           "graded_fractions", "sphere_shell", "block", "boundary_facets", "orient_tets",
+           "cached_mesh", "CACHE_DIR"]
 
 CACHE_DIR = Path("build/cache/fem")
 #: part of every cache key: bump it when a mesh generator changes its output
@@ -213,23 +214,63 @@ def _tag(nodes, tets, layer, tol, planes=("base", "sym_x", "sym_y")):
 
 
 # -- the parametric chamber ---------------------------------------------------------------------
-def wall_section(g: SPSCGeometry, n_profile: int, layers: int) -> np.ndarray:
+def wall_section(g: SPSCGeometry, n_profile: int, layers: int,
+                 fractions: np.ndarray | None = None) -> np.ndarray:
     """Fine section grid (2n+1, 2·layers+1, 2) of (x, z): cavity profile to the outer wall,
-    straight lines through the thickness, ending exactly on the axis and on z = 0."""
-    inner, _ = g.profile_points(2 * n_profile + 1)
-    if len(inner) != 2 * n_profile + 1:
-        # points closer than 1e-6 w were merged (a near-corner profile, n2 -> 1 with c_y > 0,
-        # crowds its samples at the corner): back to the grid's count along the kept points
-        k = np.linspace(0.0, len(inner) - 1.0, 2 * n_profile + 1)
-        inner = np.column_stack([np.interp(k, np.arange(len(inner)), inner[:, j])
-                                 for j in (0, 1)])
+    straight lines through the thickness, ending exactly on the axis and on z = 0.
+
+    ``fractions`` (2n+1,), increasing from 0 to 1: where the grid's points lie along each
+    profile as fractions of its arc length (:func:`graded_fractions`); None: evenly (the
+    cavity in the arc length of its offset curve, the outer wall in its own)."""
     outer = g.outer_profile_points(4001)
     s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(outer, axis=0).T))])
-    t = np.linspace(0.0, 1.0, 2 * n_profile + 1) * s[-1]
+    if fractions is None:
+        inner, _ = g.profile_points(2 * n_profile + 1)
+        if len(inner) != 2 * n_profile + 1:
+            # points closer than 1e-6 w were merged (a near-corner profile, n2 -> 1 with
+            # c_y > 0, crowds its samples at the corner): back to the grid's count along the
+            # kept points
+            k = np.linspace(0.0, len(inner) - 1.0, 2 * n_profile + 1)
+            inner = np.column_stack([np.interp(k, np.arange(len(inner)), inner[:, j])
+                                     for j in (0, 1)])
+        t = np.linspace(0.0, 1.0, 2 * n_profile + 1)
+    else:
+        t = np.asarray(fractions, float)
+        if t.shape != (2 * n_profile + 1,) or t[0] != 0.0 or t[-1] != 1.0 or \
+                np.any(np.diff(t) <= 0):
+            raise ValueError(f"fractions: {2 * n_profile + 1} increasing values from 0 to 1")
+        dense, _ = g.profile_points(8001)  # evenly spaced along the cavity's offset arc
+        k = t * (len(dense) - 1.0)
+        inner = np.column_stack([np.interp(k, np.arange(len(dense)), dense[:, j])
+                                 for j in (0, 1)])
+    t = t * s[-1]
     outer = np.column_stack([np.interp(t, s, outer[:, 0]), np.interp(t, s, outer[:, 1])])
     outer[0, 0], outer[-1, 1], inner[0, 0], inner[-1, 1] = 0.0, 0.0, 0.0, 0.0
     f = np.linspace(0.0, 1.0, 2 * layers + 1)[None, :, None]
     return inner[:, None, :] + f * (outer - inner)[:, None, :]
+
+
+#: growth of the element length from one element to the next in a graded profile
+GRADING_RATIO = 1.2
+
+
+def graded_fractions(length: float, size: float, apex: float,
+                     ratio: float = GRADING_RATIO) -> np.ndarray:
+    """Fractions of a profile of ``length`` (mm) at the fine grid's 2n+1 points, the
+    elements ``apex`` mm long at the apex (the first) growing by ``ratio`` per element up to
+    ``size`` mm, then even; the fine grid's middle points halve each element. The elements
+    are scaled by one factor so they end on the profile's end."""
+    edges = [0.0]
+    h = min(apex, size)
+    while edges[-1] < length:
+        edges.append(edges[-1] + h)
+        h = min(h * ratio, size)
+    edges = np.asarray(edges)
+    if len(edges) > 2 and edges[-1] - length > 0.5 * (edges[-1] - edges[-2]):
+        edges = edges[:-1]  # a last sliver: drop it and stretch the rest
+    edges = edges / edges[-1]
+    mid = 0.5 * (edges[:-1] + edges[1:])
+    return np.append(np.column_stack([edges[:-1], mid]).ravel(), 1.0)
 
 
 #: Most elements through the wall of the solid models (fem, wall).

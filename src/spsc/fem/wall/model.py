@@ -59,7 +59,9 @@ class WallSettings:
     min_fraction : smallest increment as a fraction of the nominal one; contact_tolerance :
     penetration that activates a node (mm); inflate_increments : pressure increments of the
     inflation; modified_newton : residual fraction below which a load's tail reuses the last
-    factorisation (:class:`~spsc.fem.engine.settings.Settings`; 0: full Newton throughout).
+    factorisation (:class:`~spsc.fem.engine.settings.Settings`; 0: full Newton throughout);
+    apex_size_mm : element length at the dome's apex, graded up to ``mesh_size_mm`` (mm;
+    None: even; a sharp probe on the axis, :mod:`spsc.fem.wall.puncture`).
     """
 
     mesh_size_mm: float | None = None
@@ -72,6 +74,7 @@ class WallSettings:
     contact_tolerance: float = 1e-7
     inflate_increments: int = 2
     modified_newton: float = 1e-3
+    apex_size_mm: float | None = None
 
     def __post_init__(self):
         if self.mesh_size_mm is not None:
@@ -84,6 +87,8 @@ class WallSettings:
         require("min_fraction", self.min_fraction, gt=0, le=1)
         require("inflate_increments", self.inflate_increments, ge=1)
         require("modified_newton", self.modified_newton, ge=0, lt=1)
+        if self.apex_size_mm is not None:
+            require("apex_size", self.apex_size_mm, gt=0, le=5, unit="mm")
 
     def newton_settings(self) -> Settings:
         """The engine's settings for the wall: these tolerances with the wall's own choices —
@@ -163,7 +168,7 @@ class WallModel:
         self.stadium = stadium = geometry.l > 0 if stadium is None else bool(stadium)
         self.mesh_size_mm = settings.profile_size(stadium)
         section = section_mesh(geometry, size=self.mesh_size_mm, layers=settings.layers,
-                               base=base)
+                               base=base, apex=settings.apex_size_mm)
         if stadium:
             self.part = SweptWall(section, sweep_stations(geometry, settings.sweep_size_mm),
                                   law, base=base)

@@ -26,7 +26,7 @@ import numpy as np
 from spsc.cad.geometry import SPSCGeometry
 from spsc.core.errors import require, require_integer
 
-from ..solid.mesh import wall_section
+from ..solid.mesh import graded_fractions, wall_section
 
 __all__ = ["Section", "section_mesh"]
 
@@ -159,23 +159,35 @@ def _coarse_cells(shape):
     return idx, i, j
 
 
+def _grid(g: SPSCGeometry, size: float, layers: int, apex: float | None) -> np.ndarray:
+    """The section's fine grid (:func:`~spsc.fem.solid.mesh.wall_section`): about ``size``
+    mm elements along the profile, graded from ``apex`` mm at the apex if given."""
+    outer = g.outer_profile_points(2001)
+    length = float(np.sum(np.hypot(*np.diff(outer, axis=0).T)))
+    if apex is None:
+        return wall_section(g, max(4, math.ceil(length / size)), layers)
+    apex = require("apex_size", apex, gt=0, le=size, unit=f"mm, at most the mesh size "
+                   f"{size:g} mm")
+    fractions = graded_fractions(length, size, apex)
+    return wall_section(g, (len(fractions) - 1) // 2, layers, fractions)
+
+
 def section_mesh(g: SPSCGeometry, *, size: float = 0.5,
-                 layers: int = 2, base: str = "clamped") -> Section:
+                 layers: int = 2, base: str = "clamped", apex: float | None = None) -> Section:
     """The meshed wall section of ``g``: about ``size`` mm elements along the profile,
     ``layers`` quadratic elements through the thickness (defaults: the mesh-convergence study
     of :mod:`spsc.fem.wall`). ``base``: ``"clamped"`` on z = 0 (the chamber, docs/design.md) or
     ``"sliding"`` (u_z = 0 only: with n1 = n2 = 2, c_y = 0, w = h the dome is half of a thick
-    sphere, for the exact solution)."""
+    sphere, for the exact solution). ``apex``: the elements' length at the apex (mm), graded
+    up to ``size`` (:func:`~spsc.fem.solid.mesh.graded_fractions`: a sharp probe's contact on
+    the axis, resolved); None: ``size`` throughout."""
     from skfem import CellBasis, ElementQuad2, MeshQuad1, MeshQuad2
 
     size = require("mesh_size", size, gt=0, unit="mm")
     layers = require_integer("layers", layers, ge=1)
     if base not in ("clamped", "sliding"):
         raise ValueError(f"base = {base!r}: 'clamped' or 'sliding'")
-    outer = g.outer_profile_points(2001)
-    length = float(np.sum(np.hypot(*np.diff(outer, axis=0).T)))
-    n_profile = max(4, math.ceil(length / size))
-    grid = wall_section(g, n_profile, layers)  # (2n+1, 2L+1, 2): apex → base, cavity → outer
+    grid = _grid(g, size, layers, apex)  # (2n+1, 2L+1, 2): apex → base, cavity → outer
     shape = grid.shape[:2]
     fine = grid.reshape(-1, 2)
     idx, i, j = _coarse_cells(shape)
