@@ -109,6 +109,8 @@ KEY_OPTIONS = {
     "surrogate": [],
     "fatigue": ["--type", "--material", "--pressure", "--reservoir", "--stroke", "--points",
                 "--exponent", "--json", "--png", "--quiet"],
+    "puncture": ["--type", "--material", "--elongation-at-break", "--pressure", "--reservoir",
+                 "--probe", "--friction", "--mesh", "--json", "--png", "--quiet"],
     "sense": ["--out", "--type", "--material", "--pressure", "--reservoir", "--noise",
               "--model-error", "--detector", "--follow", "--haptic-calibrate", "--haptic",
               "--cache", "--quiet"],

@@ -16,7 +16,11 @@ from spsc.report.render import environment
 pytestmark = pytest.mark.slow
 
 
-def test_the_study_writes_what_the_section_shows(tmp_path, capsys):
+def test_the_study_writes_what_the_section_shows(tmp_path, capsys, monkeypatch):
+    import spsc.studies.durability as study_module
+    from spsc.fem.wall.puncture import MESHES
+
+    monkeypatch.setattr(study_module, "PUNCTURE_MESHES", MESHES[:1])  # the coarse one: 40 s
     study = tmp_path / "durability"
     assert main(["fatigue", "--study", "--out", str(study), "--quiet"]) == 0
     s = json.loads((study / "summary.json").read_text())
@@ -35,3 +39,11 @@ def test_the_study_writes_what_the_section_shows(tmp_path, capsys):
     assert 'id="durability"' in html and "by construction" in html
     assert f"{s['calibration']['elastic50a']['amplitude_MPa']:.4f}" in html
     assert "make durability-study" in render(durability=None)
+    # the puncture test: every material walked, the two with a cited criterion judged
+    p = s["puncture"]["materials"]
+    assert set(p) == set(FATIGUE_TESTS)
+    assert p["elastic50a"]["runs"][0]["failure"]["reached"]
+    assert not p["tpu60a"]["runs"][0]["failure"]["reached"]
+    assert p["as40"]["criterion"] is None and "no datasheet" in p["as40"]["source"]
+    assert (tmp_path / "report" / sec["puncture_figure"]).is_file()
+    assert "The puncture test" in html and "tearing energy" in html

@@ -59,6 +59,7 @@ WORK = {
     "spsc.fem.wall": ["wall_curve"],
     "spsc.fem.wall.calibrate": ["calibrate"],
     "spsc.fem.wall.durability": ["squeeze_cycle", "paper_fatigue_law"],
+    "spsc.fem.wall.puncture": ["puncture"],
     "spsc.studies.durability": ["run_study"],
     "spsc.study.runner": ["run_all"],
     "spsc.materials.fit.fitting": ["fit_law", "fit_laws"],

@@ -21,7 +21,7 @@ from .fuzz_studies import (bench_gap_cases, design_argv, design_cases, fit_mater
 from .fuzz_sense import sense_cases
 from .fuzz_time import simulate_cases
 from .fuzz_contact import contact_cases
-from .fuzz_durability import fatigue_cases
+from .fuzz_durability import fatigue_cases, puncture_cases
 
 __all__ = ["Case", "KINDS", "classes", "fixtures", "invalid_cases", "random_design",
            "design_argv"]
@@ -48,6 +48,7 @@ def invalid_cases(tmp: Path) -> list[Case]:
     cases += contact_cases(f, b)
     cases += sense_cases(f, tmp)
     cases += fatigue_cases(f, tmp)
+    cases += puncture_cases(f, tmp)
     cases += [replace(c, kind="argparse") for c in _argparse_cases(f, b, tmp)]
     return [c if c.kind != "other" else replace(c, kind=_kind(c.why)) for c in cases]
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from .fuzz_base import GEOMETRY, Case, numbers, outputs
 
-__all__ = ["fatigue_cases"]
+__all__ = ["fatigue_cases", "puncture_cases"]
 
 
 def fatigue_cases(f, tmp) -> list[Case]:
@@ -62,4 +62,25 @@ def fatigue_cases(f, tmp) -> list[Case]:
              str(tmp / "life.parquet"), "--quiet", "--life")
     cases += [Case(sweep + ("--material", str(f["ogden.json"])),
                    "a material file with --life (no fatigue test)", "material")]
+    return cases
+
+
+def puncture_cases(f, tmp) -> list[Case]:
+    """Invalid invocations of ``spsc puncture``: the chamber (a dome), the test's setup, the
+    criterion, the mesh, the probe and its friction, the outputs."""
+    base = ("puncture", "--type", "B", "--l", "0", "--quiet")
+    cases = numbers(base, tuple(g for g in GEOMETRY if g != "l"))
+    cases += numbers(base, ("pressure", "reservoir"))
+    cases += numbers(base, ("elongation-at-break",), extra=("-5", "0", "1e6"))
+    cases += [Case(("puncture", "--type", "B", "--quiet"), "a stadium (l = 3)", "l"),
+              Case(base + ("--material", "rubber"), "unknown material", "material"),
+              Case(base + ("--material", str(tmp / "none.json")), "a missing material file",
+                   "material"),
+              Case(base + ("--mesh", "huge"), "unknown mesh", "mesh"),
+              Case(base + ("--friction", "0.3"), "Coulomb friction on the probe", "friction"),
+              Case(base + ("--probe", "plate"), "a plate for a probe", "probe"),
+              Case(base + ("--probe", "cone:angle=200"), "a cone of 200°", "indenter"),
+              Case(base + ("--probe", "cylinder:R=5"), "a cylinder off the axis", "probe")]
+    cases += outputs(base, "--json", f, tmp)
+    cases += outputs(base, "--png", f, tmp, ".png")
     return cases

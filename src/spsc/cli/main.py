@@ -42,6 +42,7 @@ COMMANDS = {
     "surrogate": "surrogate",
     "virtual": "virtual",
     "fatigue": "fatigue",
+    "puncture": "puncture",
 }
 
 #: Exit code of an unexpected exception (a bug): one line on stderr, not a traceback.

@@ -4,12 +4,14 @@ which resolves a catalogue name or a material file written by ``spsc fit-materia
 from __future__ import annotations
 
 from spsc.core.errors import ParameterError
+from .failure import Failure, failure_entry
 from .file import load_material
 from .law import Material, neo_hookean, yeoh
 from .mullins import MullinsParams
 from .prony import Prony
 
-__all__ = ["CATALOGUE", "PRONY", "FATIGUE_TESTS", "material", "viscosity"]
+__all__ = ["CATALOGUE", "PRONY", "FATIGUE_TESTS", "FAILURE", "material", "viscosity",
+           "failure"]
 
 
 def _shore_a_to_youngs(shore_a: float) -> float:
@@ -144,3 +146,37 @@ FATIGUE_TESTS: dict[str, dict] = {
              "source": "Table 2: Easy Composites AS40, compression molded, > 5000 cycles "
                        "(passed without failing: a run-out, the lives are lower bounds)"},
 }
+
+
+#: Each catalogue material's tension test to rupture (:mod:`.failure`), from the
+#: manufacturer's datasheet; absent where no datasheet value is at hand (a material file's
+#: ``failure`` entry supplies one).
+_MANUFACTURER = ("the manufacturer's value as tabulated in PubMed Central article "
+                 "PMC10406103, Table 2 (\"mechanical properties according to manufacturer\")")
+FAILURE: dict[str, Failure] = {
+    "tpu60a": Failure(950.0, 26.0, "Recreus Filaflex 60A Pro (DIN 53504-S2), "
+                      + _MANUFACTURER),
+    "elastic50a": Failure(160.0, 3.23, "Formlabs Elastic 50A, post-cured (ASTM D412-06 A), "
+                          + _MANUFACTURER),
+}
+
+
+def failure(name) -> tuple[Failure | None, str]:
+    """(the failure criterion of ``name``, where it comes from): the catalogue's, or the
+    ``failure`` entry of a material file; (None, why) where there is none."""
+    text = str(name).strip()
+    if text.lower().endswith(".json"):
+        from pathlib import Path
+
+        from .file import read_material_file
+
+        got = failure_entry(read_material_file(text), Path(text).name)
+        if got is None:
+            return None, f"{Path(text).name} has no failure entry {{elongation_pct, " \
+                         f"strength_MPa, source}}"
+        return got, got.source
+    material(text)
+    got = FAILURE.get(text.lower())
+    return (got, got.source) if got else (
+        None, f"no datasheet elongation at break of {text} is at hand (a material file's "
+              "failure entry gives one)")
