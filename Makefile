@@ -154,7 +154,7 @@ bench-gap: $(STAMP)
 # by make report; bench-surrogate: its speed (quiet machine)
 surrogate-check: $(STAMP)
 	$(BIN)/spsc surrogate check --samples 200 --out build/surrogate-check
-# the paper's fatigue test in the wall model (about a minute), shown by make report
+# the paper's fatigue and puncture tests in the wall model (15-20 minutes), shown by make report
 durability-study: $(STAMP)
 	$(BIN)/spsc fatigue --study --out build/durability
 

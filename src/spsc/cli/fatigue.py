@@ -55,7 +55,7 @@ def register(subparsers) -> None:
     s = p.add_argument_group("the report's study")
     s.add_argument("--study", action="store_true", help="the durability study spsc report "
                    "shows: every material calibrated, Types A-D in TPU 60A, other strokes and "
-                   "pressures (about a minute)")
+                   "pressures, the puncture test on three meshes (15-20 minutes)")
     s.add_argument("--out", default=None, metavar="DIR", help="the study's folder (default "
                    "build/durability, where spsc report looks); only with --study")
     add_quiet_option(p)
