@@ -31,7 +31,7 @@ from spsc.materials import Material
 from spsc.materials.failure import Failure
 
 from ..engine import CloseValve, Inflate, Press, solve
-from .fields import _recovery, nodal, node_places, wall_fields
+from .fields import nodal, node_places, wall_fields
 from .model import WallModel, WallSettings
 
 __all__ = ["PAPER_PUNCTURE", "PunctureMesh", "MESHES", "Puncture", "puncture"]
@@ -153,11 +153,11 @@ def puncture(geometry: SPSCGeometry, material: Material, mesh: PunctureMesh = ME
     res = solve(model, [Press.through(travel, indenter=cone, stick=friction == "stick")],
                 start=rest, progress=progress)
     pressed = [r for r in res.records if r.kind == "press"]
-    places, rec = node_places(model), _recovery(model)
+    places = node_places(model)
     away = ~places["base"]
     stretch, radius = [], []
     for r in pressed:
-        lam = nodal(model, wall_fields(model, r.x).stretch, rec)
+        lam = nodal(model, wall_fields(model, r.x).stretch)
         k = int(np.flatnonzero(away)[np.argmax(lam[away])])
         stretch.append(lam[k])
         radius.append(places["radius"][k])
