@@ -142,6 +142,8 @@ class Plate:
         presc = np.asarray(self.active, int)
         if self.curved and presc.size:
             return self.lean(x, presc)
+        if self.curved and self.grip is not None:
+            self.grip = release(m, self.grip, presc)
         jump = jumps(m, x, self.load.plate, presc)
         if self.grip is not None:  # the anchored nodes still on the plate do not slide
             self.grip = release(m, self.grip, presc)
