@@ -85,7 +85,7 @@ def _told(p: dict | None) -> dict | None:
         if not fails:
             continue
         forces = [f["force_N"] for f in fails]
-        out[name] = {"low": min(forces), "high": max(forces),
+        out[name] = {"low": min(forces), "high": max(forces), "meshes": len(fails),
                      "all_reached": all(f["reached"] for f in fails),
                      "none_reached": not any(f["reached"] for f in fails),
                      "travel_high": max(f["travel_mm"] for f in fails),
