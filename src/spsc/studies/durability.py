@@ -4,7 +4,8 @@ lives of Types A–D in TPU 60A predicted from Type B's, the Type B life at othe
 pressures — and the puncture test (the probe through the Type B dome onto its base, each
 material on the coarse mesh and TPU 60A on three meshes, :mod:`spsc.fem.wall.puncture`),
 written where ``spsc report`` finds it (``build/durability``: ``summary.json``, ``lives.png``,
-``fields-C.png``, ``puncture.png``). About five minutes on one core.
+``fields-C.png``, ``puncture.png``). 15–20 minutes on one core, most of it the puncture's
+finest mesh.
 
     spsc fatigue --study [--out build/durability]
 """
@@ -95,9 +96,9 @@ def _puncture_row(run, criterion) -> dict:
            "force_end_N": float(run.force_N[-1]) if len(run.force_N) else 0.0,
            "stretch_end": float(run.stretch[-1]) if len(run.stretch) else 0.0,
            "at": {}}
-    for y in (2.0, 6.0, 10.0):  # the press through the dome, before the pinch
+    for y in (2.0, 6.0, 10.0) if len(run.travel_mm) else ():  # before the pinch
         k = int(np.argmin(np.abs(run.travel_mm - y)))
-        if len(run.travel_mm) and abs(run.travel_mm[k] - y) < 1e-6:
+        if abs(run.travel_mm[k] - y) < 1e-6:
             row["at"][f"{y:g}"] = {"force_N": float(run.force_N[k]),
                                    "stretch": float(run.stretch[k])}
     row["failure"] = None if criterion is None else run.failure(criterion)

@@ -40,4 +40,3 @@ def draw(runs, criterion, path, title: str | None = None) -> None:
                  f" (×: the criterion reached)", fontsize=10)
     fig.savefig(path, dpi=120)
     plt.close(fig)
-    return None
