@@ -97,6 +97,9 @@ class Puncture:
         around it), ``reached`` True; else the last force and stretch, ``reached`` False
         (the failure force is above ``force_N``)."""
         lam = criterion.stretch
+        if not len(self.stretch):  # the press stopped before its first travel
+            return {"reached": False, "force_N": 0.0, "travel_mm": 0.0, "stretch": 1.0,
+                    "stretch_at_break": lam}
         over = np.flatnonzero(self.stretch >= lam)
         if over.size == 0:
             k = len(self.stretch) - 1
