@@ -27,8 +27,7 @@ def surrogate_map(geometry, material, *, setup_kPa: float, top_kPa: float, y_max
     setup pressure among them) and travels from the highest level's first contact to
     ``y_max_mm`` every ``y_step_mm``, from the surrogate (``surrogate``: its file, None: the
     shipped one)."""
-    from spsc.models.surrogate.assemble import _D, _Q
-    from spsc.models.surrogate.domain import Q_LEVELS, TRAVELS, ratios_of
+    from spsc.models.surrogate.domain import ratios_of
     from spsc.models.surrogate.model import check_material
     from spsc.models.surrogate.predict import load
 
@@ -43,9 +42,10 @@ def surrogate_map(geometry, material, *, setup_kPa: float, top_kPa: float, y_max
     maps, _ = sur.maps(np.array([[g.w, g.h, g.l, g.t0, g.n1, g.n2, g.cy]]),
                        material.shear_modulus)
     unit, h = float(maps.unit[0]), float(maps.h[0])
-    if top_kPa > Q_LEVELS[-1] * unit:
+    q_top, d_top = sur.q_levels[-1], sur.travels[-1]
+    if top_kPa > q_top * unit:
         raise ParameterError("pressure", f"{top_kPa:.4g} kPa", f"at most "
-                             f"{Q_LEVELS[-1] * unit:.4g} kPa in the chamber for the surrogate's "
+                             f"{q_top * unit:.4g} kPa in the chamber for the surrogate's "
                              "map of this wall (the press reaches it); [chamber] model = "
                              "\"wall\" maps it")
     ps = pressure_levels(setup_kPa, top_kPa, levels)
@@ -55,13 +55,13 @@ def surrogate_map(geometry, material, *, setup_kPa: float, top_kPa: float, y_max
     V0 = maps.at("V0", q[None, :])[0]
     y = travel_grid(-(H.max() - H_i), y_max_mm, y_step_mm)
     delta = y[:, None] + H[None, :] - H_i
-    if delta.max() > TRAVELS[-1] * h * (1 + 1e-9):
+    if delta.max() > d_top * h * (1 + 1e-9):
         raise ParameterError("press", f"{y_max_mm:g} mm", f"a travel the surrogate maps: at "
-                             f"most {TRAVELS[-1] * h - (H.max() - H_i):.3g} mm here "
-                             f"({TRAVELS[-1]:g} h from each pressure's first contact)")
+                             f"most {d_top * h - (H.max() - H_i):.3g} mm here "
+                             f"({d_top:g} h from each pressure's first contact)")
     d = np.maximum(delta, 0.0).ravel()
-    Wd, _ = _D.weights(d / h)
-    Wq, _ = _Q.weights(np.broadcast_to(q, delta.shape).ravel())
+    Wd, _ = maps.dgrid.weights(d / h)
+    Wq, _ = maps.qgrid.weights(np.broadcast_to(q, delta.shape).ravel())
     dV, F, A = (maps.grid(k, Wd[None], Wq[None])[0].reshape(delta.shape)
                 for k in ("dV", "F", "A"))
     touching = delta > 1e-9

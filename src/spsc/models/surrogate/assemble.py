@@ -22,7 +22,6 @@ from __future__ import annotations
 import numpy as np
 
 from spsc.core.constants import P_AMB_KPA
-from .domain import Q_LEVELS, TRAVELS
 from .spline import SplineGrid
 
 __all__ = ["Maps", "solve_curves", "CHUNK"]
@@ -30,22 +29,22 @@ __all__ = ["Maps", "solve_curves", "CHUNK"]
 #: designs solved together (their points' spline weights stay in the cache)
 CHUNK = 256
 
-_Q = SplineGrid(Q_LEVELS)
-_D = SplineGrid(TRAVELS)
-
 
 class Maps:
     """The maps of m designs in real units: ``H`` (m × levels) mm, ``V0`` mm³, ``dV``, ``F``,
-    ``A`` (m × travels × levels), the travels' scale ``h`` (m) mm (δ = TRAVELS · h) and the
-    pressure of q = 1 ``unit`` (m) kPa."""
+    ``A`` (m × travels × levels), the travels' scale ``h`` (m) mm (δ = travel · h), the
+    pressure of q = 1 ``unit`` (m) kPa, and the splines of the map's grid: ``qgrid`` over its
+    levels q, ``dgrid`` over its travels δ/h (:class:`.spline.SplineGrid`; the surrogate file's
+    own grid)."""
 
-    def __init__(self, H, V0, dV, F, A, h, unit):
+    def __init__(self, H, V0, dV, F, A, h, unit, qgrid: SplineGrid, dgrid: SplineGrid):
         self.H, self.V0, self.dV, self.F, self.A = H, V0, dV, F, A
         self.h, self.unit = np.asarray(h, float), np.asarray(unit, float)
+        self.qgrid, self.dgrid = qgrid, dgrid
 
     def at(self, name, q):
         """A per-level field (``H`` or ``V0``) at the levels q (m × k)."""
-        return self.level(name, _Q.weights(np.asarray(q, float))[0])
+        return self.level(name, self.qgrid.weights(np.asarray(q, float))[0])
 
     def level(self, name, Wq, rows=slice(None)):
         """A per-level field at the levels whose spline weights are ``Wq`` (m × k × levels),
@@ -79,6 +78,7 @@ def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
 
 def _solve(maps, sel, y, p_i, Vr, n, iterations, tol) -> dict:
     rows = np.arange(maps.h.size)[sel]
+    _Q, _D = maps.qgrid, maps.dgrid
     unit, h = maps.unit[rows, None], maps.h[rows, None]
     n2, Vr2 = n[:, None], Vr[:, None]
     qi = (p_i / maps.unit[rows])[:, None] * np.ones_like(y)
@@ -86,7 +86,7 @@ def _solve(maps, sel, y, p_i, Vr, n, iterations, tol) -> dict:
     H_i, V0_i = maps.level("H", Wi, rows), maps.level("V0", Wi, rows)
     C = (p_i[:, None] + P_AMB_KPA) * np.maximum(V0_i + Vr2, 1e-9) ** n2
     q = qi.copy()
-    lo, hi = qi.copy(), np.full_like(y, Q_LEVELS[-1] * 4.0)
+    lo, hi = qi.copy(), np.full_like(y, _Q.x[-1] * 4.0)
     done = np.zeros(y.shape, bool)
     done[p_i <= 0] = True  # the vented chamber stays at P = 0
     for _ in range(iterations):

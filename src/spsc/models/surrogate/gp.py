@@ -146,7 +146,7 @@ class FieldModel:
     def snap_risk(self, x: np.ndarray, levels: np.ndarray, k: int = RISK_NEIGHBOURS):
         """The share of the ``k`` training designs nearest each ``x`` (m × d) that snapped
         through, or could not be pressed over the map, at one of the pressure ``levels``
-        (a boolean mask of :data:`~.domain.Q_LEVELS`, m × levels): (m,)."""
+        (a boolean mask of the surrogate's levels, m × levels): (m,)."""
         if self._risk_tree is None:
             self._risk_tree = _kdtree(self.risk_X)
         _, near = self._risk_tree.query(x, k=k)

@@ -11,7 +11,7 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 from ..base import ModelBase, Outcome, option
-from .domain import Q_LEVELS, TRAVELS, ratios_of
+from .domain import ratios_of
 from .gp import RISK_FLAG
 
 __all__ = ["SurrogateCurveModel", "SurrogateOptions", "check_material"]
@@ -93,13 +93,14 @@ class SurrogateCurveModel(ModelBase):
         if not lo <= lc.polytropic_n <= hi:
             _refuse_or_note(notes, allow, "polytropic_n", lc.polytropic_n, f"{lo:g} to {hi:g}")
         unit = 1000.0 * setup.material.shear_modulus * g.t0 / g.w
-        if lc.pressure_kPa > Q_LEVELS[-1] * unit:
+        q_top, d_top = sur.q_levels[-1], sur.travels[-1]
+        if lc.pressure_kPa > q_top * unit:
             _refuse_or_note(notes, allow, "pressure", f"{lc.pressure_kPa:g} kPa",
-                            f"at most {Q_LEVELS[-1] * unit:.3g} kPa for this wall and material "
-                            f"({Q_LEVELS[-1]:g} μ t0/w)")
-        if lc.stroke_mm > TRAVELS[-1] * g.h:
+                            f"at most {q_top * unit:.3g} kPa for this wall and material "
+                            f"({q_top:g} μ t0/w)")
+        if lc.stroke_mm > d_top * g.h:
             _refuse_or_note(notes, allow, "stroke", f"{lc.stroke_mm:g} mm",
-                            f"at most {TRAVELS[-1] * g.h:.3g} mm ({TRAVELS[-1]:g} h)")
+                            f"at most {d_top * g.h:.3g} mm ({d_top:g} h)")
         return notes
 
     def check(self, setup, options, *, verb: str, quiet: bool) -> None:
@@ -166,7 +167,7 @@ def _to_curve(setup, sur, out, y, notes, allow, seconds, cavity=None):
     inside = out["inside"][0]
     solved = out["converged"][0]
     beyond = ("beyond the surrogate's map (the travel from this pressure's first contact "
-              f"past {TRAVELS[-1]:g} h or the pressure past {Q_LEVELS[-1]:g} μ t0/w)")
+              f"past {sur.travels[-1]:g} h or the pressure past {sur.q_levels[-1]:g} μ t0/w)")
     msg = ["" if ok else (beyond + (": extrapolated" if allow else ""))
            for ok in inside]
     msg = [m if s else "the gas law did not converge on the map" for m, s in zip(msg, solved)]

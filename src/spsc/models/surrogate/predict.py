@@ -21,9 +21,10 @@ import numpy as np
 
 from spsc.core.errors import ParameterError
 from .assemble import Maps, solve_curves
-from .domain import BOUNDS, Q_LEVELS, RATIOS, TRAVELS
+from .domain import BOUNDS, Q_UNIFORM_16, RATIOS, TRAVELS
 from .gp import FieldModel
 from .inputs import unit_inputs
+from .spline import SplineGrid
 
 __all__ = ["Surrogate", "load", "SHIPPED", "RESERVOIR_MAX_MM3", "POLYTROPIC"]
 
@@ -38,10 +39,15 @@ _NAMED = {"h/w": "h", "l/w": "l", "t0/w": "t0", "n1": "n1", "n2": "n2", "cy": "c
 
 class Surrogate:
     """A fitted surrogate: its :class:`~.gp.FieldModel`, the ratios it varies (``free``; the
-    others fixed at ``fixed``), its metadata (training, calibration of the error)."""
+    others fixed at ``fixed``), its map's grid (``q_levels``, ``travels``: the file's, or the
+    sixteen even levels and :data:`~.domain.TRAVELS` of a file that does not state them), its
+    metadata (training, calibration of the error)."""
 
     def __init__(self, arrays: dict, meta: dict):
         self.fields = FieldModel(arrays)
+        self.q_levels = np.asarray(arrays.get("q_levels", Q_UNIFORM_16), float)
+        self.travels = np.asarray(arrays.get("travels", TRAVELS), float)
+        self.qgrid, self.dgrid = SplineGrid(self.q_levels), SplineGrid(self.travels)
         self.meta = meta
         self.free = self.fields.free
         self.fixed = {k: float(v) for k, v in meta.get("fixed", {}).items()}
@@ -86,14 +92,15 @@ class Surrogate:
         ratios = np.column_stack([h / w, p[:, 2] / w, t0 / w, p[:, 4], p[:, 5], p[:, 6]])
         f = self.fields.fields(self.unit_inputs(ratios), draws, rng)
         mu = np.broadcast_to(np.asarray(mu_MPa, float), w.shape)
-        nt, nq = len(TRAVELS), len(Q_LEVELS)
+        nt, nq = len(self.travels), len(self.q_levels)
 
         def build(get):
             grid = lambda b: get(b).reshape(-1, nq, nt).transpose(0, 2, 1)  # noqa: E731
             return Maps(get("H") * w[:, None], get("V0") * w[:, None] ** 3,
                         grid("dV") * (w**3)[:, None, None],
                         grid("F") * (mu * t0 * w)[:, None, None],
-                        grid("A") * (w**2)[:, None, None], h, 1000.0 * mu * t0 / w)
+                        grid("A") * (w**2)[:, None, None], h, 1000.0 * mu * t0 / w,
+                        self.qgrid, self.dgrid)
 
         maps = build(lambda b: f[b])
         if not draws:
@@ -110,8 +117,8 @@ class Surrogate:
         maps, samples = self.maps(params, mu_MPa, draws, rng)
         out = solve_curves(maps, y, p_i, reservoir, n_poly)
         h = maps.h[:, None]
-        out["inside"] = ((out["delta_mm"] <= TRAVELS[-1] * h * (1 + 1e-6))
-                         & (out["q"] <= Q_LEVELS[-1] * (1 + 1e-6)))
+        out["inside"] = ((out["delta_mm"] <= self.travels[-1] * h * (1 + 1e-6))
+                         & (out["q"] <= self.q_levels[-1] * (1 + 1e-6)))
         out["snap_risk"] = self.snap_risk(params, out["q"])
         if samples:
             runs = [solve_curves(s, y, p_i, reservoir, n_poly) for s in samples]
@@ -124,7 +131,6 @@ class Surrogate:
                 out[name] = self.error_scale[scale] * spread
         return out
 
-
     def snap_risk(self, params, q) -> np.ndarray:
         """Per design, the share of its nearest training designs that snapped through or could
         not be pressed at the pressure levels its curve passes (q, m × points, one level of
@@ -133,9 +139,11 @@ class Surrogate:
         w = p[:, 0]
         ratios = np.column_stack([p[:, 1] / w, p[:, 2] / w, p[:, 3] / w, p[:, 4], p[:, 5],
                                   p[:, 6]])
-        step = Q_LEVELS[1] - Q_LEVELS[0]
-        lo, hi = np.nanmin(q, axis=1) - step, np.nanmax(q, axis=1) + step
-        levels = (Q_LEVELS[None, :] >= lo[:, None]) & (Q_LEVELS[None, :] <= hi[:, None])
+        L = self.q_levels  # from the last level below the curve's to the first above
+        lo = np.searchsorted(L, np.nanmin(q, axis=1), side="left") - 1
+        hi = np.searchsorted(L, np.nanmax(q, axis=1), side="right")
+        k = np.arange(L.size)[None, :]
+        levels = (k >= lo[:, None]) & (k <= hi[:, None])
         return self.fields.snap_risk(self.unit_inputs(ratios), levels)
 
 

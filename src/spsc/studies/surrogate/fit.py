@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from spsc.models.surrogate.domain import MU_REF_MPA, Q_LEVELS, W_REF_MM
+from spsc.models.surrogate.domain import MU_REF_MPA, TRAVELS, W_REF_MM
 from spsc.models.surrogate.inputs import unit_inputs
 
 __all__ = ["fields_of", "fit_study", "BLOCKS"]
@@ -87,12 +87,20 @@ def fit_study(runs: list[dict], *, free: list[str], keep: float = 1e-6, seed: in
     """The arrays of a FieldModel fitted to ``runs`` (:func:`.train.load_runs`): one kernel
     for every mode, found on the leading mode of block ``shared``, or (``shared=None``) own
     kernels for the ``own_kernels`` leading modes of each block."""
+    from .sample import levels_of
+
     usable = [(r, f) for r in runs if (f := fields_of(r)) is not None]
     X = unit_inputs(np.array([r["ratios"] for r, _ in usable]), free)
-    out = {"free": np.array(free), "X": X, "excluded": np.array(len(runs) - len(usable))}
+    grid = levels_of(usable[0][0])
+    for r, _ in usable:
+        if levels_of(r).shape != grid.shape or not np.allclose(levels_of(r), grid, atol=1e-9):
+            raise ValueError(f"runs of different pressure levels ({levels_of(r).size} and "
+                             f"{grid.size}): extend the study first (spsc surrogate train)")
+    out = {"free": np.array(free), "X": X, "excluded": np.array(len(runs) - len(usable)),
+           "q_levels": grid, "travels": np.asarray(TRAVELS, float)}
     # where the wall model snapped or could not press: every design, per level (1 for all
     # levels of a design it could not mesh or press over the whole grid)
-    levels = len(Q_LEVELS)
+    levels = grid.size
     risk = np.zeros((len(runs), levels))
     for i, r in enumerate(runs):
         if fields_of(r) is None:

@@ -21,7 +21,7 @@ import numpy as np
 from spsc.models.surrogate.domain import MU_REF_MPA, Q_LEVELS, TRAVELS, W_REF_MM, \
     pressure_unit_kPa
 
-__all__ = ["geometry_of", "run_design"]
+__all__ = ["geometry_of", "run_design", "extend_run", "levels_of"]
 
 
 def geometry_of(ratios):
@@ -66,27 +66,30 @@ def _press_level(model, p_MPa, travels, settings):
     return top, v0, V, F, A, jumps, res.message
 
 
-def run_design(ratios, settings=None) -> dict:
+def run_design(ratios, settings=None, levels=None) -> dict:
     """The wall map of the design ``ratios`` at the reference size and material: arrays
     ``top_mm``, ``free_volume_mm3`` (levels), ``volume_mm3``, ``force_N``, ``area_mm2``
-    (travels × levels), ``pressure_kPa`` (levels), ``travel_mm`` (travels), the snap-throughs
-    (``jumps``: level, y mm, force change N), ``messages`` and ``seconds``. One BLAS thread."""
+    (travels × levels), ``q_levels`` and ``pressure_kPa`` (levels), ``travel_mm`` (travels), the
+    snap-throughs (``jumps``: level, y mm, force change N), ``messages`` and ``seconds``, at the
+    dimensionless pressures ``levels`` (increasing; None: :data:`~spsc.models.surrogate.domain.
+    Q_LEVELS`). One BLAS thread."""
     from threadpoolctl import threadpool_limits
 
     from spsc.fem.wall.model import WallModel, WallSettings
 
     t_start = time.perf_counter()
+    levels = Q_LEVELS if levels is None else np.asarray(levels, float)
     g = geometry_of(ratios)
     settings = settings or WallSettings()
     model = WallModel(g, _reference_material(), settings)
     unit = pressure_unit_kPa(g.w, g.t0, MU_REF_MPA)
     travels = TRAVELS[1:] * g.h
-    nq, nt = len(Q_LEVELS), len(TRAVELS)
+    nq, nt = len(levels), len(TRAVELS)
     out = {k: np.full((nt, nq), np.nan) for k in ("volume_mm3", "force_N", "area_mm2")}
     top, v0 = np.full(nq, np.nan), np.full(nq, np.nan)
     jumps, messages = [], []
     with threadpool_limits(limits=1, user_api="blas"):
-        for j, q in enumerate(Q_LEVELS):
+        for j, q in enumerate(levels):
             t, v, V, F, A, jj, msg = _press_level(model, q * unit / 1000.0, travels, settings)
             messages.append(msg)
             if not np.isfinite(t):
@@ -96,7 +99,53 @@ def run_design(ratios, settings=None) -> dict:
             out["force_N"][:, j] = np.concatenate([[0.0], F])
             out["area_mm2"][:, j] = np.concatenate([[0.0], A])
             jumps += [(j, y, df) for y, df in jj]
-    return {"ratios": np.asarray(ratios, float), "pressure_kPa": Q_LEVELS * unit,
-            "travel_mm": TRAVELS * g.h, "top_mm": top, "free_volume_mm3": v0, **out,
-            "jumps": np.array(jumps, float).reshape(-1, 3), "messages": np.array(messages),
-            "seconds": time.perf_counter() - t_start}
+    return {"ratios": np.asarray(ratios, float), "q_levels": np.asarray(levels, float),
+            "pressure_kPa": levels * unit, "travel_mm": TRAVELS * g.h, "top_mm": top,
+            "free_volume_mm3": v0, **out, "jumps": np.array(jumps, float).reshape(-1, 3),
+            "messages": np.array(messages), "seconds": time.perf_counter() - t_start}
+
+
+def levels_of(run: dict) -> np.ndarray:
+    """The dimensionless pressure levels of a run (``q_levels``; a run of a study before they
+    were stored: its pressures over the reference wall's unit)."""
+    if "q_levels" in run:
+        return np.asarray(run["q_levels"], float)
+    g = geometry_of(run["ratios"])
+    return np.asarray(run["pressure_kPa"], float) / pressure_unit_kPa(g.w, g.t0, MU_REF_MPA)
+
+
+def extend_run(run: dict, levels=None, settings=None) -> dict:
+    """The run on the grid ``levels`` (None: :data:`~spsc.models.surrogate.domain.Q_LEVELS`)
+    whose old levels (within 1e-9) are kept from ``run`` and the others computed by
+    :func:`run_design` (a level above one the chamber ballooned at is not: NaN, as there).
+    ``seconds`` adds the new levels' time to the old; ``messages`` follow the new grid."""
+    levels = Q_LEVELS if levels is None else np.asarray(levels, float)
+    old = levels_of(run)
+    where = [int(np.argmin(np.abs(old - q))) if np.min(np.abs(old - q)) <= 1e-9 else -1
+             for q in levels]
+    new = [q for q, k in zip(levels, where) if k < 0]
+    ballooned = old[~np.isfinite(run["top_mm"])]
+    new = [q for q in new if not (ballooned.size and q > ballooned.min())]
+    extra = run_design(run["ratios"], settings, new) if new else None
+    merged = dict(run)
+    g = geometry_of(run["ratios"])
+    merged["q_levels"] = levels
+    merged["pressure_kPa"] = levels * pressure_unit_kPa(g.w, g.t0, MU_REF_MPA)
+    msgs, jumps = [], []
+    for key in ("top_mm", "free_volume_mm3", "volume_mm3", "force_N", "area_mm2"):
+        a = np.asarray(run[key])
+        merged[key] = np.full(a.shape[:-1] + (len(levels),), np.nan)
+    for j, (q, k) in enumerate(zip(levels, where)):
+        src, col = (run, k) if k >= 0 else (extra, new.index(q) if q in new else -1)
+        if col < 0:
+            msgs.append("not computed: it balloons at a lower level")
+            continue
+        for key in ("top_mm", "free_volume_mm3", "volume_mm3", "force_N", "area_mm2"):
+            merged[key][..., j] = np.asarray(src[key])[..., col]
+        msgs.append(str(src["messages"][col]) if col < len(src["messages"]) else "")
+        jumps += [(j, y, df) for lv, y, df in np.asarray(src["jumps"]).reshape(-1, 3)
+                  if int(lv) == col]
+    merged["messages"] = np.array(msgs)
+    merged["jumps"] = np.array(jumps, float).reshape(-1, 3)
+    merged["seconds"] = float(run.get("seconds", 0.0)) + (extra["seconds"] if extra else 0.0)
+    return merged

@@ -3,8 +3,10 @@
 
 A run folder holds ``study.json`` (the domain, the sampling, the code version) and
 ``runs/NNNNN.npz``, one per design as it finishes: a re-run with the same folder computes only
-the designs it lacks, and refuses a folder of another sampling or code version (its maps would
-not be the same model's).
+the designs it lacks, and refuses a folder of another sampling, travels or code version (its
+maps would not be the same model's). A folder trained on fewer pressure levels than
+:data:`~spsc.models.surrogate.domain.Q_LEVELS` is extended: each design computes only the
+levels it lacks (:func:`.sample.extend_run`), the others kept.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from spsc.core.errors import ParameterError
-from spsc.models.surrogate.domain import BOUNDS, RATIOS
+from spsc.models.surrogate.domain import BOUNDS, Q_LEVELS, RATIOS, TRAVELS
 
 __all__ = ["FAMILIES", "design_points", "train_maps", "load_runs"]
 
@@ -40,13 +42,28 @@ def design_points(count: int, seed: int, family: str) -> np.ndarray:
     return np.round(out, 6)
 
 
-def _job(index: int, ratios) -> tuple[int, dict]:
-    from .sample import run_design
+def _job(index: int, ratios, old: dict | None = None) -> tuple[int, dict]:
+    from .sample import extend_run, run_design
 
     try:
-        return index, run_design(ratios)
+        return index, (run_design(ratios) if old is None else extend_run(old))
     except Exception as exc:  # a design the wall model cannot mesh or solve is a datum too
         return index, {"ratios": np.asarray(ratios, float), "error": repr(exc)}
+
+
+def _lacking(path: Path) -> dict | None:
+    """The run in ``path`` if it lacks levels of :data:`Q_LEVELS` (None if it has them all,
+    or is a design the wall model could not mesh: its error stands)."""
+    from .sample import levels_of
+
+    with np.load(path, allow_pickle=False) as z:
+        run = {k: z[k] for k in z.files}
+    if "error" in run:
+        return None
+    old = levels_of(run)
+    if all(np.min(np.abs(old - q)) <= 1e-9 for q in Q_LEVELS):
+        return None
+    return run
 
 
 def _meta(count, seed, family) -> dict:
@@ -54,11 +71,15 @@ def _meta(count, seed, family) -> dict:
 
     from spsc.study.runs import source_closure
 
+    # the code that computes a map; the domain's grid is stated apart (a study extended to new
+    # levels keeps its maps)
     h = hashlib.sha256()
     for path in source_closure("spsc.studies.surrogate.sample"):
-        h.update(path.name.encode() + path.read_bytes())
+        if path.name != "domain.py" or path.parent.name != "surrogate":
+            h.update(path.name.encode() + path.read_bytes())
     return {"count": int(count), "seed": int(seed), "family": family,
             "ratios": list(RATIOS), "bounds": {k: list(v) for k, v in BOUNDS.items()},
+            "travels": [float(t) for t in TRAVELS], "levels": [float(q) for q in Q_LEVELS],
             "code": h.hexdigest()[:16]}
 
 
@@ -68,7 +89,7 @@ def _open(out: Path, meta: dict) -> None:
     path = out / "study.json"
     if path.exists():
         old = json.loads(path.read_text())
-        for key in ("seed", "family", "bounds", "code"):
+        for key in ("seed", "family", "bounds", "travels", "code"):
             if old.get(key) != meta[key]:
                 raise ParameterError("out", str(out), f"a new folder or one of the same study "
                                      f"(its {key} differs: {old.get(key)} against {meta[key]})")
@@ -83,7 +104,14 @@ def train_maps(out, *, count: int, seed: int = 0, family: str = "dome", workers=
     out = Path(out)
     points = design_points(count, seed, family)
     _open(out, _meta(count, seed, family))
-    todo = [i for i in range(count) if not (out / "runs" / f"{i:05d}.npz").exists()]
+    todo, old = [], {}
+    for i in range(count):
+        path = out / "runs" / f"{i:05d}.npz"
+        if not path.exists():
+            todo.append(i)
+        elif (run := _lacking(path)) is not None:
+            todo.append(i)
+            old[i] = run
     if progress is not None:
         progress(count - len(todo), count)
     if not todo:
@@ -93,7 +121,7 @@ def train_maps(out, *, count: int, seed: int = 0, family: str = "dome", workers=
     from spsc.study.executor import dask_client
 
     with dask_client(workers, scheduler) as client:
-        futures = [client.submit(_job, i, points[i], pure=False) for i in todo]
+        futures = [client.submit(_job, i, points[i], old.get(i), pure=False) for i in todo]
         for k, fut in enumerate(as_completed(futures), start=1):
             i, d = fut.result()
             tmp = out / "runs" / f"{i:05d}.tmp.npz"

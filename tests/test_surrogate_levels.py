@@ -1,0 +1,72 @@
+"""The surrogate's pressure levels: a training run extended by the levels it lacks is the run
+computed on the whole grid, bit for bit; a study of mixed grids is not fitted; a surrogate
+file answers on its own grid (a file that does not state one: the sixteen even levels)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from numpy.testing import assert_array_equal
+
+from spsc.models.surrogate.domain import Q_LEVELS, Q_UNIFORM_16, TRAVELS
+from spsc.studies.surrogate.sample import extend_run, levels_of, run_design
+
+#: a dome of the trained hull (h/w, l/w, t0/w, n1, n2, c_y)
+RATIOS = np.array([1.2, 0.0, 0.09, 2.0, 2.2, 0.0])
+KEYS = ("top_mm", "free_volume_mm3", "volume_mm3", "force_N", "area_mm2", "pressure_kPa")
+
+
+@pytest.fixture(scope="module")
+def whole():
+    return run_design(RATIOS, levels=[0.0, 0.1, 0.3])
+
+
+def test_an_extended_run_is_the_run_of_the_whole_grid(whole):
+    part = run_design(RATIOS, levels=[0.0, 0.3])
+    grown = extend_run(part, levels=[0.0, 0.1, 0.3])
+    for key in KEYS:
+        assert_array_equal(grown[key], whole[key], err_msg=key)
+    assert_array_equal(grown["q_levels"], [0.0, 0.1, 0.3])
+    assert list(grown["messages"]) == list(whole["messages"])
+    assert grown["seconds"] > part["seconds"]
+    # nothing to add: the run itself
+    again = extend_run(grown, levels=[0.0, 0.1, 0.3])
+    for key in KEYS:
+        assert_array_equal(again[key], whole[key], err_msg=key)
+
+
+def test_a_run_of_a_study_before_the_levels_were_stored_has_them_from_its_pressures(whole):
+    old = {k: v for k, v in whole.items() if k != "q_levels"}
+    assert np.allclose(levels_of(old), [0.0, 0.1, 0.3], rtol=0, atol=1e-12)
+
+
+def test_a_study_of_mixed_grids_is_refused(whole):
+    from spsc.studies.surrogate.fit import fit_study
+
+    other = run_design(RATIOS * [1.1, 1, 1, 1, 1, 1], levels=[0.0, 0.3])
+    with pytest.raises(ValueError, match="different pressure levels"):
+        fit_study([whole, other], free=["h/w", "t0/w", "n1", "n2", "cy"])
+
+
+def test_the_grid_adds_low_levels_to_the_sixteen_even_ones():
+    assert Q_LEVELS.size == 21 and np.all(np.diff(Q_LEVELS) > 0)
+    assert np.all(np.isin(Q_UNIFORM_16, Q_LEVELS))
+    assert Q_LEVELS[-1] == Q_UNIFORM_16[-1] and (Q_LEVELS < Q_UNIFORM_16[4]).sum() == 4 + 5
+
+
+def test_a_surrogate_answers_on_its_files_grid():
+    from spsc.models.surrogate.predict import Surrogate, load
+
+    shipped = load()
+    arrays = {k: v for k, v in _arrays(shipped).items() if k not in ("q_levels", "travels")}
+    legacy = Surrogate(arrays, shipped.meta)
+    assert_array_equal(legacy.q_levels, Q_UNIFORM_16)
+    assert_array_equal(legacy.travels, TRAVELS)
+    assert legacy.fields.risk.shape[1] == legacy.q_levels.size == shipped.q_levels.size
+
+
+def _arrays(sur) -> dict:
+    from spsc.models.surrogate.predict import SHIPPED
+
+    with np.load(SHIPPED, allow_pickle=False) as z:
+        return {k: z[k] for k in z.files if k != "meta"}
