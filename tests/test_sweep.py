@@ -285,6 +285,20 @@ def test_journal_keeps_the_last_row_of_a_key_and_survives_a_cut_line(tmp_path):
     assert read_table(tmp_path / "s.csv")[["key", "status"]].equals(df[["key", "status"]])
 
 
+def test_a_chunk_of_rows_is_one_durable_write(tmp_path, monkeypatch):
+    import os
+
+    import spsc.sweep.store as store_module
+
+    syncs, real = [], os.fsync
+    monkeypatch.setattr(store_module.os, "fsync", lambda fd: syncs.append(fd) or real(fd))
+    store = SweepStore(tmp_path / "s.parquet")
+    store.extend([dict(failed_row(B, "", key=f"k{i}"), status="ok") for i in range(5)])
+    store.close()
+    assert len(syncs) == 1
+    assert store.done() == {f"k{i}" for i in range(5)}
+
+
 # -- sweeps on Dask --------------------------------------------------------------------------
 def _space():
     return build_space({"type": "A,B,C", "w": "9,11", "pressure": "20,40"})

@@ -258,8 +258,7 @@ def _run_batched(pending, total, store, settings, stats, *, workers, scheduler, 
                 why = _one_line(f.exception())
                 rows = [failed_row(d, why, key=key) for key, d in chunk]
             f.release()
-            for row in rows:
-                store.append(row)
+            store.extend(rows)
             stats["evaluated"] += len(rows)
             failed += sum(r["status"] == "failed" for r in rows)
             bar.set_postfix(failed=failed, refresh=False)

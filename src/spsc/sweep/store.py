@@ -72,9 +72,14 @@ class SweepStore:
 
     def append(self, row: dict) -> None:
         """Append one row and make it durable (flush + fsync) before returning."""
+        self.extend([row])
+
+    def extend(self, rows) -> None:
+        """Append rows and make them durable together (one flush + fsync: a batched model's
+        chunk of 2000 rows is one write, not 2000)."""
         if self._file is None:
             self.open()
-        self._file.write(_line(row))
+        self._file.write("".join(_line(row) for row in rows))
         self._file.flush()
         os.fsync(self._file.fileno())
 
