@@ -1,7 +1,9 @@
 """The surrogate's learnt maps in NumPy: Gaussian processes on principal components
 (fitted by :mod:`spsc.studies.surrogate.fit`), evaluated for many designs at once.
 
-A block (one field of the map) is ``mean + scale · (c @ modes)`` with its mode coefficients
+A block (one field of the map, or a part of one: a file may learn the low pressure levels of
+every field apart from the others, ``F@0`` beside ``F@1``, each part holding the indices of the
+field's outputs it predicts) is ``mean + scale · (c @ modes)`` with its mode coefficients
 c(x) = k(x, X) α, the posterior mean of a Gaussian process with the Matérn 5/2 kernel
 k = a (1 + √5 r + 5r²/3) e^{−√5 r}, r the distance scaled per ratio by the lengths ℓ (Rasmussen
 & Williams 2006, eq. 4.17): by default one kernel serves every mode (:mod:`spsc.studies.
@@ -46,12 +48,15 @@ class _Kernel:
 
 
 class Block:
-    """One field: ``mean``, ``scale`` (outputs), ``modes`` (k × outputs), each mode's
-    standard deviation ``s`` (k) and the GPs of its modes."""
+    """One field or part of one: ``mean``, ``scale`` (outputs), ``modes`` (k × outputs), each
+    mode's standard deviation ``s`` (k), the GPs of its modes, the ``field`` it belongs to and
+    the indices of that field's ``outputs`` it predicts (None: all)."""
 
     def __init__(self, arrays: dict, name: str, X: np.ndarray):
         g = lambda k: arrays[f"{name}.{k}"]  # noqa: E731
         self.mean, self.scale, self.modes, self.s = g("mean"), g("scale"), g("modes"), g("s")
+        self.name, self.field_name = name, name.split("@")[0]
+        self.outputs = arrays.get(f"{name}.outputs")
         self.kernels = [_Kernel(arrays, f"{name}.{j}") for j in range(int(g("groups")))]
         self.loo = g("loo").astype(float)
         self.X = X
@@ -73,7 +78,8 @@ class Block:
 
 
 class FieldModel:
-    """Every block of a fitted surrogate (:data:`spsc.studies.surrogate.fit.BLOCKS`)."""
+    """Every block of a fitted surrogate: the fields of :data:`BLOCKS`, or their parts named
+    in the file's ``blocks``."""
 
     BLOCKS = ("dV", "F", "A", "H", "V0")
 
@@ -82,7 +88,11 @@ class FieldModel:
         self.X = arrays["X"]
         self.risk_X, self.risk = arrays["risk_X"], arrays["risk"]
         self._risk_tree = None
-        self.blocks = {b: Block(arrays, b, self.X) for b in self.BLOCKS}
+        names = [str(v) for v in arrays["blocks"]] if "blocks" in arrays else self.BLOCKS
+        self.blocks = {b: Block(arrays, b, self.X) for b in names}
+        self._sizes = {}  # a field's outputs, over its parts
+        for b in self.blocks.values():
+            self._sizes[b.field_name] = self._sizes.get(b.field_name, 0) + b.mean.size
 
         # the distinct kernels (a shared kernel is evaluated once for every block), each with
         # the mode coefficients of every block it serves side by side
@@ -132,15 +142,22 @@ class FieldModel:
         return {name: c * self.blocks[name].s for name, c in out.items()}
 
     def fields(self, x: np.ndarray, draws: int = 0, rng=None) -> dict:
-        """{block: (m, outputs)} at the unit inputs ``x`` (m × d); with ``draws`` > 0 also
-        ``draws`` posterior samples of each, (draws, m, outputs)."""
+        """{field: (m, outputs)} at the unit inputs ``x`` (m × d), a field's parts put in
+        their places; with ``draws`` > 0 also ``draws`` posterior samples of each,
+        (draws, m, outputs)."""
         out = {}
         for name, c in self.coefficients(x).items():
             blk = self.blocks[name]
-            out[name] = blk.field(c)
+            values = [(blk.field_name, blk.field(c))]
             if draws:
                 z = (rng or np.random.default_rng(0)).standard_normal((draws,) + c.shape)
-                out[name + ".draws"] = blk.field(c + z * blk.std(x))
+                values.append((blk.field_name + ".draws", blk.field(c + z * blk.std(x))))
+            for key, v in values:
+                if blk.outputs is None:
+                    out[key] = v
+                else:
+                    size = self._sizes[blk.field_name]
+                    out.setdefault(key, np.empty(v.shape[:-1] + (size,)))[..., blk.outputs] = v
         return out
 
     def snap_risk(self, x: np.ndarray, levels: np.ndarray, k: int = RISK_NEIGHBOURS):

@@ -16,6 +16,13 @@ share the first's. The shared kernel was the better on the held-out wall curves 
 decisions, "The surrogate") and 35 × less work to evaluate. Each mode's leave-one-out residuals
 at the training designs are kept: the model's error estimate reads its neighbours'.
 
+The levels below :data:`SPLIT_Q` are learnt apart from the others: every field in two parts,
+each with its own components and its own kernel (found on its force's leading mode). At low
+q a thin wall's bending gives way to its tension and the maps change fastest between
+designs: their leave-one-out errors were ten to a hundred times those of the higher levels,
+under the one kernel whose lengths the smooth high levels set (design decisions, "The
+surrogate").
+
 Designs the wall model could not mesh or press over the whole grid are left out and counted;
 designs that snap through stay in (their jump is the map's) and are kept as a flag the model
 reads back for its neighbours.
@@ -28,7 +35,7 @@ import numpy as np
 from spsc.models.surrogate.domain import MU_REF_MPA, TRAVELS, W_REF_MM
 from spsc.models.surrogate.inputs import unit_inputs
 
-__all__ = ["fields_of", "fit_study", "BLOCKS"]
+__all__ = ["fields_of", "fit_study", "BLOCKS", "SPLIT_Q"]
 
 #: the map's blocks, in the order a FieldModel stores them
 BLOCKS = ("dV", "F", "A", "H", "V0")
@@ -82,11 +89,18 @@ def _kernel_fit(X, y, seed, hyper_points: int):
         float(k.k2.noise_level)
 
 
+#: the levels below this q are learnt apart from the rest (their own components and kernel)
+SPLIT_Q = 0.2
+
+
 def fit_study(runs: list[dict], *, free: list[str], keep: float = 1e-6, seed: int = 0,
-              hyper_points: int = 400, shared: str | None = "F", own_kernels: int = 8) -> dict:
+              hyper_points: int = 400, shared: str | None = "F", own_kernels: int = 8,
+              split_q: float | None = SPLIT_Q) -> dict:
     """The arrays of a FieldModel fitted to ``runs`` (:func:`.train.load_runs`): one kernel
     for every mode, found on the leading mode of block ``shared``, or (``shared=None``) own
-    kernels for the ``own_kernels`` leading modes of each block."""
+    kernels for the ``own_kernels`` leading modes of each block. With ``split_q``, the
+    levels below it and the others are two parts of every field (``F@0``, ``F@1``), each with
+    its own components and kernels (None: one part, the fields whole)."""
     from .sample import levels_of
 
     usable = [(r, f) for r in runs if (f := fields_of(r)) is not None]
@@ -96,11 +110,31 @@ def fit_study(runs: list[dict], *, free: list[str], keep: float = 1e-6, seed: in
         if levels_of(r).shape != grid.shape or not np.allclose(levels_of(r), grid, atol=1e-9):
             raise ValueError(f"runs of different pressure levels ({levels_of(r).size} and "
                              f"{grid.size}): extend the study first (spsc surrogate train)")
+    if shared is not None and shared not in BLOCKS:
+        raise ValueError(f"shared: one of {', '.join(BLOCKS)}, or None ({shared!r} here)")
     out = {"free": np.array(free), "X": X, "excluded": np.array(len(runs) - len(usable)),
-           "q_levels": grid, "travels": np.asarray(TRAVELS, float)}
-    # where the wall model snapped or could not press: every design, per level (1 for all
-    # levels of a design it could not mesh or press over the whole grid)
-    levels = grid.size
+           "q_levels": grid, "travels": np.asarray(TRAVELS, float),
+           "risk_X": unit_inputs(np.array([r["ratios"] for r in runs]), free),
+           "risk": _risk(runs, grid.size)}
+    if split_q is None or not 0 < np.sum(grid < split_q) < grid.size:
+        parts = [("", None)]
+    else:
+        parts = [("@0", grid < split_q), ("@1", grid >= split_q)]
+    nt = len(TRAVELS)
+    for suffix, low in parts:
+        cols = {b: None if low is None else np.flatnonzero(
+            np.repeat(low, nt) if b in ("dV", "F", "A") else low) for b in BLOCKS}
+        data = {b: np.array([f[b] if cols[b] is None else f[b][cols[b]] for _, f in usable])
+                for b in BLOCKS}
+        _fit_part(out, X, data, suffix, cols, keep=keep, seed=seed, hyper_points=hyper_points,
+                  shared=shared, own_kernels=own_kernels)
+    out["blocks"] = np.array([b + suffix for suffix, _ in parts for b in BLOCKS])
+    return out
+
+
+def _risk(runs, levels: int) -> np.ndarray:
+    """Where the wall model snapped or could not press: every design, per level (1 for all
+    levels of a design it could not mesh or press over the whole grid)."""
     risk = np.zeros((len(runs), levels))
     for i, r in enumerate(runs):
         if fields_of(r) is None:
@@ -108,17 +142,23 @@ def fit_study(runs: list[dict], *, free: list[str], keep: float = 1e-6, seed: in
             continue
         for level, _, _ in r.get("jumps", np.zeros((0, 3))):
             risk[i, int(level)] = 1.0
-    out["risk_X"] = unit_inputs(np.array([r["ratios"] for r in runs]), free)
-    out["risk"] = risk
-    pcs = {b: _pca(np.array([f[b] for _, f in usable]), keep) for b in BLOCKS}
+    return risk
+
+
+def _fit_part(out, X, data, suffix, cols, *, keep, seed, hyper_points, shared, own_kernels):
+    """The components and Gaussian processes of every block of one part (``data``: block ->
+    designs × its outputs), into ``out`` under the names block + ``suffix``."""
+    pcs = {b: _pca(data[b], keep) for b in BLOCKS}
     if shared is not None:
-        if shared not in BLOCKS:
-            raise ValueError(f"shared: one of {', '.join(BLOCKS)}, or None ({shared!r} here)")
         common = _Factor(X, *_kernel_fit(X, pcs[shared][3][:, 0], seed, hyper_points))
     for b in BLOCKS:
+        name = b + suffix
         mean, scale, modes, C = pcs[b]
         s = C.std(axis=0)
-        out.update({f"{b}.mean": mean, f"{b}.scale": scale, f"{b}.modes": modes, f"{b}.s": s})
+        out.update({f"{name}.mean": mean, f"{name}.scale": scale, f"{name}.modes": modes,
+                    f"{name}.s": s})
+        if cols[b] is not None:
+            out[f"{name}.outputs"] = cols[b]
         if shared is not None:
             groups = [list(range(C.shape[1]))]
         else:
@@ -126,16 +166,15 @@ def fit_study(runs: list[dict], *, free: list[str], keep: float = 1e-6, seed: in
             if C.shape[1] > own_kernels:
                 groups.append(list(range(own_kernels, C.shape[1])))
         loo = np.empty_like(C)
-        for g, cols in enumerate(groups):
+        for g, gcols in enumerate(groups):
             f = common if shared is not None else _Factor(
-                X, *_kernel_fit(X, C[:, cols[0]], seed, hyper_points))
-            alpha, loo[:, cols] = f.solve(C[:, cols] / s[cols])
-            out.update({f"{b}.{g}.cols": np.array(cols), f"{b}.{g}.ell": f.ell,
-                        f"{b}.{g}.amp": np.array(f.amp), f"{b}.{g}.noise": np.array(f.noise),
-                        f"{b}.{g}.alpha": alpha})
-        out[f"{b}.groups"] = np.array(len(groups))
-        out[f"{b}.loo"] = loo.astype(np.float32)
-    return out
+                X, *_kernel_fit(X, C[:, gcols[0]], seed, hyper_points))
+            alpha, loo[:, gcols] = f.solve(C[:, gcols] / s[gcols])
+            out.update({f"{name}.{g}.cols": np.array(gcols), f"{name}.{g}.ell": f.ell,
+                        f"{name}.{g}.amp": np.array(f.amp),
+                        f"{name}.{g}.noise": np.array(f.noise), f"{name}.{g}.alpha": alpha})
+        out[f"{name}.groups"] = np.array(len(groups))
+        out[f"{name}.loo"] = loo.astype(np.float32)
 
 
 class _Factor:
