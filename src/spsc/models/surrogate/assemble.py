@@ -54,8 +54,12 @@ class Maps:
     def grid(self, name, Wd, Wq, rows=slice(None)):
         """A map field at travels and levels of spline weights ``Wd`` (m × k × travels) and
         ``Wq`` (m × k × levels), of the designs ``rows`` (all)."""
-        fq = np.matmul(Wq, np.swapaxes(getattr(self, name)[rows], 1, 2))  # m × k × travels
-        return (Wd * fq).sum(-1)
+        return (Wd * self.at_levels(name, Wq, rows)).sum(-1)
+
+    def at_levels(self, name, Wq, rows=slice(None)):
+        """A map field at the levels of spline weights ``Wq`` (m × k × levels), still over the
+        travels (m × k × travels): :meth:`grid` before its travels' weights."""
+        return np.matmul(Wq, np.swapaxes(getattr(self, name)[rows], 1, 2))
 
 
 def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
@@ -100,8 +104,8 @@ def _solve(maps, sel, y, p_i, Vr, n, iterations, tol) -> dict:
         H, dH = maps.level("H", Wq, rows[a]), maps.level("H", Dq, rows[a])
         V0, dV0 = maps.level("V0", Wq, rows[a]), maps.level("V0", Dq, rows[a])
         Wd, Dd = _D.weights((ya + H - H_i[a]) / h[a])
-        dV = maps.grid("dV", Wd, Wq, rows[a])
-        dV_dd = maps.grid("dV", Dd, Wq, rows[a]) / h[a]
+        fq = maps.at_levels("dV", Wq, rows[a])  # shared by the value and its travel slope
+        dV, dV_dd = (Wd * fq).sum(-1), (Dd * fq).sum(-1) / h[a]
         dV_dq = maps.grid("dV", Wd, Dq, rows[a])
         # a Newton step far out may read the map's cubic continued into negative volumes
         gas = np.maximum(V0 - dV + Vr2[a], 1e-9)

@@ -40,8 +40,10 @@ MU_REF_MPA = 5.0 / 3.0
 #: half and three quarters of the first step and the middles of the next two. With six levels
 #: (denser at low q, 0.1 … 0.82) the training designs' own maps, interpolated, missed the wall's
 #: pressure rise by 2.2 % of its largest value (median; 9 % at the 95th percentile); the
-#: sixteen even ones left 0.2–0.6 %, but 4–22 % on check designs at q < 0.15 in the low mode,
-#: which the five low levels bring to 0.2–1.4 % (design decisions, "The surrogate's levels").
+#: sixteen even ones left 0.2–0.6 %, but on five check designs at q_i < 0.12 the exact maps
+#: missed the low mode's pressure rise by 3.6–22 %, which the five low levels brought to
+#: 0.15–1.4 % for three of them (12.7 % and 5.3 % for the others: a branch and the travels)
+#: (design decisions, "The surrogate").
 Q_UNIFORM_16 = np.linspace(0.0, 0.82, 16)
 Q_LEVELS = np.unique(np.concatenate([Q_UNIFORM_16, (0.82 / 15) * np.array(
     [0.25, 0.5, 0.75, 1.5, 2.5])]))
