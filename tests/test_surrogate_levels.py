@@ -58,11 +58,15 @@ def test_a_surrogate_answers_on_its_files_grid():
     from spsc.models.surrogate.predict import Surrogate, load
 
     shipped = load()
+    assert_array_equal(shipped.q_levels, Q_LEVELS)
+    assert shipped.fields.risk.shape[1] == Q_LEVELS.size
+    maps, _ = shipped.maps(np.array([[11.0, 13.0, 0.0, 1.0, 2.0, 2.2, 0.0]]), 5.0 / 3.0)
+    assert maps.F.shape == (1, TRAVELS.size, Q_LEVELS.size) and maps.qgrid.x.size == 21
+    # a file of an earlier version, which does not state its grid: the sixteen even levels
     arrays = {k: v for k, v in _arrays(shipped).items() if k not in ("q_levels", "travels")}
     legacy = Surrogate(arrays, shipped.meta)
     assert_array_equal(legacy.q_levels, Q_UNIFORM_16)
     assert_array_equal(legacy.travels, TRAVELS)
-    assert legacy.fields.risk.shape[1] == legacy.q_levels.size == shipped.q_levels.size
 
 
 def _arrays(sur) -> dict:

@@ -60,8 +60,8 @@ def surrogate_map(geometry, material, *, setup_kPa: float, top_kPa: float, y_max
                              f"most {d_top * h - (H.max() - H_i):.3g} mm here "
                              f"({d_top:g} h from each pressure's first contact)")
     d = np.maximum(delta, 0.0).ravel()
-    Wd, _ = maps.dgrid.weights(d / h)
-    Wq, _ = maps.qgrid.weights(np.broadcast_to(q, delta.shape).ravel())
+    Wd, _ = maps.dgrid.weights(d / h, slope=False)
+    Wq, _ = maps.qgrid.weights(np.broadcast_to(q, delta.shape).ravel(), slope=False)
     dV, F, A = (maps.grid(k, Wd[None], Wq[None])[0].reshape(delta.shape)
                 for k in ("dV", "F", "A"))
     touching = delta > 1e-9

@@ -44,7 +44,7 @@ class Maps:
 
     def at(self, name, q):
         """A per-level field (``H`` or ``V0``) at the levels q (m × k)."""
-        return self.level(name, self.qgrid.weights(np.asarray(q, float))[0])
+        return self.level(name, self.qgrid.weights(np.asarray(q, float), slope=False)[0])
 
     def level(self, name, Wq, rows=slice(None)):
         """A per-level field at the levels whose spline weights are ``Wq`` (m × k × levels),
@@ -86,7 +86,7 @@ def _solve(maps, sel, y, p_i, Vr, n, iterations, tol) -> dict:
     unit, h = maps.unit[rows, None], maps.h[rows, None]
     n2, Vr2 = n[:, None], Vr[:, None]
     qi = (p_i / maps.unit[rows])[:, None] * np.ones_like(y)
-    Wi, _ = _Q.weights(qi[:, :1])
+    Wi, _ = _Q.weights(qi[:, :1], slope=False)
     H_i, V0_i = maps.level("H", Wi, rows), maps.level("V0", Wi, rows)
     C = (p_i[:, None] + P_AMB_KPA) * np.maximum(V0_i + Vr2, 1e-9) ** n2
     q = qi.copy()
@@ -120,10 +120,10 @@ def _solve(maps, sel, y, p_i, Vr, n, iterations, tol) -> dict:
         inside = (step > la) & (step < ha)
         q[a] = np.where(da, qa, np.where(inside, step, 0.5 * (la + ha)))
         done[a], lo[a], hi[a] = da, la, ha
-    Wq, _ = _Q.weights(q)
+    Wq, _ = _Q.weights(q, slope=False)
     H, V0 = maps.level("H", Wq, rows), maps.level("V0", Wq, rows)
     delta = y + H - H_i
-    Wd, _ = _D.weights(delta / h)
+    Wd, _ = _D.weights(delta / h, slope=False)
     dV, F, A = (maps.grid(k, Wd, Wq, rows) for k in ("dV", "F", "A"))
     return {"pressure_kPa": q * unit, "force_N": F, "contact_area_mm2": A,
             "volume_change_mm3": V0_i - V0 + dV, "delta_mm": delta, "q": q,

@@ -24,9 +24,9 @@ class SplineGrid:
         A[-1, -3:] = -1 / h[-2], 1 / h[-2] + 1 / h[-1], -1 / h[-1]
         self.x, self.h, self.M = x, h, np.linalg.solve(A, R)  # second derivatives = M @ f
 
-    def weights(self, t) -> tuple[np.ndarray, np.ndarray]:
+    def weights(self, t, slope: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
         """(β(t), β′(t)): (… × n) each, the value's and the slope's weights (the end
-        intervals' cubics continue beyond the grid)."""
+        intervals' cubics continue beyond the grid); β′ None without ``slope``."""
         t = np.asarray(t, float)
         x, M = self.x, self.M
         i = np.clip(np.searchsorted(x, t) - 1, 0, x.size - 2)
@@ -34,10 +34,14 @@ class SplineGrid:
         a, b = (x[i + 1] - t) / h, (t - x[i]) / h
         Mi, Mj = M[i], M[i + 1]
         W = ((a**3 - a) * h * h / 6)[..., None] * Mi + ((b**3 - b) * h * h / 6)[..., None] * Mj
-        D = (-(3 * a * a - 1) * h / 6)[..., None] * Mi + ((3 * b * b - 1) * h / 6)[..., None] * Mj
+        parts = [(W, a, b)]
+        D = None
+        if slope:
+            D = (-(3 * a * a - 1) * h / 6)[..., None] * Mi + ((3 * b * b - 1) * h / 6)[..., None] * Mj
+            parts.append((D, -1.0 / h, 1.0 / h))
         # the linear part: a at node i and b at node i + 1 (flat indices, no n × n identity)
         at = np.arange(i.size) * x.size + i.ravel()
-        for out, lo, hi in ((W, a, b), (D, -1.0 / h, 1.0 / h)):
+        for out, lo, hi in parts:
             flat = out.reshape(-1)
             flat[at] += np.ravel(lo)
             flat[at + 1] += np.ravel(hi)
