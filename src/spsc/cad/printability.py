@@ -188,14 +188,16 @@ def _wall(g: SPSCGeometry, bore: float):
     d, _ = _point_polyline(cav, outer)
     d2, at2 = _point_polyline(outer, cav)
     best = min(d.min(), d2.min())
+    # the far half only matters for points within ``best`` of the axis, and only its segments
+    # with an end within ``best`` of it (it lies at x <= 0): those, every one, exactly
     mirror = outer * [-1.0, 1.0]
     near_axis = cav[:, 0] < best
     if near_axis.any():
-        d3, _ = _point_polyline(cav[near_axis], mirror)
+        d3, _ = _point_segments_near_axis(cav[near_axis], mirror, best)
         d[near_axis] = np.minimum(d[near_axis], d3)
     near_axis = outer[:, 0] < best
     if near_axis.any():
-        d4, at4 = _point_polyline(mirror[near_axis], cav)
+        d4, at4 = _point_segments_near_axis(mirror[near_axis], cav, best)
         closer = d4 < d2[near_axis]
         d2[np.flatnonzero(near_axis)[closer]] = d4[closer]
         at2[np.flatnonzero(near_axis)[closer]] = at4[closer]
@@ -222,6 +224,21 @@ def _point_polyline(p: np.ndarray, line: np.ndarray, k: int = 10):
             closer = d2 < d
             d[closer], near[closer] = d2[closer], near2[closer]
     return d, near
+
+
+def _point_segments_near_axis(p: np.ndarray, line: np.ndarray, reach: float):
+    """:func:`_point_polyline` of points ``p`` near the axis (x < ``reach``) to the ``line``
+    on the other side of it (x <= 0, or x >= 0 for the points on the far side), measured to
+    every segment with an end within ``reach`` of the axis: a segment farther from the axis
+    than ``reach`` is farther than that from the point, and cannot make the wall's minimum,
+    which is at most ``reach``. Points with no such segment are at infinity."""
+    L = line[:, 0] + 1j * line[:, 1]
+    near = np.abs(line[:, 0]) < reach
+    seg = np.flatnonzero(near[:-1] | near[1:])
+    P = p[:, 0] + 1j * p[:, 1]
+    if seg.size == 0:
+        return np.full(len(p), np.inf), P.copy()
+    return _point_segments(P, L, np.broadcast_to(seg, (len(P), seg.size)))
 
 
 def _point_segments(P: np.ndarray, L: np.ndarray, seg: np.ndarray):
