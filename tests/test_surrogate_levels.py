@@ -114,3 +114,23 @@ def test_a_field_learnt_in_parts_is_put_together_in_its_places(split_q):
         # the GP interpolates its training designs up to its fitted noise: 1e-3 of the range
         assert np.abs(got[b] - want).max() <= 1e-3 * np.ptp(want), b
         assert got[b + ".draws"].shape == (2,) + want.shape
+
+
+def test_a_press_that_runs_off_the_map_says_so_not_that_the_gas_law_failed():
+    """A closed dome whose last travels need more travel than the map holds at the pressure
+    they reach (a sweep row of 100 000): those points are the map's limit, named as such."""
+    from spsc.cad.geometry import SPSCGeometry
+    from spsc.core.setup import Setup
+    from spsc.materials import material
+    from spsc.models import get
+
+    g = SPSCGeometry(w=9.25976294186, h=11.6508517933, l=0.0, t0=0.873834130774,
+                     n1=2.30862849189, n2=3.5891785049, cy=0.00452865563331)
+    setup = Setup.of(g, material("tpu60a"), pressure_kPa=17.5368825473, stroke_mm=6.0,
+                     points=25)
+    entry = get("surrogate")
+    curve = entry.curve(setup, entry.Options()).curve
+    off = ~np.asarray(curve.converged)
+    assert off.any() and not off[:20].any()
+    assert all("beyond the surrogate's map" in m for m, o in zip(curve.message, off) if o)
+    assert all("did not converge" not in m for m in curve.message)

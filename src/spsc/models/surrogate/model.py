@@ -170,7 +170,10 @@ def _to_curve(setup, sur, out, y, notes, allow, seconds, cavity=None):
               f"past {sur.travels[-1]:g} h or the pressure past {sur.q_levels[-1]:g} μ t0/w)")
     msg = ["" if ok else (beyond + (": extrapolated" if allow else ""))
            for ok in inside]
-    msg = [m if s else "the gas law did not converge on the map" for m, s in zip(msg, solved)]
+    # a solve that ran off the map (its bracket's top, 4 × the highest level) is the map's
+    # limit, said as such; only inside the map is a failed solve the gas law's
+    msg = [m if s or not ok else "the gas law did not converge on the map"
+           for m, s, ok in zip(msg, solved, inside)]
     conv = solved & (inside | allow)
     risk = float(out["snap_risk"][0])
     snap = ""
