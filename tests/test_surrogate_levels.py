@@ -134,3 +134,34 @@ def test_a_press_that_runs_off_the_map_says_so_not_that_the_gas_law_failed():
     assert off.any() and not off[:20].any()
     assert all("beyond the surrogate's map" in m for m, o in zip(curve.message, off) if o)
     assert all("did not converge" not in m for m in curve.message)
+
+
+def test_the_check_scores_what_the_surrogate_answers_and_counts_the_rest():
+    """A point the surrogate marks past its map (NaN in its curve) is counted, not scored;
+    a curve whose end it does not answer has no mean stiffness or sensitivity to compare."""
+    from spsc.studies.surrogate.check import compare, summary
+
+    y = np.linspace(0.0, 4.0, 5)
+    wall = {"y": y, "F": 2.0 * y, "P": 40.0 + y, "converged": np.ones(5, bool), "jumps": 0,
+            "instability": "", "seconds": 1.0}
+    case = {"geometry": {"w": 11.0, "h": 13.0, "l": 0.0, "t0": 1.0, "n1": 2.0, "n2": 2.2,
+                         "cy": 0.0}, "pressure_kPa": 40.0, "polytropic_n": 1.0,
+            "stroke_mm": 4.0, "points": 5, "high": wall, "low": wall}
+
+    class Stub:
+        def curves(self, params, mu, y, p_i, reservoir, n, draws=0, rng=None):
+            F, P = np.array([2.0 * y[0] * 1.01] * 2), np.array([40.0 + y[0]] * 2)
+            F[:, -1] = 1e9  # the last point ran off the map: a value no user sees
+            inside = np.ones((2, 5), bool)
+            inside[:, -1] = False
+            return {"force_N": F, "pressure_kPa": P, "force_err_N": np.ones((2, 5)),
+                    "pressure_err_kPa": np.ones((2, 5)), "converged": np.ones((2, 5), bool),
+                    "inside": inside, "snap_risk": np.zeros(2)}
+
+    result = compare(Stub(), [case])
+    s = summary(result)
+    assert s["unanswered_points"] == 2
+    assert result["points"]["force"].size == 8  # 4 answered points of each mode
+    # the largest answered error: 1 % of F = 6 N at y = 3 mm, over the wall's largest 8 N
+    assert s["force"]["max"] == pytest.approx(0.01 * 6.0 / 8.0, rel=1e-12)
+    assert all(np.isnan(r["stiffness_err"]) for r in result["rows"])

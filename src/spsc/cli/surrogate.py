@@ -165,7 +165,8 @@ def _check(args) -> int:
         print(f"{label:34s} {100 * q['median']:7.2f}% {100 * q['p95']:7.2f}% "
               f"{100 * q['max']:7.2f}%")
     print(f"stated error covers the true error: force {100 * s['coverage_force']:.1f} %, "
-          f"pressure {100 * s['coverage_pressure']:.1f} % of points")
+          f"pressure {100 * s['coverage_pressure']:.1f} % of points; "
+          f"{s['unanswered_points']} points past the surrogate's map (not answered, not scored)")
     print(f"flagged (near designs that snap through): {s['flagged']} of {s['curves']} curves, "
           f"{s['snapping_flagged']} of the {s['snapping']} whose wall solve snapped")
     if "unflagged" in s:

@@ -41,10 +41,11 @@ def check_figure(result: dict, path) -> None:
         ax.set_ylabel("largest force error (%)")
     axes.flat[1].legend(frameon=False, fontsize=8)
     ax = axes.flat[-1]
-    ax.hist([100 * r["stiffness_err"] for r in rows], bins=30, histtype="step",
-            label="mean stiffness")
-    ax.hist([100 * r["sensitivity_err"] for r in rows], bins=30, histtype="step",
-            label="mean sensitivity")
+    for key, label in (("stiffness_err", "mean stiffness"), ("sensitivity_err",
+                                                             "mean sensitivity")):
+        # a curve whose end the surrogate does not answer has no metric (NaN): left out
+        ax.hist([100 * r[key] for r in rows if np.isfinite(r[key])], bins=30,
+                histtype="step", label=label)
     ax.set_xlabel("error per curve (%)")
     ax.set_ylabel("curves")
     ax.legend(frameon=False, fontsize=8)

@@ -6,7 +6,10 @@ wall curves on Dask, the surrogate's beside them.
 Errors are the issue's measures: at every point, the force's and the pressure rise's error
 relative to that curve's largest value (of the wall's); per curve, the mean stiffness
 (F(end) − F(0))/stroke and the mean sensitivity (P(end) − P(0))/stroke, relative; the stated
-error's coverage, the share of points whose true error is within it.
+error's coverage, the share of points whose true error is within it. They are taken where the
+surrogate answers, as a user gets it: a point it marks past its map (not converged, NaN in its
+curve) is counted apart (``unanswered``), not scored, and a curve whose end it does not answer
+has no mean stiffness or sensitivity to compare.
 """
 
 from __future__ import annotations
@@ -117,23 +120,26 @@ def compare(surrogate, results: list[dict], *, draws: int = 32, seed: int = 0) -
         g = res["geometry"]
         for j, (mode, _) in enumerate(MODES):
             w = res[mode]
-            eF, eP = s["force_N"][j] - w["F"], s["pressure_kPa"][j] - w["P"]
+            ok = s["converged"][j] & s["inside"][j]  # what the surrogate answers
+            eF, eP = (s["force_N"][j] - w["F"])[ok], (s["pressure_kPa"][j] - w["P"])[ok]
             fmax, pmax = np.abs(w["F"]).max(), np.abs(w["P"] - w["P"][0]).max()
             points["force"].append(np.abs(eF) / fmax)
             points["pressure"].append(np.abs(eP) / pmax)
-            points["force_cov"].append(np.abs(eF) <= s["force_err_N"][j] + 1e-12)
-            points["pressure_cov"].append(np.abs(eP) <= s["pressure_err_kPa"][j] + 1e-12)
+            points["force_cov"].append(np.abs(eF) <= s["force_err_N"][j][ok] + 1e-12)
+            points["pressure_cov"].append(np.abs(eP) <= s["pressure_err_kPa"][j][ok] + 1e-12)
             stroke = w["y"][-1]
             k_w = (w["F"][-1] - w["F"][0]) / stroke
             k_s = (s["force_N"][j][-1] - s["force_N"][j][0]) / stroke
             sen_w = (w["P"][-1] - w["P"][0]) / stroke
             sen_s = (s["pressure_kPa"][j][-1] - s["pressure_kPa"][j][0]) / stroke
+            end = bool(ok[0] and ok[-1])
             rows.append({**g, "pressure_kPa": res["pressure_kPa"], "mode": mode,
                          "polytropic_n": res["polytropic_n"], "stroke_mm": stroke,
-                         "force_err": float(np.max(points["force"][-1])),
-                         "pressure_err": float(np.max(points["pressure"][-1])),
-                         "stiffness_err": abs(k_s - k_w) / abs(k_w),
-                         "sensitivity_err": abs(sen_s - sen_w) / abs(sen_w),
+                         "unanswered": int(np.count_nonzero(~ok)),
+                         "force_err": float(np.max(points["force"][-1], initial=0.0)),
+                         "pressure_err": float(np.max(points["pressure"][-1], initial=0.0)),
+                         "stiffness_err": abs(k_s - k_w) / abs(k_w) if end else np.nan,
+                         "sensitivity_err": abs(sen_s - sen_w) / abs(sen_w) if end else np.nan,
                          "inside": bool(np.all(s["inside"][j])),
                          "snaps": int(w.get("jumps", 0)) > 0 or bool(w.get("instability")),
                          "flagged": bool(s["snap_risk"][j] >= RISK_FLAG),
@@ -147,9 +153,16 @@ def summary(result: dict) -> dict:
     the coverage of the stated error; and the per-curve largest errors of the curves the
     surrogate flags (near designs that snap through) and of the others."""
     p, rows = result["points"], result["rows"]
-    q = lambda a: {"median": float(np.median(a)), "p95": float(np.percentile(a, 95)),  # noqa
-                   "max": float(np.max(a))}
+    def q(a):
+        a = np.asarray(a, float)
+        a = a[np.isfinite(a)]  # a curve whose end the surrogate does not answer: no metric
+        if a.size == 0:
+            return {"median": np.nan, "p95": np.nan, "max": np.nan}
+        return {"median": float(np.median(a)), "p95": float(np.percentile(a, 95)),
+                "max": float(np.max(a))}
+
     out = {"curves": len(rows), "skipped_cases": result["skipped"],
+           "unanswered_points": sum(r.get("unanswered", 0) for r in rows),
            "force": q(p["force"]), "pressure": q(p["pressure"]),
            "stiffness": q([r["stiffness_err"] for r in rows]),
            "sensitivity": q([r["sensitivity_err"] for r in rows]),
