@@ -108,8 +108,9 @@ def fit_study(runs: list[dict], *, free: list[str], keep: float = 1e-6, seed: in
     X = unit_inputs(np.array([r["ratios"] for r, _ in usable]), free)
     grid = levels_of(usable[0][0])
     for r, _ in usable:
-        if levels_of(r).shape != grid.shape or not np.allclose(levels_of(r), grid, atol=1e-9):
-            raise ValueError(f"runs of different pressure levels ({levels_of(r).size} and "
+        lv = levels_of(r)
+        if lv.shape != grid.shape or not np.allclose(lv, grid, atol=1e-9):
+            raise ValueError(f"runs of different pressure levels ({lv.size} and "
                              f"{grid.size}): extend the study first (spsc surrogate train)")
     if shared is not None and shared not in BLOCKS:
         raise ValueError(f"shared: one of {', '.join(BLOCKS)}, or None ({shared!r} here)")

@@ -21,7 +21,10 @@ import numpy as np
 from spsc.models.surrogate.domain import MU_REF_MPA, Q_LEVELS, TRAVELS, W_REF_MM, \
     pressure_unit_kPa
 
-__all__ = ["geometry_of", "run_design", "extend_run", "levels_of"]
+__all__ = ["geometry_of", "run_design", "extend_run", "levels_of", "level_index"]
+
+#: a run's arrays over its levels (the last axis)
+_MAP_KEYS = ("top_mm", "free_volume_mm3", "volume_mm3", "force_N", "area_mm2")
 
 
 def geometry_of(ratios):
@@ -114,6 +117,14 @@ def levels_of(run: dict) -> np.ndarray:
     return np.asarray(run["pressure_kPa"], float) / pressure_unit_kPa(g.w, g.t0, MU_REF_MPA)
 
 
+def level_index(old, levels) -> list[int]:
+    """For each of ``levels``, the index of the same level (within 1e-9) among ``old``, or
+    -1 where ``old`` lacks it."""
+    old = np.asarray(old, float)
+    return [int(np.argmin(np.abs(old - q))) if old.size and np.min(np.abs(old - q)) <= 1e-9
+            else -1 for q in levels]
+
+
 def extend_run(run: dict, levels=None, settings=None) -> dict:
     """The run on the grid ``levels`` (None: :data:`~spsc.models.surrogate.domain.Q_LEVELS`)
     whose old levels (within 1e-9) are kept from ``run`` and the others computed by
@@ -121,8 +132,7 @@ def extend_run(run: dict, levels=None, settings=None) -> dict:
     ``seconds`` adds the new levels' time to the old; ``messages`` follow the new grid."""
     levels = Q_LEVELS if levels is None else np.asarray(levels, float)
     old = levels_of(run)
-    where = [int(np.argmin(np.abs(old - q))) if np.min(np.abs(old - q)) <= 1e-9 else -1
-             for q in levels]
+    where = level_index(old, levels)
     new = [q for q, k in zip(levels, where) if k < 0]
     ballooned = old[~np.isfinite(run["top_mm"])]
     new = [q for q in new if not (ballooned.size and q > ballooned.min())]
@@ -132,7 +142,7 @@ def extend_run(run: dict, levels=None, settings=None) -> dict:
     merged["q_levels"] = levels
     merged["pressure_kPa"] = levels * pressure_unit_kPa(g.w, g.t0, MU_REF_MPA)
     msgs, jumps = [], []
-    for key in ("top_mm", "free_volume_mm3", "volume_mm3", "force_N", "area_mm2"):
+    for key in _MAP_KEYS:
         a = np.asarray(run[key])
         merged[key] = np.full(a.shape[:-1] + (len(levels),), np.nan)
     for j, (q, k) in enumerate(zip(levels, where)):
@@ -140,7 +150,7 @@ def extend_run(run: dict, levels=None, settings=None) -> dict:
         if col < 0:
             msgs.append("not computed: it balloons at a lower level")
             continue
-        for key in ("top_mm", "free_volume_mm3", "volume_mm3", "force_N", "area_mm2"):
+        for key in _MAP_KEYS:
             merged[key][..., j] = np.asarray(src[key])[..., col]
         msgs.append(str(src["messages"][col]) if col < len(src["messages"]) else "")
         jumps += [(j, y, df) for lv, y, df in np.asarray(src["jumps"]).reshape(-1, 3)
