@@ -7,7 +7,8 @@ on designs it never saw.
                          [--workers N | --scheduler ADDR] [--quiet]
 
 ``train`` samples the domain (a scrambled Sobol sequence), computes the wall maps of each
-design on Dask (one file per design in DIR/runs: a re-run resumes), fits them and calibrates
+design on Dask (one file per design in DIR/runs: a re-run resumes, and a study of fewer
+pressure levels than this version's computes only those it lacks), fits them and calibrates
 the stated error on fresh wall curves: DIR/surrogate.npz, for ``spsc curve --model surrogate
 --surrogate DIR/surrogate.npz``. ``check`` runs fresh designs (another seed) through the wall
 model and the surrogate (FILE, default the shipped one) and prints the error table; with
@@ -43,7 +44,7 @@ def register(subparsers) -> None:
     t = sub.add_parser("train", help="wall maps of sampled designs on Dask, the fit, the "
                        "calibrated error: DIR/surrogate.npz")
     t.add_argument("--out", required=True, metavar="DIR", help="the study folder (a re-run "
-                   "resumes)")
+                   "resumes; one of fewer pressure levels is extended)")
     t.add_argument("--designs", type=integer("designs"), default=1024, metavar="N",
                    help="designs sampled (default 1024)")
     t.add_argument("--family", default="dome", metavar="dome",
