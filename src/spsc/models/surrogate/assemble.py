@@ -35,12 +35,30 @@ class Maps:
     ``A`` (m × travels × levels), the travels' scale ``h`` (m) mm (δ = travel · h), the
     pressure of q = 1 ``unit`` (m) kPa, and the splines of the map's grid: ``qgrid`` over its
     levels q, ``dgrid`` over its travels δ/h (:class:`.spline.SplineGrid`; the surrogate file's
-    own grid)."""
+    own grid).
 
-    def __init__(self, H, V0, dV, F, A, h, unit, qgrid: SplineGrid, dgrid: SplineGrid):
-        self.H, self.V0, self.dV, self.F, self.A = H, V0, dV, F, A
+    Held stacked, as the solve reads them: ``levels`` (m × levels × 2: H, V0) and ``fields``
+    (m × levels × 3 × travels: ΔV, F, A); ``H`` … ``A`` are views of them. :meth:`of` builds
+    the stacks from the separate arrays."""
+
+    FIELDS = ("dV", "F", "A")
+
+    def __init__(self, levels, fields, h, unit, qgrid: SplineGrid, dgrid: SplineGrid):
+        self.levels, self.fields = levels, fields
         self.h, self.unit = np.asarray(h, float), np.asarray(unit, float)
         self.qgrid, self.dgrid = qgrid, dgrid
+
+    @classmethod
+    def of(cls, H, V0, dV, F, A, h, unit, qgrid: SplineGrid, dgrid: SplineGrid) -> "Maps":
+        """The maps of the separate arrays (shapes as the attributes)."""
+        fields = np.stack([np.swapaxes(f, 1, 2) for f in (dV, F, A)], axis=2)
+        return cls(np.stack([H, V0], axis=-1), fields, h, unit, qgrid, dgrid)
+
+    H = property(lambda self: self.levels[..., 0])
+    V0 = property(lambda self: self.levels[..., 1])
+    dV = property(lambda self: np.swapaxes(self.fields[:, :, 0], 1, 2))
+    F = property(lambda self: np.swapaxes(self.fields[:, :, 1], 1, 2))
+    A = property(lambda self: np.swapaxes(self.fields[:, :, 2], 1, 2))
 
     def at(self, name, q):
         """A per-level field (``H`` or ``V0``) at the levels q (m × k)."""
@@ -59,7 +77,7 @@ class Maps:
     def at_levels(self, name, Wq, rows=slice(None)):
         """A map field at the levels of spline weights ``Wq`` (m × k × levels), still over the
         travels (m × k × travels): :meth:`grid` before its travels' weights."""
-        return np.matmul(Wq, np.swapaxes(getattr(self, name)[rows], 1, 2))
+        return np.matmul(Wq, self.fields[rows, :, self.FIELDS.index(name)])
 
 
 def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
@@ -83,12 +101,13 @@ def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
 def _solve(maps, sel, y, p_i, Vr, n, iterations, tol) -> dict:
     rows = np.arange(maps.h.size)[sel]
     _Q, _D = maps.qgrid, maps.dgrid
-    unit, h = maps.unit[rows, None], maps.h[rows, None]
-    n2, Vr2 = n[:, None], Vr[:, None]
-    qi = (p_i / maps.unit[rows])[:, None] * np.ones_like(y)
+    levels, fields = maps.levels[sel], maps.fields[sel]
+    unit, h = maps.unit[sel, None], maps.h[sel, None]
+    m, nt = len(rows), maps.dgrid.x.size
+    qi = (p_i / maps.unit[sel])[:, None] * np.ones_like(y)
     Wi, _ = _Q.weights(qi[:, :1], slope=False)
-    H_i, V0_i = maps.level("H", Wi, rows), maps.level("V0", Wi, rows)
-    C = (p_i[:, None] + P_AMB_KPA) * np.maximum(V0_i + Vr2, 1e-9) ** n2
+    H_i, V0_i = np.matmul(Wi, levels)[:, 0].T[:, :, None]  # each m × 1
+    C = (p_i[:, None] + P_AMB_KPA) * np.maximum(V0_i + Vr[:, None], 1e-9) ** n[:, None]
     q = qi.copy()
     lo, hi = qi.copy(), np.full_like(y, _Q.x[-1] * 4.0)
     done = np.zeros(y.shape, bool)
@@ -99,21 +118,26 @@ def _solve(maps, sel, y, p_i, Vr, n, iterations, tol) -> dict:
         a = np.flatnonzero(~done.all(axis=1))
         if a.size == 0:
             break
-        qa, ya = q[a], y[a]
+        if a.size == m:
+            a = slice(None)  # every design: views, not copies
+        qa, ya, k = q[a], y[a], y.shape[1]
         Wq, Dq = _Q.weights(qa)
-        H, dH = maps.level("H", Wq, rows[a]), maps.level("H", Dq, rows[a])
-        V0, dV0 = maps.level("V0", Wq, rows[a]), maps.level("V0", Dq, rows[a])
-        Wd, Dd = _D.weights((ya + H - H_i[a]) / h[a])
-        fq = maps.at_levels("dV", Wq, rows[a])  # shared by the value and its travel slope
-        dV, dV_dd = (Wd * fq).sum(-1), (Dd * fq).sum(-1) / h[a]
-        dV_dq = maps.grid("dV", Wd, Dq, rows[a])
+        WD = np.concatenate([Wq, Dq], axis=1)  # value and q-slope weights, one product each
+        r = np.matmul(WD, levels[a])
+        H, V0, dH, dV0 = r[:, :k, 0], r[:, :k, 1], r[:, k:, 0], r[:, k:, 1]
+        ha_ = h[a]
+        Wd, Dd = _D.weights((ya + H - H_i[a]) / ha_)
+        fq = np.matmul(WD, fields[a][:, :, 0])  # ΔV over the travels at q, and its q-slope
+        f0, f1 = fq[:, :k], fq[:, k:]
+        dV, dV_dd, dV_dq = (Wd * f0).sum(-1), (Dd * f0).sum(-1) / ha_, (Wd * f1).sum(-1)
         # a Newton step far out may read the map's cubic continued into negative volumes
-        gas = np.maximum(V0 - dV + Vr2[a], 1e-9)
+        na, Ca = n[a, None], C[a]
+        gas = np.maximum(V0 - dV + Vr[a, None], 1e-9)
+        gn = gas ** na
         P = qa * unit[a] + P_AMB_KPA
-        G = P * gas ** n2[a] - C[a]
-        dG = unit[a] * gas ** n2[a] + P * n2[a] * gas ** (n2[a] - 1) * (
-            dV0 - dV_dd * dH - dV_dq)
-        da = done[a] | (np.abs(G) <= tol * C[a])
+        G = P * gn - Ca
+        dG = unit[a] * gn + P * na * (gn / gas) * (dV0 - dV_dd * dH - dV_dq)
+        da = done[a] | (np.abs(G) <= tol * Ca)
         la = np.where(G < 0, qa, lo[a])
         ha = np.where(G > 0, qa, hi[a])
         step = np.where(dG > 0, qa - G / np.where(dG > 0, dG, 1.0), np.nan)
@@ -121,10 +145,12 @@ def _solve(maps, sel, y, p_i, Vr, n, iterations, tol) -> dict:
         q[a] = np.where(da, qa, np.where(inside, step, 0.5 * (la + ha)))
         done[a], lo[a], hi[a] = da, la, ha
     Wq, _ = _Q.weights(q, slope=False)
-    H, V0 = maps.level("H", Wq, rows), maps.level("V0", Wq, rows)
+    H, V0 = np.moveaxis(np.matmul(Wq, levels), 2, 0)
     delta = y + H - H_i
     Wd, _ = _D.weights(delta / h, slope=False)
-    dV, F, A = (maps.grid(k, Wd, Wq, rows) for k in ("dV", "F", "A"))
+    k = y.shape[1]
+    dV, F, A = np.moveaxis((np.matmul(Wq, fields.reshape(m, -1, 3 * nt)).reshape(m, k, 3, nt)
+                            * Wd[:, :, None, :]).sum(-1), 2, 0)
     return {"pressure_kPa": q * unit, "force_N": F, "contact_area_mm2": A,
             "volume_change_mm3": V0_i - V0 + dV, "delta_mm": delta, "q": q,
             "converged": done, "top_mm": H_i[:, 0], "inflated_volume_mm3": V0_i[:, 0]}

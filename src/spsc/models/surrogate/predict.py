@@ -96,7 +96,7 @@ class Surrogate:
 
         def build(get):
             grid = lambda b: get(b).reshape(-1, nq, nt).transpose(0, 2, 1)  # noqa: E731
-            return Maps(get("H") * w[:, None], get("V0") * w[:, None] ** 3,
+            return Maps.of(get("H") * w[:, None], get("V0") * w[:, None] ** 3,
                         grid("dV") * (w**3)[:, None, None],
                         grid("F") * (mu * t0 * w)[:, None, None],
                         grid("A") * (w**2)[:, None, None], h, 1000.0 * mu * t0 / w,
