@@ -249,7 +249,9 @@ class SPSCGeometry:
         X[0], Y[0], X[-1], Y[-1] = 0.0, self.h, self.w, 0.0
         nx, nz = self.outward_normal(X, Y)
         nx[0], nz[0] = 0.0, 1.0
-        theta = np.unwrap(np.arctan2(nz, nx))
+        theta = np.arctan2(nz, nx)
+        if np.abs(np.diff(theta)).max() >= math.pi:  # nx >= 0: never, np.unwrap a no-op
+            theta = np.unwrap(theta)
         ds = np.hypot(np.diff(X), np.diff(Y)) + self.t0 * np.abs(np.diff(theta))
         s = np.concatenate([[0.0], np.cumsum(ds)])
         keep = np.concatenate([[True], np.diff(s) > 0])
@@ -353,16 +355,20 @@ def _fan_corners(pts, nrm, max_turn=math.radians(3.0)):
     return np.array(out_p), np.array(out_n)
 
 
+#: the offsets of :func:`_dense_u`'s clustered points from where a derivative is infinite
+_CLUSTER = np.geomspace(1e-12, 0.2, 600)
+
+
 def _dense_u(g: SPSCGeometry) -> np.ndarray:
     """A dense parameter grid on [0, π − Δu], clustered geometrically where X(u) or Y(u) have
     infinite derivative (u = 0, u = π/2) so power-law ends are resolved."""
     umax = math.pi - g.delta_u
-    parts = [np.linspace(0.0, umax, 6001), np.geomspace(1e-12, 0.2, 600)]
+    d = _CLUSTER
+    parts = [np.linspace(0.0, umax, 6001), d]
     if umax > math.pi / 2:
-        d = np.geomspace(1e-12, 0.2, 600)
         parts += [math.pi / 2 - d, math.pi / 2 + d]
     else:
-        parts.append(umax - np.geomspace(1e-12, 0.2, 600))
+        parts.append(umax - d)
     u = np.concatenate(parts)
     return np.unique(np.clip(u, 0.0, umax))
 
