@@ -1,7 +1,7 @@
 """``spsc surrogate``: train the wall model's surrogate, and check one against the wall model
 on designs it never saw.
 
-    spsc surrogate train --out DIR [--designs N] [--family dome] [--calibration N] [--seed S]
+    spsc surrogate train --out DIR [--designs N] [--family F] [--calibration N] [--seed S]
                          [--workers N | --scheduler ADDR] [--quiet]
     spsc surrogate check [FILE] --samples N [--seed S] [--out DIR]
                          [--workers N | --scheduler ADDR] [--quiet]
@@ -11,7 +11,8 @@ design on Dask (one file per design in DIR/runs: a re-run resumes, and a study o
 pressure levels than this version's computes only those it lacks), fits them and calibrates
 the stated error on fresh wall curves: DIR/surrogate.npz, for ``spsc curve --model surrogate
 --surrogate DIR/surrogate.npz``. ``check`` runs fresh designs (another seed) through the wall
-model and the surrogate (FILE, default the shipped one) and prints the error table; with
+model and the surrogate (FILE, or a shipped one by its family: dome, the default, or table1)
+and prints the error table; with
 --out, the table (CSV), the summary (JSON) and a figure.
 """
 
@@ -47,8 +48,10 @@ def register(subparsers) -> None:
                    "resumes; one of fewer pressure levels is extended)")
     t.add_argument("--designs", type=integer("designs"), default=1024, metavar="N",
                    help="designs sampled (default 1024)")
-    t.add_argument("--family", default="dome", metavar="dome",
-                   help="the design family (dome: l = 0, the one trained so far)")
+    t.add_argument("--family", default="dome", metavar="dome|table1|stadium",
+                   help="the design family: dome (l = 0), table1 (the stadiums of Table 1's "
+                   "proportions h/w 13/11, l/w 3/11, t0/w 1/11, their shape free) or "
+                   "stadium (every ratio free); default dome")
     t.add_argument("--calibration", type=integer("calibration"), default=100, metavar="N",
                    help="fresh wall cases the stated error is calibrated on (default 100)")
     t.add_argument("--seed", type=integer("seed"), default=0, metavar="S",
@@ -57,7 +60,8 @@ def register(subparsers) -> None:
     c = sub.add_parser("check", help="fresh designs through the wall model and the "
                        "surrogate: the error table")
     c.add_argument("file", nargs="?", default=None, metavar="FILE",
-                   help="a surrogate file (default: the shipped one)")
+                   help="a surrogate file, or a shipped one by its family (dome, table1; "
+                   "default dome)")
     c.add_argument("--samples", type=integer("samples"), default=200, metavar="N",
                    help="fresh designs (default 200; two curves each: both modes)")
     c.add_argument("--seed", type=integer("seed"), default=0, metavar="S",
@@ -93,9 +97,8 @@ def _prepare(args):
     if args.action == "train":
         from spsc.studies.surrogate.train import FAMILIES
 
-        if args.family != "dome":
-            raise ParameterError("family", args.family, "dome (the stadium family is not "
-                                 f"trained yet; families: {', '.join(FAMILIES)})")
+        if args.family not in FAMILIES:
+            raise ParameterError("family", args.family, "one of " + ", ".join(FAMILIES))
         _count("designs", args.designs, 16, 1_000_000)
         _count("calibration", args.calibration, 10, 10_000)
         check_output_dir("--out", args.out)
@@ -103,9 +106,16 @@ def _prepare(args):
         from spsc.models.surrogate.predict import load
 
         _count("samples", args.samples, 1, 100_000)
-        load(args.file)
+        load(_file(args.file))
         if args.out is not None:
             check_output_dir("--out", args.out)
+
+
+def _file(text):
+    """A surrogate file: ``text`` itself, or the shipped one of the family it names."""
+    from spsc.models.surrogate.predict import SHIPPED_FILES
+
+    return str(SHIPPED_FILES[text]) if text in SHIPPED_FILES else text
 
 
 def _wall(cases, args, desc):
@@ -124,7 +134,8 @@ def _train(args) -> int:
 
     from spsc.studies.surrogate.build import build
     from spsc.studies.surrogate.check import check_cases
-    from spsc.studies.surrogate.train import train_maps
+    from spsc.models.surrogate.domain import RATIOS
+    from spsc.studies.surrogate.train import FAMILIES, train_maps
 
     bar, tick = _bar("spsc surrogate train: wall maps", bool(args.quiet))
     try:
@@ -132,11 +143,11 @@ def _train(args) -> int:
                    workers=args.workers, scheduler=args.scheduler, progress=tick)
     finally:
         bar.close()
-    fixed = {"l/w": 0.0}
+    fixed = FAMILIES[args.family]
     cases = check_cases(args.calibration, _CALIBRATION_SEED + args.seed, fixed)
     calibration = _wall(cases, args, "spsc surrogate train: calibration")
     path, meta = build(args.out, Path(args.out) / "surrogate.npz", calibration=calibration,
-                       free=["h/w", "t0/w", "n1", "n2", "cy"], fixed=fixed,
+                       free=[r for r in RATIOS if r not in fixed], fixed=fixed,
                        name=f"wall-{args.family}")
     size = path.stat().st_size / 1e6
     print(f"spsc surrogate train: {path} ({size:.1f} MB): {meta['designs']} designs "
@@ -151,7 +162,7 @@ def _check(args) -> int:
     from spsc.models.surrogate.predict import load
     from spsc.studies.surrogate.check import check_cases, compare, summary
 
-    sur = load(args.file)
+    sur = load(_file(args.file))
     cases = check_cases(args.samples, _CHECK_SEED + args.seed, sur.fixed)
     results = _wall(cases, args, "spsc surrogate check: wall curves")
     result = compare(sur, results)

@@ -29,10 +29,9 @@ def surrogate_map(geometry, material, *, setup_kPa: float, top_kPa: float, y_max
     shipped one)."""
     from spsc.models.surrogate.domain import ratios_of
     from spsc.models.surrogate.model import check_material
-    from spsc.models.surrogate.predict import load
+    from spsc.models.surrogate.predict import choose
 
-    sur = load(surrogate)
-    why = sur.outside(ratios_of(geometry))[0]
+    sur, why = choose(surrogate, ratios_of(geometry))
     if why:
         name, text = why.split(": ", 1)
         raise ParameterError(f"chamber.{name}", getattr(geometry, name), text + " (the "

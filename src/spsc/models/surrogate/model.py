@@ -76,13 +76,16 @@ class SurrogateCurveModel(ModelBase):
     def domain_notes(self, setup, options) -> list[str]:
         """What lies outside the trained domain (ParameterError on the first, unless
         ``allow_extrapolation``: then the list of warnings)."""
-        from .predict import POLYTROPIC, RESERVOIR_MAX_MM3, load
+        return self._answering(setup, options)[1]
+
+    def _answering(self, setup, options):
+        """(the surrogate that answers the setup's chamber, :meth:`domain_notes`)."""
+        from .predict import POLYTROPIC, RESERVOIR_MAX_MM3, choose
 
         allow = bool(options.allow_extrapolation)
-        sur = load(options.surrogate)
         g, lc = setup.body, setup.load
+        sur, why = choose(options.surrogate, ratios_of(g))
         notes = check_material(setup.material, allow)
-        why = sur.outside(ratios_of(g))[0]
         if why:
             name, text = why.split(": ", 1)
             _refuse_or_note(notes, allow, name, getattr(g, name), text)
@@ -101,18 +104,15 @@ class SurrogateCurveModel(ModelBase):
         if lc.stroke_mm > d_top * g.h:
             _refuse_or_note(notes, allow, "stroke", f"{lc.stroke_mm:g} mm",
                             f"at most {d_top * g.h:.3g} mm ({d_top:g} h)")
-        return notes
+        return sur, notes
 
     def check(self, setup, options, *, verb: str, quiet: bool) -> None:
         self.check_contact(setup)
         self.domain_notes(setup, options)
 
     def curve(self, setup, options, *, progress=None, cache_dir=None):
-        from .predict import load
-
         t0 = time.perf_counter()
-        notes = self.domain_notes(setup, options)
-        sur = load(options.surrogate)
+        sur, notes = self._answering(setup, options)
         g, lc, mat = setup.body, setup.load, setup.material
         y = np.linspace(0.0, lc.stroke_mm, lc.points)
         params = np.array([[g.w, g.h, g.l, g.t0, g.n1, g.n2, g.cy]])
@@ -125,39 +125,51 @@ class SurrogateCurveModel(ModelBase):
     def curves_many(self, setups, options) -> list:
         """The curves of many setups in one batched evaluation (the sweep's and the design
         search's bulk path): the means of the learnt maps without the error estimate's
-        posterior draws (the snap flag kept, in each curve's notes). Each setup is checked as
-        :meth:`curve` checks it (ParameterError on the first refused)."""
-        from .predict import load
-
-        t0 = time.perf_counter()
+        posterior draws (the snap flag kept, in each curve's notes), each surrogate's designs
+        together. Each setup is checked as :meth:`curve` checks it (ParameterError on the
+        first refused)."""
         setups = list(setups)
         if not setups:
             return []
-        allow = bool(options.allow_extrapolation)
-        notes = [self.domain_notes(s, options) for s in setups]
-        sur = load(options.surrogate)
-        params = np.array([[s.body.w, s.body.h, s.body.l, s.body.t0, s.body.n1, s.body.n2,
-                            s.body.cy] for s in setups])
-        loads = [s.load for s in setups]
-        width = max(lc.points for lc in loads)
-        # rows of different lengths padded with their last travel (dropped again below)
-        y = np.array([np.pad(np.linspace(0.0, lc.stroke_mm, lc.points), (0, width - lc.points),
-                             mode="edge") for lc in loads])
-        out = sur.curves(params, np.array([s.material.shear_modulus for s in setups]), y,
-                         np.array([lc.pressure_kPa for lc in loads]),
-                         np.array([lc.reservoir_mm3 for lc in loads]),
-                         np.array([lc.polytropic_n for lc in loads]))
-        from spsc.cad.cavity import cavity_volumes
-
-        cavity = cavity_volumes(*np.delete(params, 3, axis=1).T)  # all at once
-        share = (time.perf_counter() - t0) / len(setups)
-        curves = []
-        for k, (s, lc) in enumerate(zip(setups, loads)):
-            one = {key: (v[k:k + 1, :lc.points] if np.ndim(v) == 2 else v[k:k + 1])
-                   for key, v in out.items()}
-            curves.append(_to_curve(s, sur, one, y[k, :lc.points], notes[k], allow, share,
-                                    cavity=float(cavity[k])))
+        answering = [self._answering(s, options) for s in setups]
+        groups: dict[int, list[int]] = {}
+        for k, (sur, _) in enumerate(answering):
+            groups.setdefault(id(sur), []).append(k)
+        curves = [None] * len(setups)
+        for rows in groups.values():
+            sur = answering[rows[0]][0]
+            part = _batch(sur, [setups[k] for k in rows], [answering[k][1] for k in rows],
+                          bool(options.allow_extrapolation), time.perf_counter())
+            for k, c in zip(rows, part):
+                curves[k] = c
         return curves
+
+
+def _batch(sur, setups, notes, allow, t0) -> list:
+    """The curves of ``setups`` that ``sur`` answers, in one call of its predictor (each
+    curve's seconds its share of the call, from ``t0``)."""
+    from spsc.cad.cavity import cavity_volumes
+
+    params = np.array([[s.body.w, s.body.h, s.body.l, s.body.t0, s.body.n1, s.body.n2,
+                        s.body.cy] for s in setups])
+    loads = [s.load for s in setups]
+    width = max(lc.points for lc in loads)
+    # rows of different lengths padded with their last travel (dropped again below)
+    y = np.array([np.pad(np.linspace(0.0, lc.stroke_mm, lc.points), (0, width - lc.points),
+                         mode="edge") for lc in loads])
+    out = sur.curves(params, np.array([s.material.shear_modulus for s in setups]), y,
+                     np.array([lc.pressure_kPa for lc in loads]),
+                     np.array([lc.reservoir_mm3 for lc in loads]),
+                     np.array([lc.polytropic_n for lc in loads]))
+    cavity = cavity_volumes(*np.delete(params, 3, axis=1).T)  # all at once
+    share = (time.perf_counter() - t0) / len(setups)
+    curves = []
+    for k, (s, lc) in enumerate(zip(setups, loads)):
+        one = {key: (v[k:k + 1, :lc.points] if np.ndim(v) == 2 else v[k:k + 1])
+               for key, v in out.items()}
+        curves.append(_to_curve(s, sur, one, y[k, :lc.points], notes[k], allow, share,
+                                cavity=float(cavity[k])))
+    return curves
 
 
 def _to_curve(setup, sur, out, y, notes, allow, seconds, cavity=None):

@@ -26,10 +26,17 @@ from .gp import FieldModel
 from .inputs import unit_inputs
 from .spline import SplineGrid
 
-__all__ = ["Surrogate", "load", "SHIPPED", "RESERVOIR_MAX_MM3", "POLYTROPIC"]
+__all__ = ["Surrogate", "load", "surrogates", "choose", "SHIPPED", "SHIPPED_FILES",
+           "RESERVOIR_MAX_MM3", "POLYTROPIC"]
 
-#: The surrogate the package ships (trained by ``spsc surrogate train``).
-SHIPPED = Path(__file__).with_name("data") / "wall-dome.npz"
+#: The surrogates the package ships (trained by ``spsc surrogate train --family F``), by
+#: family: a design goes to the first whose domain holds it (:func:`choose`).
+SHIPPED_FILES = {family: Path(__file__).with_name("data") / f"wall-{family}.npz"
+                 for family in ("dome", "table1")}
+#: The domes' surrogate: the default file of every verb that takes one.
+SHIPPED = SHIPPED_FILES["dome"]
+#: a fixed ratio holds within this share of its value (a chamber drawn to 0.01 mm)
+FIXED_RTOL = 1e-3
 #: The reservoir range (mm³) and polytropic indices the surrogate answers for.
 RESERVOIR_MAX_MM3 = 100_000.0
 POLYTROPIC = (1.0, 1.4)
@@ -65,9 +72,11 @@ class Surrogate:
             for k, name in enumerate(RATIOS):
                 v = r[k]
                 if name in self.fixed:
-                    if abs(v - self.fixed[name]) > 1e-9:
-                        why = (f"{_NAMED[name]}: {name} = {self.fixed[name]:g} (the surrogate "
-                               f"is trained on it only; {name} = {v:.4g} here)")
+                    fixed = self.fixed[name]
+                    if abs(v - fixed) > FIXED_RTOL * abs(fixed) + 1e-9:
+                        why = (f"{_NAMED[name]}: {name} = {fixed:.4g} "
+                               f"({self.meta.get('name') or 'the surrogate'} is trained on "
+                               f"it only; {name} = {v:.4g} here)")
                         break
                     continue
                 lo, hi = BOUNDS[name]
@@ -77,6 +86,12 @@ class Surrogate:
                     break
             out.append(why)
         return out
+
+    def domain(self) -> str:
+        """The trained domain in words: its fixed ratios and the ranges of the free ones."""
+        fixed = ", ".join(f"{k} = {v:.4g}" for k, v in self.fixed.items())
+        free = ", ".join(f"{k} {BOUNDS[k][0]:g}–{BOUNDS[k][1]:g}" for k in self.free)
+        return f"{self.meta.get('name', 'the surrogate')}: {fixed}; {free}"
 
     def unit_inputs(self, ratios) -> np.ndarray:
         """The GP inputs of design ratios (:func:`.inputs.unit_inputs`)."""
@@ -147,9 +162,31 @@ class Surrogate:
         return self.fields.snap_risk(self.unit_inputs(ratios), levels)
 
 
+def surrogates(path: str | None = None) -> tuple[Surrogate, ...]:
+    """The surrogates that answer: the one in ``path``, or every shipped one
+    (:data:`SHIPPED_FILES`, the domes' first)."""
+    if path:
+        return (load(path),)
+    return (load(),) + tuple(load(str(f)) for k, f in SHIPPED_FILES.items()
+                             if k != "dome" and f.exists())
+
+
+def choose(path: str | None, ratios) -> tuple[Surrogate, str]:
+    """The surrogate that answers the design of ``ratios`` (:data:`~.domain.RATIOS`), of
+    :func:`surrogates` (``path``), and why none holds it ('' if one does): the first's
+    reason, naming the parameter, with the others' domains. Outside every domain the first
+    answers (with ``--allow-extrapolation``)."""
+    surs = surrogates(path)
+    whys = [s.outside(ratios)[0] for s in surs]
+    for s, why in zip(surs, whys):
+        if not why:
+            return s, ""
+    return surs[0], "; or ".join([whys[0]] + [s.domain() for s in surs[1:]])
+
+
 @functools.lru_cache(maxsize=4)
 def load(path: str | None = None) -> Surrogate:
-    """The surrogate in ``path`` (None: the shipped one, :data:`SHIPPED`); a one-line
+    """The surrogate in ``path`` (None: the domes', :data:`SHIPPED`); a one-line
     ParameterError if it is missing or not a surrogate file."""
     path = Path(path) if path else SHIPPED
     try:

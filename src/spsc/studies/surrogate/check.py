@@ -40,9 +40,10 @@ def check_cases(count: int, seed: int, fixed: dict) -> list[dict]:
             lo, hi = BOUNDS[name]
             r[name] = lo + row[k] * (hi - lo)
         w = round(8.0 + 6.0 * row[-3], 3)
-        g = {"w": w, "h": round(r["h/w"] * w, 3), "l": round(r["l/w"] * w, 3),
-             "t0": round(r["t0/w"] * w, 3), "n1": round(r["n1"], 3), "n2": round(r["n2"], 3),
-             "cy": round(r["cy"], 3)}
+        # free ratios drawn to 0.001 mm, the fixed exact (h = 13/11 w, not 0.001 mm off it)
+        size = lambda name: r[name] * w if name in fixed else round(r[name] * w, 3)  # noqa
+        g = {"w": w, "h": size("h/w"), "l": size("l/w"), "t0": size("t0/w"),
+             "n1": round(r["n1"], 3), "n2": round(r["n2"], 3), "cy": round(r["cy"], 3)}
         cases.append({"geometry": g, "pressure_kPa": round(10.0 + 40.0 * row[-2], 2),
                       "polytropic_n": round(1.0 + 0.4 * row[-1], 3),
                       "stroke_mm": round(min(6.0, 0.4 * g["h"]), 2), "points": 25})

@@ -21,25 +21,34 @@ from spsc.models.surrogate.domain import BOUNDS, Q_LEVELS, RATIOS, TRAVELS
 
 __all__ = ["FAMILIES", "design_points", "train_maps", "load_runs"]
 
-#: The design families a study samples: ``dome`` (l = 0, the axisymmetric wall, about 3 s a
-#: design) and ``stadium`` (l/w over its range, the swept wall, about a minute a design).
-FAMILIES = ("dome", "stadium")
+#: The design families a study samples, each with the ratios it fixes: ``dome`` (l = 0, the
+#: axisymmetric wall, 3–8 s a design), ``table1`` (the stadiums of Table 1's proportions,
+#: h/w = 13/11, l/w = 3/11, t0/w = 1/11, their shape n1, n2, c_y free: Types A–D and every
+#: shape between, the swept wall, about two minutes a design) and ``stadium`` (every ratio
+#: free).
+FAMILIES = {"dome": {"l/w": 0.0},
+            "table1": {"h/w": 13 / 11, "l/w": 3 / 11, "t0/w": 1 / 11},
+            "stadium": {}}
 
 
 def design_points(count: int, seed: int, family: str) -> np.ndarray:
     """``count`` designs (rows of the six ratios) of a scrambled Sobol sequence over
-    :data:`BOUNDS` (scipy.stats.qmc; l/w fixed at 0 for ``dome``)."""
+    :data:`BOUNDS` (scipy.stats.qmc), the ratios the family fixes at their values."""
     from scipy.stats import qmc
 
     if family not in FAMILIES:
         raise ParameterError("family", family, "one of " + ", ".join(FAMILIES))
-    free = [r for r in RATIOS if not (family == "dome" and r == "l/w")]
+    fixed = FAMILIES[family]
+    free = [r for r in RATIOS if r not in fixed]
     unit = qmc.Sobol(len(free), scramble=True, seed=np.random.default_rng(seed)).random(count)
     out = np.zeros((count, len(RATIOS)))
     for k, name in enumerate(free):
         lo, hi = BOUNDS[name]
         out[:, RATIOS.index(name)] = lo + unit[:, k] * (hi - lo)
-    return np.round(out, 6)
+    out = np.round(out, 6)
+    for name, value in fixed.items():  # exact: 13/11 of w = 11 mm is h = 13 mm
+        out[:, RATIOS.index(name)] = value
+    return out
 
 
 def _job(index: int, ratios, old: dict | None = None) -> tuple[int, dict]:
