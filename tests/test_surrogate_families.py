@@ -78,3 +78,23 @@ def test_a_design_no_family_holds_is_refused_naming_each_domain(two_families):
     text = str(err.value)
     assert text.startswith("l = 3.0 is invalid") and "\n" not in text
     assert "wall-halfl: l/w = 0.5" in text
+
+
+def test_the_table1_family_samples_its_shape_and_trains_its_corners_and_types():
+    from spsc.cad.geometry import TYPES
+    from spsc.models.surrogate.domain import BOUNDS, RATIOS
+    from spsc.studies.surrogate.sample import geometry_of
+    from spsc.studies.surrogate.train import anchor_points, design_points
+
+    pts = design_points(64, 0, "table1")
+    g = geometry_of(pts[5])
+    assert (g.w, g.h, g.l, g.t0) == (11.0, 13.0, 3.0, 1.0)  # Table 1's, exactly
+    for k, name in enumerate(RATIOS):
+        lo, hi = BOUNDS[name]
+        if name in ("n1", "n2", "cy"):
+            assert lo <= pts[:, k].min() < pts[:, k].max() <= hi
+    shapes = {tuple(r[3:]) for r in anchor_points("table1")}
+    assert len(shapes) == 10 and all(tuple(map(float, TYPES[t])) in shapes for t in "ABCD")
+    # the domes' sample is as before the families (its 2048-design study resumes)
+    assert anchor_points("dome").shape == (0, 6)
+    assert np.all(design_points(8, 0, "dome")[:, 1] == 0.0)

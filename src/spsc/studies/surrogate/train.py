@@ -19,7 +19,7 @@ import numpy as np
 from spsc.core.errors import ParameterError
 from spsc.models.surrogate.domain import BOUNDS, Q_LEVELS, RATIOS, TRAVELS
 
-__all__ = ["FAMILIES", "design_points", "train_maps", "load_runs"]
+__all__ = ["FAMILIES", "ANCHORS", "design_points", "anchor_points", "train_maps", "load_runs"]
 
 #: The design families a study samples, each with the ratios it fixes: ``dome`` (l = 0, the
 #: axisymmetric wall, 3–8 s a design), ``table1`` (the stadiums of Table 1's proportions,
@@ -29,6 +29,11 @@ __all__ = ["FAMILIES", "design_points", "train_maps", "load_runs"]
 FAMILIES = {"dome": {"l/w": 0.0},
             "table1": {"h/w": 13 / 11, "l/w": 3 / 11, "t0/w": 1 / 11},
             "stadium": {}}
+#: The designs a family trains besides its sample (n1, n2, c_y): for ``table1`` the corners
+#: of its shape's range, Types A and C among them, and Types B and D, which lie on its
+#: faces, where a Gaussian process would otherwise extrapolate.
+ANCHORS = {"table1": [(n1, n2, cy) for n1 in (2.0, 3.0) for n2 in (1.0, 4.0)
+                      for cy in (0.0, 0.6)] + [(2.0, 2.2, 0.0), (2.0, 2.2, 0.6)]}
 
 
 def design_points(count: int, seed: int, family: str) -> np.ndarray:
@@ -51,7 +56,17 @@ def design_points(count: int, seed: int, family: str) -> np.ndarray:
     return out
 
 
-def _job(index: int, ratios, old: dict | None = None) -> tuple[int, dict]:
+def anchor_points(family: str) -> np.ndarray:
+    """The family's :data:`ANCHORS` as rows of the six ratios (none: 0 × 6)."""
+    fixed = FAMILIES[family]
+    rows = []
+    for n1, n2, cy in ANCHORS.get(family, []):
+        r = dict(fixed, n1=n1, n2=n2, cy=cy)
+        rows.append([r[k] for k in RATIOS])
+    return np.array(rows, float).reshape(-1, len(RATIOS))
+
+
+def _job(index, ratios, old: dict | None = None) -> tuple:
     from .sample import extend_run, run_design
 
     try:
@@ -107,14 +122,18 @@ def _open(out: Path, meta: dict) -> None:
 
 def train_maps(out, *, count: int, seed: int = 0, family: str = "dome", workers=None,
                scheduler=None, progress=None) -> int:
-    """The wall maps of the first ``count`` designs of the study in ``out`` (computing those
-    it lacks); returns how many were computed now. ``progress(done, total)`` per design."""
+    """The wall maps of the first ``count`` designs of the study in ``out`` and of the
+    family's :data:`ANCHORS` (computing those it lacks); returns how many were computed now.
+    ``progress(done, total)`` per design."""
     out = Path(out)
-    points = design_points(count, seed, family)
+    # the sample's designs by index, the anchors as a00, a01, …
+    points = dict(enumerate(design_points(count, seed, family)))
+    points.update({f"a{k:02d}": r for k, r in enumerate(anchor_points(family))})
     _open(out, _meta(count, seed, family))
+    count = len(points)
     todo, old = [], {}
-    for i in range(count):
-        path = out / "runs" / f"{i:05d}.npz"
+    for i in points:
+        path = out / "runs" / _name(i)
         if not path.exists():
             todo.append(i)
         elif (run := _lacking(path)) is not None:
@@ -132,18 +151,24 @@ def train_maps(out, *, count: int, seed: int = 0, family: str = "dome", workers=
         futures = [client.submit(_job, i, points[i], old.get(i), pure=False) for i in todo]
         for k, fut in enumerate(as_completed(futures), start=1):
             i, d = fut.result()
-            tmp = out / "runs" / f"{i:05d}.tmp.npz"
+            tmp = out / "runs" / _name(i).replace(".npz", ".tmp.npz")
             np.savez_compressed(tmp, **d)
-            tmp.replace(out / "runs" / f"{i:05d}.npz")
+            tmp.replace(out / "runs" / _name(i))
             if progress is not None:
                 progress(count - len(todo) + k, count)
     return len(todo)
 
 
+def _name(index) -> str:
+    """A run's file: the sample's by its number, an anchor's by its name."""
+    return f"{index:05d}.npz" if isinstance(index, int) else f"{index}.npz"
+
+
 def load_runs(out) -> list[dict]:
-    """Every design's arrays of the study in ``out``, in index order."""
+    """Every design's arrays of the study in ``out``: the sample's in index order, then the
+    anchors'."""
     runs = []
-    for path in sorted((Path(out) / "runs").glob("[0-9]*.npz")):
+    for path in sorted((Path(out) / "runs").glob("*.npz")):
         if ".tmp" in path.name:
             continue
         with np.load(path, allow_pickle=False) as z:
