@@ -532,7 +532,7 @@ def _domes(samples=24, seed=3):
 def test_a_batched_row_is_the_per_design_row():
     from spsc.sweep.evaluate import evaluate_many
 
-    designs = list(_domes(12)) + [dict(B)]  # B has l = 3: outside the dome surrogate
+    designs = list(_domes(12)) + [dict(B, l=4.0)]  # l/w = 4/11: outside every surrogate
     settings = ("surrogate", "fdm", None, 6.0)
     many = evaluate_many(designs, *settings)
     one = [evaluate(d, *settings) for d in designs]
