@@ -30,7 +30,9 @@ def two_families(tmp_path, monkeypatch):
     path = tmp_path / "wall-halfl.npz"
     np.savez(path, meta=np.array(json.dumps(meta)), **arrays)
     monkeypatch.setattr(predict, "SHIPPED_FILES", {"dome": predict.SHIPPED, "halfl": path})
-    return predict.load(str(path))
+    predict.surrogates.cache_clear()  # the shipped set is read once per process
+    yield predict.load(str(path))
+    predict.surrogates.cache_clear()
 
 
 def _setup(l, pressure=30.0, reservoir=0.0):

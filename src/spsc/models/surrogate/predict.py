@@ -162,6 +162,7 @@ class Surrogate:
         return self.fields.snap_risk(self.unit_inputs(ratios), levels)
 
 
+@functools.lru_cache(maxsize=4)
 def surrogates(path: str | None = None) -> tuple[Surrogate, ...]:
     """The surrogates that answer: the one in ``path``, or every shipped one
     (:data:`SHIPPED_FILES`, the domes' first)."""
