@@ -45,7 +45,11 @@ def design_points(count: int, seed: int, family: str) -> np.ndarray:
         raise ParameterError("family", family, "one of " + ", ".join(FAMILIES))
     fixed = FAMILIES[family]
     free = [r for r in RATIOS if r not in fixed]
-    unit = qmc.Sobol(len(free), scramble=True, seed=np.random.default_rng(seed)).random(count)
+    # the first ``count`` points of the next power of two's (the same points; scipy warns
+    # that a count between powers of two loses the balance it then states)
+    whole = 1 << max(0, int(count) - 1).bit_length()
+    unit = qmc.Sobol(len(free), scramble=True,
+                     seed=np.random.default_rng(seed)).random(whole)[:count]
     out = np.zeros((count, len(RATIOS)))
     for k, name in enumerate(free):
         lo, hi = BOUNDS[name]
