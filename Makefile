@@ -14,7 +14,7 @@ QUICK    ?=
 GEOM_ARGS = $(if $(W),--w $(W)) $(if $(H),--h $(H)) $(if $(L),--l $(L)) $(if $(T0),--t0 $(T0)) \
             $(if $(N1),--n1 $(N1)) $(if $(N2),--n2 $(N2)) $(if $(CY),--cy $(CY))
 
-.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-long test-all docs bench bench-mold bench-compare bench-wall bench-speed bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap bench-surrogate surrogate-check durability-study clean
+.PHONY: help venv bladder mold fingertip fingertip-fem haptic-fem time-study gate test test-slow test-long test-all docs bench bench-mold bench-compare bench-wall bench-speed bench-material bench-sweep bench-time bench-sense bench-hysteresis bench-friction bench-gap bench-surrogate surrogate-check surrogate-check-table1 durability-study clean
 
 help:
 	@echo "make bladder TYPE=A|B|C|D [W= H= L= T0= N1= N2= CY= MATERIAL=]  -> build/bladder-TYPE/"
@@ -154,6 +154,9 @@ bench-gap: $(STAMP)
 # by make report; bench-surrogate: its speed (quiet machine)
 surrogate-check: $(STAMP)
 	$(BIN)/spsc surrogate check --samples 200 --out build/surrogate-check
+# the shipped surrogate of Table 1's stadiums on 64 fresh ones (about 6 minutes on 2 cores)
+surrogate-check-table1: $(STAMP)
+	$(BIN)/spsc surrogate check table1 --samples 64 --out build/surrogate-check-table1
 # the paper's fatigue and puncture tests in the wall model (15-20 minutes), shown by make report
 durability-study: $(STAMP)
 	$(BIN)/spsc fatigue --study --out build/durability

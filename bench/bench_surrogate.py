@@ -6,8 +6,10 @@ Prints: the shipped file's size and load time (a fresh process), one 25-point cu
 inside Python (with and without the error estimate), curve points per second batched on one
 core (designs × 25 points, mean only), and ``spsc curve --model surrogate`` as a whole process
 beside ``spsc curve --model membrane`` and ``--model wall`` on the same dome (Type B profile,
-l = 0), as medians of five runs. ``--sweep``: ``spsc sweep --model surrogate --samples 100000``
-over the domes (two workers, printability judged) as a process; ``--design``: ``spsc design
+l = 0), as medians of five runs. The time domain's map of a new stadium
+of Table 1's proportions (the table1 surrogate). ``--sweep``: also the wall model's map of it,
+and ``spsc sweep --model surrogate --samples 100000`` over the domes (two workers,
+printability judged) as a process; ``--design``: ``spsc design
 --model surrogate`` with two targets, its wall confirmation included, as a process.
 """
 
@@ -152,11 +154,40 @@ def design() -> None:
           f"{'met' if doc['met'] else 'NOT met'} by the wall model")
 
 
+def stadium_map(wall: bool = False) -> None:
+    """The chamber map ``spsc simulate`` builds for a new stadium of Table 1's proportions
+    (Type C's profile at w = 9 mm, c_y = 0.25, silicone 40A; the table1 surrogate), as a
+    fresh process would (the file's load included), and with ``wall`` the wall model's."""
+    from spsc.cad.geometry import preset
+    from spsc.dynamics.chamber_map import build_map
+    from spsc.dynamics.surrogate_map import surrogate_map
+    from spsc.materials import material
+
+    k = 9.0 / 11.0
+    g = preset("C", w=9.0, h=13 * k, l=3 * k, t0=k, cy=0.25)
+    mat = material("silicone40a")
+    kw = dict(setup_kPa=10.0, top_kPa=20.0, y_max_mm=4.0)
+    load.cache_clear()
+    t = time.perf_counter()
+    surrogate_map(g, mat, **kw)
+    first = time.perf_counter() - t
+    warm = _median_s(lambda: surrogate_map(g, mat, **kw), 20)
+    line = (f"the time domain's map of a new stadium (Type C profile, w = 9 mm, Table 1's "
+            f"proportions, c_y = 0.25, silicone 40A): {first:.3f} s with the files' load, "
+            f"{1000 * warm:.1f} ms warm")
+    if wall:
+        t = time.perf_counter()
+        build_map(g, mat, **kw)
+        line += f"; the wall model's {time.perf_counter() - t:.1f} s"
+    print(line)
+
+
 if __name__ == "__main__":
     file_figures()
     one_curve()
     batched()
     processes()
+    stadium_map(wall="--sweep" in sys.argv)
     if "--sweep" in sys.argv:
         sweep()
     if "--design" in sys.argv:
