@@ -251,14 +251,14 @@ def surrogate_cases(f, tmp) -> list[Case]:
         Case(t + ("--designs", "5"), "too few designs", "designs", "range"),
         Case(t + ("--designs", "abc"), "designs as text", "designs", "number"),
         Case(t + ("--calibration", "1"), "too few calibration cases", "calibration", "range"),
-        Case(t + ("--family", "stadium"), "a family not trained yet", "family", "choice"),
+        Case(t + ("--family", "cylinder"), "an unknown family", "family", "choice"),
         Case(t + ("--workers", "0"), "no worker", "workers", "range"),
         Case(c + ("--samples", "0"), "no sample", "samples", "range"),
         Case(c + (str(tmp / "missing.npz"),), "missing surrogate file", "surrogate",
              "input file"),
         Case(c + (str(f["file"]),), "a text file as the surrogate", "surrogate", "input file"),
         Case(c + ("--out", str(f["file"])), "--out an existing file", "out", "output folder"),
-        Case(curve + ("--l", "3"), "a stadium outside the domain", "l", "range"),
+        Case(curve + ("--l", "4"), "a stadium outside every domain", "l", "range"),
         Case(curve + ("--material", "elastic50a"), "a law outside the domain", "material",
              "range"),
         Case(curve + ("--h", "30"), "h/w outside the domain", "h", "range"),
@@ -336,7 +336,7 @@ def virtual_cases(f, tmp) -> list[Case]:
         "grasp.opening_mm": base + '[scene]\nkind = "gripper"\n[grasp]\nlift_mm = [[0, 0]]\n',
         "events[0].t": grip + '[[events]]\nt = 30\nvalve = "open"\n',
         "design": grip.replace('type = "B"\nl = 0', 'design = "none.design.json"'),
-        "chamber.l": grip.replace("l = 0", "l = 3"),
+        "chamber.l": grip.replace("l = 0", "l = 4"),  # no surrogate holds l/w = 4/11
         "[press]": grip + force}
     for name, text in files.items():
         (tmp / f"scene-{name}").write_text(text, encoding="utf-8")
