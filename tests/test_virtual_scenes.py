@@ -161,7 +161,7 @@ def test_a_heavy_slippery_object_slips_out(tmp_path):
 @pytest.mark.parametrize("change, says", [
     (("[[events]]\nt = 2.2", "[[events]]\nt = 9.0"), "events[0].t"),
     (('type = "D"', 'design = "missing.design.json"'), "design"),
-    (('model = "wall"', 'model = "surrogate"\nl = 3'), "chamber.l"),
+    (('model = "wall"', 'model = "surrogate"\nl = 4'), "chamber.l"),  # l/w 4/11: none
     (('shape = "box"', 'shape = "torus"'), "object.shape"),
     (("duration_s = 4.5", "duration_s = 4.5\nspeed = 2"), "grasp.speed"),
     (("[object]", "[press]\nforce = [[0, 1]]\n[object]"), "[press]"),
