@@ -109,13 +109,15 @@ class Surrogate:
         mu = np.broadcast_to(np.asarray(mu_MPa, float), w.shape)
         nt, nq = len(self.travels), len(self.q_levels)
 
+        scales = np.column_stack([w**3, mu * t0 * w, w**2])  # ΔV, F, A in real units
+
         def build(get):
-            grid = lambda b: get(b).reshape(-1, nq, nt).transpose(0, 2, 1)  # noqa: E731
-            return Maps.of(get("H") * w[:, None], get("V0") * w[:, None] ** 3,
-                        grid("dV") * (w**3)[:, None, None],
-                        grid("F") * (mu * t0 * w)[:, None, None],
-                        grid("A") * (w**2)[:, None, None], h, 1000.0 * mu * t0 / w,
-                        self.qgrid, self.dgrid)
+            fields = np.empty((w.size, nq, 3, nt))  # scaled into place, no stacked copy
+            for k, b in enumerate(Maps.FIELDS):
+                np.multiply(get(b).reshape(-1, nq, nt), scales[:, k, None, None],
+                            out=fields[:, :, k])
+            levels = np.stack([get("H") * w[:, None], get("V0") * w[:, None] ** 3], axis=-1)
+            return Maps(levels, fields, h, 1000.0 * mu * t0 / w, self.qgrid, self.dgrid)
 
         maps = build(lambda b: f[b])
         if not draws:
