@@ -6,7 +6,9 @@ shear moduli, setup pressures, reservoirs, polytropic indices and travels — an
 the exact gas law of :mod:`.assemble` on the learnt maps of :mod:`.gp`. Its domain
 (:mod:`.domain`) is checked per design: a ratio outside the trained hull, a travel beyond the
 map's deepest, a pressure beyond its highest level, a reservoir or an index outside the trained
-ranges. :func:`load` reads the shipped file once.
+ranges. :func:`load` reads a file once. The package ships one surrogate per design family
+(:data:`SHIPPED_FILES`: the domes', and Table 1's stadiums with their shape free):
+:func:`choose` gives a design the first whose domain holds it.
 
 Units: mm, MPa (shear modulus), kPa gauge, mm³, N.
 """

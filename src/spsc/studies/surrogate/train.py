@@ -1,8 +1,9 @@
-"""The surrogate's training study: designs sampled over the domain, the wall map of each
-(:func:`.sample.run_design`) on Dask workers, one file per design, resumable.
+"""The surrogate's training study: designs sampled over a family's domain (:data:`FAMILIES`,
+with its :data:`ANCHORS`), the wall map of each (:func:`.sample.run_design`) on Dask workers,
+one file per design, resumable.
 
 A run folder holds ``study.json`` (the domain, the sampling, the code version) and
-``runs/NNNNN.npz``, one per design as it finishes: a re-run with the same folder computes only
+``runs/NNNNN.npz`` (``runs/aNN.npz`` for an anchor), one per design as it finishes: a re-run with the same folder computes only
 the designs it lacks, and refuses a folder of another sampling, travels or code version (its
 maps would not be the same model's). A folder trained on fewer pressure levels than
 :data:`~spsc.models.surrogate.domain.Q_LEVELS` is extended: each design computes only the
