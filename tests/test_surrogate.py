@@ -126,18 +126,10 @@ def test_the_time_domain_map_from_the_surrogate_is_the_wall_models():
     own map (a wall solve per level): volumes within 0.5 % and forces within 2 % of the
     largest (the surrogate's stated accuracy at the 95th percentile is ~0.5 % in force)."""
     from spsc.cad.geometry import preset
-    from spsc.dynamics.chamber_map import build_map
-    from spsc.dynamics.surrogate_map import surrogate_map
-    from spsc.materials import material
+    from spsc_support.surrogate_maps import assert_maps_agree
 
-    g, m = preset("B", l=0.0), material("tpu60a")
-    kw = dict(setup_kPa=40.0, top_kPa=80.0, y_max_mm=5.0)
-    s, w = surrogate_map(g, m, **kw), build_map(g, m, **kw)
-    for y in (1.0, 3.0, 5.0):
-        a, b = s.at(y), w.at(y)
-        p = np.array([20.0, 40.0, 70.0])
-        assert_allclose(a.volume(p), b.volume(p), rtol=5e-3)
-        assert_allclose(a.force(p), b.force(p), rtol=0, atol=0.02 * w.force_N.max())
+    assert_maps_agree(preset("B", l=0.0), (1.0, 3.0, 5.0), (20.0, 40.0, 70.0),
+                      force_share=0.02)
 
 
 def test_a_stadium_in_a_scenario_is_refused_by_the_surrogate_map():

@@ -38,8 +38,8 @@ class Maps:
     own grid).
 
     Held stacked, as the solve reads them: ``levels`` (m × levels × 2: H, V0) and ``fields``
-    (m × levels × 3 × travels: ΔV, F, A); ``H`` … ``A`` are views of them. :meth:`of` builds
-    the stacks from the separate arrays."""
+    (m × levels × 3 × travels: ΔV, F, A, in :data:`FIELDS`' order); ``H`` … ``A`` are views
+    of them."""
 
     FIELDS = ("dV", "F", "A")
 
@@ -47,12 +47,6 @@ class Maps:
         self.levels, self.fields = levels, fields
         self.h, self.unit = np.asarray(h, float), np.asarray(unit, float)
         self.qgrid, self.dgrid = qgrid, dgrid
-
-    @classmethod
-    def of(cls, H, V0, dV, F, A, h, unit, qgrid: SplineGrid, dgrid: SplineGrid) -> "Maps":
-        """The maps of the separate arrays (shapes as the attributes)."""
-        fields = np.stack([np.swapaxes(f, 1, 2) for f in (dV, F, A)], axis=2)
-        return cls(np.stack([H, V0], axis=-1), fields, h, unit, qgrid, dgrid)
 
     H = property(lambda self: self.levels[..., 0])
     V0 = property(lambda self: self.levels[..., 1])
@@ -99,11 +93,10 @@ def solve_curves(maps: Maps, y, p_i, reservoir, n_poly, *, iterations: int = 30,
 
 
 def _solve(maps, sel, y, p_i, Vr, n, iterations, tol) -> dict:
-    rows = np.arange(maps.h.size)[sel]
     _Q, _D = maps.qgrid, maps.dgrid
     levels, fields = maps.levels[sel], maps.fields[sel]
     unit, h = maps.unit[sel, None], maps.h[sel, None]
-    m, nt = len(rows), maps.dgrid.x.size
+    m, nt = y.shape[0], maps.dgrid.x.size
     qi = (p_i / maps.unit[sel])[:, None] * np.ones_like(y)
     Wi, _ = _Q.weights(qi[:, :1], slope=False)
     H_i, V0_i = np.matmul(Wi, levels)[:, 0].T[:, :, None]  # each m × 1
